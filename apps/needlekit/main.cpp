@@ -1,2 +1,43 @@
-// needlekit command-line tool: parses the subcommand and turns library exceptions into messages and exit codes.
-int main() { return 0; }
+// needlekit command-line tool: parses the subcommand and turns library exceptions into messages and exit codes:
+// 0 success, 2 bad input (InvalidInput, IoError, command-line errors), 1 an unexpected internal error.
+#include <fmt/format.h>
+
+#include <exception>
+
+#include "commands.hpp"
+#include "needlekit/core/errors.hpp"
+
+namespace {
+
+int report_error(std::string_view kind, std::string_view message, int exit_code) {
+  fmt::print(stderr, "needlekit: {}: {}\n", kind, message);
+  return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"needlekit: design and analysis of microneedle arrays (P. Boonma, NC State 2012). Every dimensional "
+               "input carries its unit (\"70 um\", \"169 GPa\").",
+               "needlekit"};
+  app.require_subcommand(1);
+  needlekit::cli::add_evaluate_command(app);
+  needlekit::cli::add_optimize_command(app);
+  needlekit::cli::add_sweep_command(app);
+  needlekit::cli::add_materials_command(app);
+  app.footer("Run `needlekit COMMAND --help` for the options and input formats of a command.");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) return app.exit(error);  // --help
+    return report_error("error", fmt::format("{} (see needlekit --help)", error.what()), 2);
+  } catch (const needlekit::InvalidInput& error) {
+    return report_error("error", error.what(), 2);
+  } catch (const needlekit::IoError& error) {
+    return report_error("error", error.what(), 2);
+  } catch (const std::exception& error) {
+    return report_error("internal error", error.what(), 1);
+  }
+  return 0;
+}

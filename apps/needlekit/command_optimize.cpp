@@ -1,0 +1,104 @@
+// `needlekit optimize SPACE.toml`: the best array of one needle type over a grid (dissertation §4.8, Fig 6.20).
+#include <fmt/format.h>
+
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "file_format_help.hpp"
+#include "needlekit/analysis/design_optimizer.hpp"
+#include "needlekit/core/errors.hpp"
+#include "needlekit/io/design_config.hpp"
+#include "needlekit/io/result_writers.hpp"
+#include "progress_bar.hpp"
+
+namespace needlekit::cli {
+namespace {
+
+struct OptimizeArguments {
+  std::string space_path;
+  bool json = false;
+  int top = 10;
+  bool published_compat = false;
+  bool certified = false;
+  int threads = 0;
+  std::string out_path;
+};
+
+void print_table(const analysis::DesignSpace& space, const analysis::OptimizerResult& result) {
+  fmt::print("{} {} needles, {}: {}\n", space.hollow ? "hollow" : "solid", needle::to_string(space.shape),
+             space.material.name, analysis::to_string(result.status));
+  if (!result.reason.empty()) fmt::print("{}\n", result.reason);
+  if (!result.top.empty()) {
+    fmt::print("{:>4} {:>4} {:>8} {:>8} {:>8} {:>9} {:>8} {:>13}\n", "rank", "n", "D1 um", "D2 um", "D3 um", "w um",
+               "L um", "PI 1/um");
+    int rank = 1;
+    for (const analysis::DesignCandidate& c : result.top) {
+      fmt::print("{:>4} {:>4} {:>8.6g} {:>8.6g} {:>8} {:>9.6g} {:>8.6g} {:>13.6e}\n", rank++, c.needles_per_row,
+                 c.tip_diameter * 1e6, c.base_diameter * 1e6,
+                 c.bore_diameter > 0 ? fmt::format("{:.6g}", c.bore_diameter * 1e6) : "-", c.width * 1e6,
+                 c.length * 1e6, c.performance_index * 1e-6);
+    }
+  }
+  fmt::print("grid points {}, evaluated {}, feasible {}{}, {:.3f} s\n", result.grid_points, result.evaluated,
+             result.feasible, result.feasible == 0 && !result.top.empty() ? " (not counted by --certified)" : "",
+             result.seconds);
+}
+
+void run_optimize(const OptimizeArguments& arguments) {
+  const analysis::DesignSpace space = io::read_space_file(arguments.space_path).space;
+  analysis::OptimizerOptions options;
+  options.method = arguments.certified ? analysis::SearchMethod::Certified : analysis::SearchMethod::BruteForce;
+  options.top = arguments.top;
+  options.published_compat = arguments.published_compat;
+  options.threads = arguments.threads;
+  ProgressBar progress("optimize");
+  options.progress = [&progress](double fraction) {
+    progress.update(fraction);
+    return true;
+  };
+  analysis::OptimizerResult result;
+  try {
+    result = analysis::optimize_design(space, options);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("{}: {}", arguments.space_path, error.what()));
+  }
+  progress.finish();
+
+  const nlohmann::json json = io::optimizer_json(space, result);
+  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
+  if (arguments.json) {
+    fmt::print("{}\n", json.dump(2));
+  } else {
+    print_table(space, result);
+  }
+}
+
+}  // namespace
+
+void add_optimize_command(CLI::App& app) {
+  auto arguments = std::make_shared<OptimizeArguments>();
+  CLI::App* command = app.add_subcommand(
+      "optimize", "Best array of one needle type over a grid of n, D1, D2, D3, w, L (dissertation §4.8, Table 6.3)");
+  command->add_option("SPACE", arguments->space_path, "design-space file (TOML), format below")->required();
+  command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
+  command->add_option("--top", arguments->top, "number of designs to report, >= 1 (--certified reports only the best)")
+      ->type_name("K")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_flag("--published-compat", arguments->published_compat,
+                    "reproduce Table 6.3's hollow cylinder and hollow cone rows: the index uses the pitch w_max/n");
+  command->add_flag("--certified", arguments->certified,
+                    "branch-and-bound: the exact optimum without enumerating the grid; needed above 1e12 grid points "
+                    "(e.g. 1 um steps)");
+  command->add_option("--threads", arguments->threads, "worker threads, >= 0 (0: all hardware threads)")
+      ->type_name("N")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--out", arguments->out_path, "also write the JSON result to FILE (written only on success)")
+      ->type_name("FILE");
+  command->footer(kSpaceFileHelp);
+  command->callback([arguments] { run_optimize(*arguments); });
+}
+
+}  // namespace needlekit::cli

@@ -1,0 +1,13 @@
+// The subcommands of the needlekit tool, one file each. Each adds itself to the application with its options and
+// help text; its callback runs the command and throws needlekit::InvalidInput / IoError on bad input.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace needlekit::cli {
+
+void add_evaluate_command(CLI::App& app);   // command_evaluate.cpp
+void add_optimize_command(CLI::App& app);   // command_optimize.cpp
+void add_sweep_command(CLI::App& app);      // command_sweep.cpp
+void add_materials_command(CLI::App& app);  // command_materials.cpp
+
+}  // namespace needlekit::cli

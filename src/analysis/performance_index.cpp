@@ -1,0 +1,139 @@
+#include "needlekit/analysis/performance_index.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "needlekit/analysis/bending.hpp"
+#include "needlekit/analysis/skin_permeation.hpp"
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::analysis {
+
+std::string_view to_string(PerformanceStatus status) {
+  switch (status) {
+    case PerformanceStatus::Ok: return "ok";
+    case PerformanceStatus::ConstraintViolated: return "constraint_violated";
+    case PerformanceStatus::TooShort: return "too_short";
+    case PerformanceStatus::Buckles: return "buckles";
+    case PerformanceStatus::Bends: return "bends";
+  }
+  return "?";
+}
+
+namespace {
+
+void validate_inputs(const ArrayDesign& d, const InsertionConditions& c, const PerformanceIndexOptions& o) {
+  needle::validate(d.needle, "needle");
+  materials::validate(d.material, "needle.material");
+  validate(c.tissue, "tissue");
+  if (d.needles_per_row < 1) {
+    throw InvalidInput(fmt::format("array.needles_per_row: {} must be >= 1", d.needles_per_row));
+  }
+  if (!std::isfinite(d.width) || d.width <= 0) {
+    throw InvalidInput(fmt::format("array.width: {} m must be a positive length", d.width));
+  }
+  if (!std::isfinite(c.angle) || c.angle < 0 || c.angle >= M_PI / 2) {
+    throw InvalidInput(fmt::format("insertion.angle: {:.6g} deg must be in [0, 90) deg", c.angle * 180 / M_PI));
+  }
+  if (!std::isfinite(c.target_depth) || c.target_depth <= 0) {
+    throw InvalidInput(fmt::format("insertion.target_depth: {} m must be a positive length", c.target_depth));
+  }
+  if (!(o.buckling_safety_factor >= 1) || !(o.bending_safety_factor >= 1)) {
+    throw InvalidInput("safety factors must be >= 1");
+  }
+  if (!(o.gap_ratio >= 0) || !(o.spacing_factor >= 0)) {
+    throw InvalidInput("gap_ratio and spacing_factor must be >= 0");
+  }
+}
+
+std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
+
+}  // namespace
+
+PerformanceIndexResult performance_index(const ArrayDesign& design, const InsertionConditions& conditions,
+                                         const PerformanceIndexOptions& options) {
+  validate_inputs(design, conditions, options);
+  const auto& n = design.needle;
+  PerformanceIndexResult r;
+  std::vector<std::string> failures;
+  std::vector<PerformanceStatus> failed;
+
+  // §4.2: puncture force, deformation and cutting depth.
+  r.tip_area = needle::tip_area(n);
+  r.puncture_force = puncture_force(r.tip_area, conditions.tissue);
+  const SkinDeformation deformation = skin_deformation(r.tip_area, conditions.tissue);
+  r.deformation = deformation.depth;
+  r.small_tip_branch = deformation.small_tip_branch;
+  r.cutting_depth = cutting_depth(n.length, r.deformation);
+  r.needle_volume = needle::volume(n);
+
+  // §4.8 constraint: the patch must hold n needles at a pitch of at least β·D2.
+  r.pitch = design.width / design.needles_per_row;
+  if (options.spacing_factor > 0 &&
+      design.width < options.spacing_factor * design.needles_per_row * n.base_diameter * (1 - 1e-12)) {
+    failed.push_back(PerformanceStatus::ConstraintViolated);
+    failures.push_back(fmt::format("violates w >= beta*n*D2: width {} < {:.4g}*{}*{} = {}", um(design.width),
+                                   options.spacing_factor, design.needles_per_row, um(n.base_diameter),
+                                   um(options.spacing_factor * design.needles_per_row * n.base_diameter)));
+  }
+
+  // Eq 4.23: ideal permeation depth.
+  r.permeation_depth = ideal_permeation_depth(n.hollow(), n.length, r.deformation, conditions.target_depth);
+  if (r.permeation_depth <= 0) {
+    failed.push_back(PerformanceStatus::TooShort);
+    failures.push_back(fmt::format("does not reach the target depth: L = {} < d + T = {} + {}", um(n.length),
+                                   um(r.deformation), um(conditions.target_depth)));
+  }
+
+  // Tables 4.2–4.4: embedded volume, Q, hole and gap volumes, fractional skin volume.
+  const double h = std::max(0.0, r.cutting_depth);
+  r.diameter_at_surface = diameter_at_skin_surface(n, h);
+  r.embedded_volume = embedded_volume(n, h);
+  r.q_factor = permeation_factor(n, h);
+  r.hole_volume = hole_volume(n, h, options.gap_ratio);
+  r.gap_volume = gap_volume(n, h, options.gap_ratio);
+  r.fractional_skin_volume = fractional_skin_volume(n, h, options.gap_ratio, r.pitch);
+
+  // §4.3, §5.2: buckling (φ) and bending (ω) under an insertion at angle θ.
+  r.buckling = critical_buckling_load(n, design.material, options.buckling);
+  r.buckling_force = angled_buckling_force(r.puncture_force, conditions.angle);
+  r.buckling_ok = options.buckling_safety_factor * r.buckling_force < r.buckling.critical_load;  // Eq 4.5
+  if (!r.buckling_ok) {
+    failed.push_back(PerformanceStatus::Buckles);
+    failures.push_back(fmt::format("buckles: force {:.4g} N >= critical buckling load {:.4g} N{}", r.buckling_force,
+                                   r.buckling.critical_load,
+                                   options.buckling_safety_factor > 1
+                                       ? fmt::format(" / safety factor {:.3g}", options.buckling_safety_factor)
+                                       : ""));
+  }
+  r.bending_force = angled_bending_force(r.puncture_force, conditions.angle);
+  if (design.material.allowable_stress) {
+    r.critical_bending_load = critical_bending_load(n, *design.material.allowable_stress);
+    r.bending_ok = options.bending_safety_factor * r.bending_force < *r.critical_bending_load;
+    if (!*r.bending_ok) {
+      failed.push_back(PerformanceStatus::Bends);
+      failures.push_back(fmt::format("bends: lateral force {:.4g} N >= critical bending load {:.4g} N",
+                                     r.bending_force, *r.critical_bending_load));
+    }
+  } else if (r.bending_force > 0) {
+    r.notes.push_back("bending not assessed: the material has no allowable_stress");
+  } else {
+    r.bending_ok = true;  // no lateral force at θ = 0
+    r.notes.push_back("bending load not assessed (no allowable_stress); no lateral force at angle 0");
+  }
+  if (r.buckling.note.size()) r.notes.push_back(r.buckling.note);
+
+  if (failures.empty()) {
+    // Eq 4.25 / Eq 5.9.
+    const double pitch = options.index_pitch.value_or(r.pitch);
+    r.performance_index = r.q_factor / (pitch * pitch * r.permeation_depth);
+    r.status = PerformanceStatus::Ok;
+  } else {
+    r.performance_index = 0;
+    r.status = failed.front();
+    r.reason = fmt::format("{}", fmt::join(failures, "; "));
+  }
+  return r;
+}
+
+}  // namespace needlekit::analysis
