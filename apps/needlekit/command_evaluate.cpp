@@ -19,7 +19,7 @@ struct EvaluateArguments {
   std::string out_path;
 };
 
-void print_row(std::string_view label, std::string_view value) { fmt::print("  {:<36}{}\n", label, value); }
+void print_row(std::string_view label, std::string_view value) { fmt::print("  {:<42}{}\n", label, value); }
 
 std::string check_mark(bool ok) { return ok ? "ok" : "FAILS"; }
 

@@ -208,15 +208,23 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
     pitch[i2] = best_pitch(ev, cylinder ? 0.0 : ev.d2_values()[i2], options.published_compat);
   }
 
-  // Per (D1, D2) pair: the smallest feasible bore, the feasible L index interval [lo, hi] (L >= d + T, and φ = 1,
-  // which holds for all L up to a limit) and an upper bound of the index over it.
+  // Per (D1, D2) pair: the smallest feasible bore, the L index interval with L >= d + T, and an upper bound of the
+  // index over it that ignores buckling. φ (which may need an eigenvalue) is decided only for the pairs the bound
+  // cannot prune.
   struct Pair {
     std::size_t i1 = 0, i2 = 0, i3 = 0, lo = 0, hi = 0;
     PitchChoice pitch;
     double bound = 0;
   };
+  // g = Q/H with Q = V(h)/h non-decreasing (the mean of a non-decreasing section area) and V non-decreasing:
+  // solid (H = T): g <= Q(h_b)/T on [h_a, h_b]; hollow (H = h): g <= V(h_b)/h_a².
+  auto bound_on = [&](const Pair& p, std::size_t a, std::size_t b) {
+    const double d = ev.deformation(p.i1, p.i2);
+    const needle::NeedleGeometry gb = ev.geometry(p.i1, p.i2, p.i3, b);
+    const double h_a = lengths[a] - d, h_b = lengths[b] - d;
+    return p.pitch.factor * (hollow ? ev.embedded(gb, h_b) / (h_a * h_a) : ev.g_of(gb, d));
+  };
   std::vector<Pair> pairs(n1 * n2);
-  std::atomic<std::uint64_t> needle_evaluations{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n1 * n2), [&](const auto& range) {
     for (std::size_t k = range.begin(); k != range.end(); ++k) {
       Pair& p = pairs[k];
@@ -227,30 +235,13 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
       const needle::NeedleGeometry g0 = ev.geometry(p.i1, p.i2, 0, 0);
       if (!cylinder && !(g0.tip_diameter < g0.base_diameter)) continue;
       if (cylinder && ev.needle_outcome(p.i1, 0, 0, 0).status == PointStatus::InvalidGeometry) continue;
-      if (hollow) {
-        const auto& d3 = ev.d3_values();
-        const std::size_t i3 = static_cast<std::size_t>(
-            std::lower_bound(d3.begin(), d3.end(), std::min(g0.tip_diameter, g0.base_diameter)) - d3.begin());
-        if (i3 == 0) continue;  // no bore smaller than D1 and D2
-        p.i3 = 0;               // the smallest bore is always the best (it only weakens the column)
-      }
+      if (hollow && !(ev.d3_values().front() < std::min(g0.tip_diameter, g0.base_diameter))) continue;
+      p.i3 = 0;  // the smallest bore is always the best: it only weakens the column
       const double d = ev.deformation(p.i1, p.i2);
       p.lo = static_cast<std::size_t>(std::lower_bound(lengths.begin(), lengths.end(), d + target) - lengths.begin());
       if (p.lo == lengths.size()) continue;
-      // φ holds on a prefix of the L grid: binary search for its end.
-      if (ev.needle_buckles(p.i1, p.i2, p.i3, lengths[p.lo])) continue;
-      std::size_t ok = p.lo, bad = lengths.size();
-      while (bad - ok > 1) {
-        const std::size_t mid = ok + (bad - ok) / 2;
-        (ev.needle_buckles(p.i1, p.i2, p.i3, lengths[mid]) ? bad : ok) = mid;
-      }
-      p.hi = ok;
-      const needle::NeedleGeometry g_hi = ev.geometry(p.i1, p.i2, p.i3, p.hi);
-      const double h_lo = lengths[p.lo] - d, h_hi = lengths[p.hi] - d;
-      // g = Q/H with Q = V(h)/h non-decreasing (the mean of a non-decreasing section area) and V non-decreasing:
-      // solid (H = T): g <= Q(h_hi)/T; hollow (H = h): g <= V(h_hi)/h_lo².
-      p.bound = p.pitch.factor * (hollow ? ev.embedded(g_hi, h_hi) / (h_lo * h_lo) : ev.g_of(g_hi, d));
-      needle_evaluations += 1;
+      p.hi = lengths.size() - 1;
+      p.bound = bound_on(p, p.lo, p.hi);
     }
   });
 
@@ -262,24 +253,30 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
   OptimizerResult result;
   std::optional<Point> incumbent;
   auto cannot_beat = [&](double bound) { return incumbent && bound < incumbent->value * (1 - kTieTolerance); };
-  std::uint64_t evaluated = 0;
+  std::uint64_t evaluated = 0, needle_evaluations = order.size();
   for (std::size_t idx = 0; idx < order.size(); ++idx) {
-    const Pair& p = pairs[order[idx]];
+    Pair p = pairs[order[idx]];
     if (cannot_beat(p.bound)) break;  // sorted: no later pair can beat it either
     if (idx % 256 == 0) {
       progress.report(static_cast<double>(idx) / order.size());
       if (progress.cancelled()) break;
     }
+    // φ holds on a prefix of the L grid (P_cr decreases with L): binary search for its end.
+    if (ev.needle_buckles(p.i1, p.i2, p.i3, lengths[p.lo])) continue;
+    std::size_t ok = p.lo, bad = lengths.size();
+    while (bad - ok > 1) {
+      const std::size_t mid = ok + (bad - ok) / 2;
+      (ev.needle_buckles(p.i1, p.i2, p.i3, lengths[mid]) ? bad : ok) = mid;
+      ++needle_evaluations;
+    }
+    p.hi = ok;
     const double d = ev.deformation(p.i1, p.i2);
     // Branch and bound over the L index interval.
     std::vector<std::pair<std::size_t, std::size_t>> stack{{p.lo, p.hi}};
     while (!stack.empty()) {
       const auto [a, b] = stack.back();
       stack.pop_back();
-      const needle::NeedleGeometry gb = ev.geometry(p.i1, p.i2, p.i3, b);
-      const double h_a = lengths[a] - d, h_b = lengths[b] - d;
-      const double bound = p.pitch.factor * (hollow ? ev.embedded(gb, h_b) / (h_a * h_a) : ev.g_of(gb, d));
-      if (cannot_beat(bound)) continue;
+      if (cannot_beat(bound_on(p, a, b))) continue;
       if (b - a < 8) {
         for (std::size_t il = a; il <= b; ++il) {
           const double value = p.pitch.factor * ev.g_of(ev.geometry(p.i1, p.i2, p.i3, il), d);
@@ -295,7 +292,7 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
     }
   }
   result.evaluated = evaluated;
-  result.needle_evaluations = needle_evaluations.load() + evaluated;
+  result.needle_evaluations = needle_evaluations + evaluated;
   if (progress.cancelled()) {
     result.status = OptimizerStatus::Cancelled;
     result.reason = "cancelled";

@@ -38,7 +38,7 @@ void validate(const NeedleGeometry& n, std::string_view where) {
     throw InvalidInput(fmt::format("{}.bore_diameter: {} m must be a finite length >= 0 (omit it for a solid needle)",
                                    where, n.bore_diameter));
   }
-  if (n.tip_diameter > n.base_diameter) {
+  if (n.tip_diameter > n.base_diameter * (1 + 1e-12)) {
     throw InvalidInput(fmt::format("{}.tip_diameter: {:.6g} um is larger than base_diameter {:.6g} um (D1 <= D2)",
                                    where, n.tip_diameter * 1e6, n.base_diameter * 1e6));
   }

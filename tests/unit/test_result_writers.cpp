@@ -76,6 +76,14 @@ TEST(ResultWriters, SweepCsvHeaderNamesUnitsAndQuotesReasons) {
   EXPECT_THAT(first, testing::StartsWith("100,"));
   EXPECT_THAT(second, testing::StartsWith("200,0,constraint_violated,"));
   EXPECT_FALSE(std::getline(lines, extra));
+  // A reason with a comma is quoted: 100 deg is outside [0, 90) deg.
+  const double degree = M_PI / 180;
+  const analysis::SweepResult angles = analysis::sensitivity_sweep(
+      table_6_1_cone(), {}, {}, {analysis::SweepParameter::Angle, 0, 100 * degree, 100 * degree});
+  const std::string angle_csv = io::sweep_csv(angles);
+  EXPECT_THAT(angle_csv, testing::StartsWith("angle_deg,"));
+  EXPECT_THAT(angle_csv, HasSubstr("\n100,0,constraint_violated,"));
+  EXPECT_THAT(angle_csv, HasSubstr(",\"insertion.angle: 100 deg must be in [0, 90) deg\"\n"));
   EXPECT_EQ(io::sweep_value_column(analysis::SweepParameter::Angle), "angle_deg");
   EXPECT_EQ(io::sweep_value_column(analysis::SweepParameter::NeedlesPerRow), "needles_per_row");
 }
