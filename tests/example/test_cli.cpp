@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/io/design_config.hpp"
+#include "needlekit/needle/needle_geometry.hpp"
+
 using testing::HasSubstr;
 
 namespace {
@@ -220,4 +224,21 @@ TEST_F(Cli, MaterialsListsPresetsWithUnitsAndSources) {
   EXPECT_THAT(r.out, HasSubstr("169 GPa"));
   EXPECT_THAT(r.out, HasSubstr("MPa"));
   EXPECT_THAT(r.out, HasSubstr("source: "));
+}
+
+TEST_F(Cli, MeshWritesAClosedStlWhoseVolumeMatchesTheNeedle) {
+  for (const std::string name : {"evaluate_table_6_1_bevel_hollow.toml", "evaluate_table_6_1_cone.toml"}) {
+    const CliRun r = run("mesh " + kExamples + name + " --out needle.stl --unit um --segments 128");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto mesh = needlekit::geometry::read_stl(dir_ / "needle.stl", 1e-6);
+    const auto report = needlekit::geometry::topology_report(mesh);
+    EXPECT_TRUE(report.closed && report.consistently_oriented) << name;
+    const auto design = needlekit::io::read_design_file(kExamples + name);
+    EXPECT_NEAR(needlekit::geometry::signed_volume(mesh) / needlekit::needle::volume(design.design.needle), 1.0, 1e-3)
+        << name;
+  }
+  const CliRun bad = run("mesh " + kExamples + "evaluate_table_6_1_cone.toml --out needle2.stl --unit furlong");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("--unit"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "needle2.stl"));
 }
