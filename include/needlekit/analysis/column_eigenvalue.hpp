@@ -14,7 +14,7 @@ enum class EndCondition {
 
 struct ColumnEigenvalueOptions {
   EndCondition end_condition = EndCondition::FixedFree;
-  int intervals = 200;      // grid intervals along the column; the result is Richardson-extrapolated from n and 2n
+  int intervals = 100;      // grid intervals along the column; the result is Richardson-extrapolated from n and 2n
 };
 
 // Lowest buckling load P (N) of a column of length L (m) with flexural rigidity EI(s) (N·m²) given as a function of
