@@ -1,0 +1,72 @@
+// A free-form body surface (dissertation §5.6): a triangle mesh with its triangle adjacency through shared reversed
+// edges, face and vertex normals, and an AABB tree for closest-point and ray queries (CGAL inside
+// surface_mesh.cpp only). Coordinates in metres once loaded (the file's unit is stated by the caller).
+#pragma once
+#include <Eigen/Core>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "needlekit/geometry/triangle_mesh.hpp"
+
+namespace needlekit::geometry {
+
+struct SurfaceCheck {
+  bool edge_manifold = false;           // no edge used by more than two triangles
+  bool consistently_oriented = false;   // every interior edge used once in each direction
+  bool closed = false;
+  int boundary_edges = 0;
+  int non_manifold_edges = 0;
+  int inconsistent_edges = 0;
+  int degenerate_triangles = 0;
+  std::string problems;                 // empty when usable; else a readable list of what is wrong
+};
+
+struct ClosestPoint {
+  Eigen::Vector3d point;        // m, on the surface
+  int triangle = -1;
+  Eigen::Vector3d barycentric;  // of `point` in `triangle`
+  double distance = 0;          // m
+};
+
+struct RayHit {
+  Eigen::Vector3d point;
+  int triangle = -1;
+  double distance = 0;          // m, along the (unit) ray direction from its origin
+};
+
+class SurfaceMesh {
+public:
+  // Builds adjacency, normals and the AABB tree. Throws InvalidInput if the mesh is empty, non-manifold or
+  // inconsistently oriented (the message says what and where).
+  explicit SurfaceMesh(TriangleMesh mesh);
+  ~SurfaceMesh();
+  SurfaceMesh(SurfaceMesh&&) noexcept;
+  SurfaceMesh& operator=(SurfaceMesh&&) noexcept;
+
+  const TriangleMesh& mesh() const;
+  int triangle_count() const;
+  int vertex_count() const;
+  // The triangle across edge e of triangle t (edge e joins corners e and (e+1)%3), or -1 on the boundary.
+  int neighbor(int triangle, int edge) const;
+  const Eigen::Vector3d& face_normal(int triangle) const;   // unit, outward
+  const Eigen::Vector3d& vertex_normal(int vertex) const;   // unit, angle-weighted
+  Eigen::Vector3d interpolated_normal(int triangle, const Eigen::Vector3d& barycentric) const;
+  const SurfaceCheck& check() const;
+
+  ClosestPoint closest_point(const Eigen::Vector3d& query) const;
+  // First intersection of the ray origin + s*direction, s > 0; empty if it misses.
+  std::optional<RayHit> first_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Reads OBJ, STL (ASCII or binary), PLY or OFF by the file's extension, scaling coordinates by `unit_to_metre`
+// (e.g. 1e-3 for a file in mm). Throws IoError naming the file (and line where the reader reports one).
+TriangleMesh read_triangle_mesh(const std::filesystem::path& path, double unit_to_metre);
+
+}  // namespace needlekit::geometry

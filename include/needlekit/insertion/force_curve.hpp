@@ -1,0 +1,31 @@
+// The force-depth curve of a needle insertion and its puncture point: the hand-over between the pre-puncture FE
+// indentation (§3.4-3.5) and the post-puncture force model (§3.6). SI units (m, N).
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace needlekit::insertion {
+
+enum class PunctureCriterion { None, CriticalPressure, FractureEnergy };
+std::string to_string(PunctureCriterion criterion);
+
+struct PuncturePoint {
+  double depth = 0;   // m, needle tip displacement below the undeformed surface at puncture
+  double force = 0;   // N, reaction force on the needle at puncture
+  PunctureCriterion criterion = PunctureCriterion::None;
+};
+
+// Samples of (depth, force); depth strictly increasing.
+struct ForceDepthCurve {
+  std::vector<double> depth;  // m
+  std::vector<double> force;  // N
+};
+
+// A pre-puncture indentation outcome as the post-puncture model consumes it.
+struct PrePunctureCurve {
+  ForceDepthCurve curve;
+  std::optional<PuncturePoint> puncture;  // empty: no puncture within the simulated depth
+};
+
+}  // namespace needlekit::insertion

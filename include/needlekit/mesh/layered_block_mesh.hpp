@@ -1,0 +1,40 @@
+// A parametric layered tissue block (dissertation §3.3, default 3000 x 3000 x 1150 um: stratum corneum 20 um,
+// epidermis to 160 um, dermis below) meshed into linear tetrahedra with the Gmsh C++ API: conforming layer
+// interfaces and size fields refined around each insertion site. Gmsh stays inside layered_block_mesh.cpp.
+#pragma once
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::mesh {
+
+struct LayeredBlockOptions {
+  double width = 3000e-6;               // m, block extent in x, > 0 (centred on x = 0)
+  double length = 3000e-6;              // m, block extent in y, > 0 (centred on y = 0)
+  std::vector<TissueLayer> layers;      // top to bottom; total thickness = block height; empty: skin_layers()
+  std::vector<Eigen::Vector2d> insertion_sites{Eigen::Vector2d::Zero()};  // m, (x, y) on the top surface z = 0
+  double size_at_site = 20e-6;          // m, target element size at each insertion site, > 0
+  double refinement_radius = 300e-6;    // m, radius around a site where the size is size_at_site, > 0
+  double size_far = 250e-6;             // m, element size far from the sites, >= size_at_site
+  int threads = 0;                      // Gmsh threads, 0 = all cores
+};
+
+struct LayerQuality {
+  std::string name;
+  int tets = 0;
+  double min_quality = 0;   // Gmsh's gamma (inscribed / circumscribed radius ratio, normalised to 1 for a regular tet)
+  double mean_quality = 0;
+};
+
+struct LayeredBlockResult {
+  TetMesh mesh;                     // layer assignment by the geometric volume (physical group) of each element
+  std::vector<LayerQuality> quality;  // one per layer
+  double mesh_seconds = 0;
+};
+
+// Meshes the block. Throws InvalidInput for non-positive sizes or thicknesses (naming the field).
+LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options);
+
+}  // namespace needlekit::mesh
