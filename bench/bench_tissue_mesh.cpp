@@ -1,0 +1,46 @@
+// Meshing the default skin block (dissertation §3.3: 3000 x 3000 x 1150 um, SC 20 um, EP to 160 um, DM below; one
+// insertion site at the centre) with Gmsh/HXT at about 100k, 300k and 1M tetrahedra. Run one size per process to
+// read its peak memory (peak_rss_MB is the process's maximum resident set so far):
+//   build/bin/needlekit_bench --benchmark_filter='BM_SkinBlockMesh/1/'
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include "needlekit/mesh/layered_block_mesh.hpp"
+
+using namespace needlekit;
+
+namespace {
+
+struct MeshSize {
+  double size_at_site;       // m
+  double size_far;           // m
+  double refinement_radius;  // m
+};
+
+// Chosen to give ~100k, ~300k and ~1M tetrahedra.
+constexpr MeshSize kSizes[] = {{25e-6, 250e-6, 250e-6}, {11e-6, 180e-6, 300e-6}, {8.5e-6, 125e-6, 400e-6}};
+
+void BM_SkinBlockMesh(benchmark::State& state) {
+  const MeshSize& size = kSizes[state.range(0)];
+  mesh::LayeredBlockOptions options;
+  options.size_at_site = size.size_at_site;
+  options.size_far = size.size_far;
+  options.refinement_radius = size.refinement_radius;
+  mesh::LayeredBlockResult result;
+  for (auto _ : state) {
+    result = mesh::layered_block_mesh(options);
+    benchmark::DoNotOptimize(result.mesh.tets.data());
+  }
+  state.counters["tets"] = static_cast<double>(result.mesh.tets.size());
+  state.counters["nodes"] = static_cast<double>(result.mesh.nodes.size());
+  double min_quality = 1;
+  for (const auto& q : result.quality) min_quality = std::min(min_quality, q.min_quality);
+  state.counters["min_quality"] = min_quality;
+  state.counters["sc_min_quality"] = result.quality.front().min_quality;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+BENCHMARK(BM_SkinBlockMesh)->DenseRange(0, 2)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
