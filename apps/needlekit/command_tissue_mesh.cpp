@@ -25,7 +25,9 @@ constexpr const char* kTissueFileHelp = R"(CASE file (TOML; other tables such as
                                poisson_ratio = 0.4   (the last layer may have thickness = "rest")
             height = "1150 um"                        (optional; the block height that "rest" fills)
   [mesh]    size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um",
-            size_gradient = 0.3, thin_layer_size_factor = 2, sites = [["0 um", "0 um"]])";
+            size_gradient = 0.3, thin_layer_size_factor = 2, sites = [["0 um", "0 um"]]
+            or file = "tissue.msh", unit = "um"  (a tetrahedral Gmsh mesh whose physical volumes are named after
+            the layers, top surface at z = 0; layer thicknesses are then not used))";
 
 struct TissueMeshArguments {
   std::string case_path;
@@ -35,42 +37,52 @@ struct TissueMeshArguments {
 };
 
 void run_tissue_mesh(const TissueMeshArguments& arguments) {
-  mesh::LayeredBlockOptions options = io::read_tissue_block(arguments.case_path);
-  options.threads = arguments.threads;
-  const mesh::LayeredBlockResult result = mesh::layered_block_mesh(options);
+  io::TissueCase tissue = io::read_tissue_case(arguments.case_path);
+  tissue.block.threads = arguments.threads;
+  const mesh::LayeredBlockOptions& options = tissue.block;
+  const mesh::LayeredBlockResult result = io::tissue_mesh(tissue);
   std::error_code error;
   std::filesystem::create_directories(arguments.out_dir, error);
   if (error) throw IoError(fmt::format("{}: cannot create the output folder: {}", arguments.out_dir, error.message()));
   const std::filesystem::path file = std::filesystem::path(arguments.out_dir) / "tissue.vtu";
   io::write_vtu(io::tet_mesh_grid(result.mesh), file);
 
-  double height = 0;
-  for (const auto& l : result.mesh.layers) height += l.thickness;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+  for (const auto& p : result.mesh.nodes) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  const Eigen::Vector3d extent = high - low;
   if (arguments.json) {
     nlohmann::json layers = nlohmann::json::array();
     for (std::size_t i = 0; i < result.quality.size(); ++i) {
       const mesh::TissueLayer& l = result.mesh.layers[i];
       const mesh::LayerQuality& q = result.quality[i];
-      layers.push_back({{"name", l.name}, {"thickness_um", l.thickness * 1e6},
+      const nlohmann::json thickness = tissue.msh_file.empty() ? nlohmann::json(l.thickness * 1e6) : nlohmann::json();
+      layers.push_back({{"name", l.name}, {"thickness_um", thickness},
                         {"youngs_modulus_MPa", l.youngs_modulus * 1e-6}, {"poisson_ratio", l.poisson_ratio},
                         {"elements", q.tets}, {"min_quality", q.min_quality}, {"mean_quality", q.mean_quality}});
     }
-    const nlohmann::json out = {{"width_um", options.width * 1e6}, {"length_um", options.length * 1e6},
-                                {"height_um", height * 1e6},       {"elements", result.mesh.tets.size()},
+    const nlohmann::json out = {{"width_um", extent.x() * 1e6}, {"length_um", extent.y() * 1e6},
+                                {"height_um", extent.z() * 1e6},   {"elements", result.mesh.tets.size()},
                                 {"nodes", result.mesh.nodes.size()}, {"mesh_seconds", result.mesh_seconds},
                                 {"layers", layers},                {"file", file.string()}};
     fmt::print("{}\n", out.dump(2));
     return;
   }
-  fmt::print("tissue block {:g} x {:g} x {:g} um, {} insertion site(s): {} tetrahedra, {} nodes, meshed in {:.2f} s\n",
-             options.width * 1e6, options.length * 1e6, height * 1e6, options.insertion_sites.size(),
-             result.mesh.tets.size(), result.mesh.nodes.size(), result.mesh_seconds);
+  if (tissue.msh_file.empty()) {
+    fmt::print("tissue block {:g} x {:g} x {:g} um, {} insertion site(s): ", extent.x() * 1e6, extent.y() * 1e6,
+               extent.z() * 1e6, options.insertion_sites.size());
+  } else {
+    fmt::print("{} ({:g} x {:g} x {:g} um): ", tissue.msh_file.string(), extent.x() * 1e6, extent.y() * 1e6,
+               extent.z() * 1e6);
+  }
+  fmt::print("{} tetrahedra, {} nodes, in {:.2f} s\n", result.mesh.tets.size(), result.mesh.nodes.size(),
+             result.mesh_seconds);
   fmt::print("{:<20} {:>12} {:>10} {:>6} {:>10} {:>12} {:>13}\n", "layer", "thickness_um", "E_MPa", "nu", "elements",
              "min_quality", "mean_quality");
   for (std::size_t i = 0; i < result.quality.size(); ++i) {
     const mesh::TissueLayer& l = result.mesh.layers[i];
     const mesh::LayerQuality& q = result.quality[i];
-    fmt::print("{:<20} {:>12.6g} {:>10.6g} {:>6.3g} {:>10} {:>12.3f} {:>13.3f}\n", l.name, l.thickness * 1e6,
+    const std::string thickness = tissue.msh_file.empty() ? fmt::format("{:.6g}", l.thickness * 1e6) : "-";
+    fmt::print("{:<20} {:>12} {:>10.6g} {:>6.3g} {:>10} {:>12.3f} {:>13.3f}\n", l.name, thickness,
                l.youngs_modulus * 1e-6, l.poisson_ratio, q.tets, q.min_quality, q.mean_quality);
   }
   fmt::print("wrote {}\n", file.string());

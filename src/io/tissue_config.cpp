@@ -1,6 +1,10 @@
 #include "needlekit/io/tissue_config.hpp"
 
+#include <chrono>
+#include <limits>
+
 #include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/msh_import.hpp"
 #include "tissue_config_toml.hpp"
 
 namespace needlekit::io {
@@ -111,8 +115,9 @@ Section table_of(const toml::node& node, std::string_view key, std::string_view 
 
 }  // namespace
 
-mesh::LayeredBlockOptions tissue_block_of(const toml::table& root, std::string_view file) {
-  mesh::LayeredBlockOptions o;
+TissueCase tissue_case_of(const toml::table& root, std::string_view file, const std::filesystem::path& base_dir) {
+  TissueCase tissue;
+  mesh::LayeredBlockOptions& o = tissue.block;
   o.layers = materials::skin_layers();
   if (const toml::node* node = root.get("tissue")) {
     const Section tissue = table_of(*node, "tissue", file, {"width", "length", "height", "preset", "layers"});
@@ -146,7 +151,23 @@ mesh::LayeredBlockOptions tissue_block_of(const toml::table& root, std::string_v
   }
   if (const toml::node* node = root.get("mesh")) {
     const Section m = table_of(*node, "mesh", file, {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
-                                                     "thin_layer_size_factor", "sites"});
+                                                     "thin_layer_size_factor", "sites", "file", "unit"});
+    if (const toml::node* f = m.optional("file")) {
+      const std::string path = text_of(m, *f, "file", "a .msh file name");
+      if (path.empty()) m.fail(*f, "file", "empty, expected a .msh file name");
+      tissue.msh_file = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
+      for (std::string_view key : {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
+                                   "thin_layer_size_factor", "sites"}) {
+        if (const toml::node* other = m.optional(key)) {
+          m.fail(*other, key, "given together with file, expected either a mesh file or the block's mesh sizes");
+        }
+      }
+    }
+    if (const toml::node* u = m.optional("unit")) {
+      if (tissue.msh_file.empty()) m.fail(*u, "unit", "given without file, expected it only with a mesh file");
+      const std::string unit = text_of(m, *u, "unit", "a length unit such as \"um\" or \"mm\"");
+      tissue.msh_unit = m.at(*u, [&] { return units::unit_factor(unit, Dimension::Length, m.what("unit")); });
+    }
     if (auto s = optional_positive_quantity(m, "size_at_tip", Dimension::Length)) o.size_at_site = *s;
     if (auto s = optional_positive_quantity(m, "size_far", Dimension::Length)) o.size_far = *s;
     if (auto s = optional_positive_quantity(m, "refinement_radius", Dimension::Length)) o.refinement_radius = *s;
@@ -163,7 +184,7 @@ mesh::LayeredBlockOptions tissue_block_of(const toml::table& root, std::string_v
              fmt::format("{:g} um is smaller than size_at_tip = {:g} um, expected size_far >= size_at_tip",
                          o.size_far * 1e6, o.size_at_site * 1e6));
     }
-    for (std::size_t i = 0; i < o.insertion_sites.size(); ++i) {
+    for (std::size_t i = 0; tissue.msh_file.empty() && i < o.insertion_sites.size(); ++i) {
       const Eigen::Vector2d& p = o.insertion_sites[i];
       if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
         m.fail(*m.optional("sites"), fmt::format("sites[{}]", i),
@@ -173,19 +194,54 @@ mesh::LayeredBlockOptions tissue_block_of(const toml::table& root, std::string_v
       }
     }
   }
-  return o;
+  return tissue;
 }
 
 }  // namespace config
 
-mesh::LayeredBlockOptions parse_tissue_block_toml(std::string_view text, std::string_view source_name) {
+TissueCase parse_tissue_case_toml(std::string_view text, std::string_view source_name,
+                                  const std::filesystem::path& base_dir) {
   const toml::table root = config::parse_toml(text, source_name);
-  return config::tissue_block_of(root, source_name);
+  return config::tissue_case_of(root, source_name, base_dir);
+}
+
+TissueCase read_tissue_case(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  return parse_tissue_case_toml(config::read_text(path), name, path.parent_path());
+}
+
+mesh::LayeredBlockOptions parse_tissue_block_toml(std::string_view text, std::string_view source_name) {
+  TissueCase tissue = parse_tissue_case_toml(text, source_name);
+  if (!tissue.msh_file.empty()) {
+    throw InvalidInput(fmt::format("{}: [mesh] names a mesh file, expected a parametric block", source_name));
+  }
+  return tissue.block;
 }
 
 mesh::LayeredBlockOptions read_tissue_block(const std::filesystem::path& path) {
   const std::string name = path.string();
   return parse_tissue_block_toml(config::read_text(path), name);
+}
+
+mesh::LayeredBlockResult tissue_mesh(const TissueCase& tissue) {
+  if (tissue.msh_file.empty()) return mesh::layered_block_mesh(tissue.block);
+  const auto start = std::chrono::steady_clock::now();
+  mesh::MshImportOptions options;
+  options.unit = tissue.msh_unit;
+  options.layers = tissue.block.layers;
+  mesh::MshImportResult imported = mesh::msh_import(tissue.msh_file, options);
+  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+  for (const auto& p : imported.mesh.nodes) top = std::max(top, p.z()), bottom = std::min(bottom, p.z());
+  if (std::abs(top) > 1e-6 * (top - bottom)) {
+    throw InvalidInput(fmt::format("{}: the mesh's top is at z = {:g} um; expected the tissue's top surface at z = 0 "
+                                   "(the tissue below it, needles coming from z > 0)",
+                                   tissue.msh_file.string(), top * 1e6));
+  }
+  mesh::LayeredBlockResult result;
+  result.mesh = std::move(imported.mesh);
+  result.quality = std::move(imported.quality);
+  result.mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
 }
 
 }  // namespace needlekit::io

@@ -16,7 +16,8 @@ constexpr int kGmshTet4 = 4;
 constexpr int kGmshTet10 = 11;
 
 struct PhysicalVolume {
-  std::string name;
+  std::string name;  // the group's number when it has no name
+  bool named = false;
   std::vector<int> entities;
 };
 
@@ -65,7 +66,8 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
       for (const auto& [dim, tag] : groups) {
         PhysicalVolume v;
         gmsh::model::getPhysicalName(dim, tag, v.name);
-        if (v.name.empty()) v.name = std::to_string(tag);
+        v.named = !v.name.empty();
+        if (!v.named) v.name = std::to_string(tag);
         gmsh::model::getEntitiesForPhysicalGroup(dim, tag, v.entities);
         volumes.push_back(std::move(v));
       }
@@ -92,7 +94,8 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
           mesh.layers.push_back({v.name, 0, 0, 0.4});
           layer_corners.push_back(corners_of(v));
         }
-      } else if (volumes.empty() && options.layers.size() == 1) {
+      } else if (options.layers.size() == 1 && std::none_of(volumes.begin(), volumes.end(),
+                                                             [](const auto& v) { return v.named; })) {
         mesh.layers = options.layers;
         layer_corners.push_back(all);
       } else {

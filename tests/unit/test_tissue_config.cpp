@@ -1,6 +1,10 @@
 // [tissue] and [mesh] of a case file: units, "rest", presets and defaults; errors name FILE:LINE and the key.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/tissue_config.hpp"
@@ -92,4 +96,41 @@ TEST(TissueConfig, ErrorsNameLineAndKey) {
   expect_error("[tissue]\nheight = \"1 mm\"\n[[tissue.layers]]\nname = \"a\"\nthickness = \"5 um\"\n"
                "youngs_modulus = \"1 MPa\"\n",
                "case.toml:2: key 'tissue.height': 1000 um differs from the 5 um sum of the layer thicknesses");
+}
+
+TEST(TissueConfig, UserMshFileWithNamedLayers) {
+  const auto dir = std::filesystem::temp_directory_path() / ("needlekit-tissue-msh-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  // Two tetrahedra, top surface z = 0, in physical volumes "sc" (above) and "dermis" (below), coordinates in um.
+  std::ofstream(dir / "user.msh")
+      << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3 1 \"sc\"\n3 2 \"dermis\"\n$EndPhysicalNames\n"
+         "$Nodes\n5\n1 0 0 0\n2 100 0 0\n3 0 100 0\n4 0 0 -100\n5 100 100 -200\n$EndNodes\n"
+         "$Elements\n2\n1 4 2 1 1 1 3 2 4\n2 4 2 2 2 3 2 4 5\n$EndElements\n";
+  const std::string layers = "[[tissue.layers]]\nname = \"sc\"\nthickness = \"20 um\"\nyoungs_modulus = \"100 MPa\"\n"
+                             "[[tissue.layers]]\nname = \"dermis\"\nthickness = \"rest\"\nyoungs_modulus = \"0.08 MPa\"\n";
+  std::ofstream(dir / "case.toml") << layers << "[mesh]\nfile = \"user.msh\"\nunit = \"um\"\n";
+  const io::TissueCase tissue = io::read_tissue_case(dir / "case.toml");
+  EXPECT_EQ(tissue.msh_file, dir / "user.msh");
+  const mesh::LayeredBlockResult r = io::tissue_mesh(tissue);
+  ASSERT_EQ(r.mesh.tets.size(), 2u);
+  EXPECT_EQ(r.mesh.tet_layer, (std::vector<int>{0, 1}));
+  EXPECT_DOUBLE_EQ(r.mesh.layers[1].youngs_modulus, 0.08e6);
+  EXPECT_DOUBLE_EQ(r.mesh.nodes[4].z(), -200e-6);
+  EXPECT_THAT([&] { io::read_tissue_block(dir / "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("names a mesh file, expected a parametric block")));
+
+  // In mm the top is still z = 0 but the layers are missing; shifted up, the top is not z = 0.
+  std::ofstream(dir / "case.toml") << "[mesh]\nfile = \"user.msh\"\nunit = \"mm\"\n";
+  EXPECT_THAT([&] { io::tissue_mesh(io::read_tissue_case(dir / "case.toml")); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("no physical volume group named \"stratum corneum\"")));
+  std::ofstream(dir / "up.msh")
+      << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 10\n2 100 0 10\n3 0 100 10\n4 0 0 -90\n$EndNodes\n"
+         "$Elements\n1\n1 4 2 1 1 1 3 2 4\n$EndElements\n";
+  std::ofstream(dir / "case.toml") << "[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nfile = \"up.msh\"\n";
+  EXPECT_THAT([&] { io::tissue_mesh(io::read_tissue_case(dir / "case.toml")); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("up.msh: the mesh's top is at z = 10 um; expected")));
+  std::ofstream(dir / "case.toml") << "[mesh]\nfile = \"up.msh\"\nsize_far = \"100 um\"\n";
+  EXPECT_THAT([&] { io::read_tissue_case(dir / "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("case.toml:3: key 'mesh.size_far': given together with file")));
+  std::filesystem::remove_all(dir);
 }

@@ -14,7 +14,7 @@ struct MshImportOptions {
   std::vector<TissueLayer> layers;   // the layers, matched by name to the file's physical volume groups; their
                                      // thicknesses are not used. Empty: one layer per physical volume group, named
                                      // after it, with youngs_modulus = 0 for the caller to set. A file without
-                                     // physical volumes is accepted when exactly one layer is given.
+                                     // named physical volumes is accepted when exactly one layer is given.
   bool reorient = false;             // true: left-handed tetrahedra are renumbered right-handed; false: they are an
                                      // error (a mesh with inverted elements)
 };
