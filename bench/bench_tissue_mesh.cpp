@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 
 #include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/mesh/tet_adjacency.hpp"
 
 using namespace needlekit;
 
@@ -42,5 +43,27 @@ void BM_SkinBlockMesh(benchmark::State& state) {
   state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 BENCHMARK(BM_SkinBlockMesh)->DenseRange(0, 2)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+
+namespace {
+
+// §3.3.3's data structures (faces, tet-tet and triangle-triangle adjacency, boundary surface) on the ~300k mesh.
+void BM_TetTopologyAndBoundary(benchmark::State& state) {
+  mesh::LayeredBlockOptions options;
+  options.size_at_site = kSizes[1].size_at_site;
+  options.size_far = kSizes[1].size_far;
+  options.refinement_radius = kSizes[1].refinement_radius;
+  const mesh::TetMesh tissue = mesh::layered_block_mesh(options).mesh;
+  std::size_t boundary = 0;
+  for (auto _ : state) {
+    const mesh::TetTopology topology = mesh::tet_topology(tissue);
+    boundary = mesh::boundary_surface(tissue, topology).triangles.size();
+    benchmark::DoNotOptimize(boundary);
+  }
+  state.counters["tets"] = static_cast<double>(tissue.tets.size());
+  state.counters["boundary_triangles"] = static_cast<double>(boundary);
+}
+BENCHMARK(BM_TetTopologyAndBoundary)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

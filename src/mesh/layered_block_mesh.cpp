@@ -174,6 +174,7 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
     detail::GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
     detail::GmshSession::set_option({"Mesh.Algorithm3D"}, 10);  // HXT
     detail::GmshSession::set_option({"General.NumThreads"}, options.threads);
+    detail::GmshSession::set_option({"Mesh.MaxNumThreads3D"}, options.threads);
     detail::GmshSession::set_option({"Mesh.Optimize"}, 1);
     gmsh::model::mesh::generate(3);
 
