@@ -5,6 +5,10 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include <filesystem>
+
+#include "needlekit/io/tet_mesh_vtu.hpp"
+#include "needlekit/io/vtu_writer.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
 #include "needlekit/mesh/tet_adjacency.hpp"
 
@@ -65,5 +69,25 @@ void BM_TetTopologyAndBoundary(benchmark::State& state) {
   state.counters["boundary_triangles"] = static_cast<double>(boundary);
 }
 BENCHMARK(BM_TetTopologyAndBoundary)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+namespace {
+
+// Writing the ~300k mesh (points, tets, layer, E, nu, quality) as VTU, atomically, to the temporary folder.
+void BM_WriteTissueVtu(benchmark::State& state) {
+  mesh::LayeredBlockOptions options;
+  options.size_at_site = kSizes[1].size_at_site;
+  options.size_far = kSizes[1].size_far;
+  options.refinement_radius = kSizes[1].refinement_radius;
+  const mesh::TetMesh tissue = mesh::layered_block_mesh(options).mesh;
+  const io::VtuGrid grid = io::tet_mesh_grid(tissue);
+  const auto file = std::filesystem::temp_directory_path() / "needlekit_bench_tissue.vtu";
+  for (auto _ : state) io::write_vtu(grid, file);
+  state.counters["tets"] = static_cast<double>(tissue.tets.size());
+  state.counters["file_MB"] = static_cast<double>(std::filesystem::file_size(file)) / 1e6;
+  std::filesystem::remove(file);
+}
+BENCHMARK(BM_WriteTissueVtu)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
