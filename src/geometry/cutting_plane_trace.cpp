@@ -38,23 +38,25 @@ public:
     return unit.dot(d) >= 0 ? unit : Eigen::Vector3d(-unit);  // the plane holds the edge: keep going forward
   }
 
-  std::optional<DirectionIn> through_vertex(const SurfaceMesh& surface, const Fan& fan, int /*arrival*/,
+  std::optional<DirectionIn> through_vertex(const SurfaceMesh& surface, const Fan& fan, int arrival,
                                             const Eigen::Vector3d& d, std::string& reason) const override {
-    return most_straight(surface, fan, d, reason);
+    return most_straight(surface, fan, arrival, d, reason);
   }
 
   std::optional<DirectionIn> leave_vertex(const SurfaceMesh& surface, const Fan& fan, int /*start*/,
                                           const Eigen::Vector3d& d, std::string& reason) const override {
-    return most_straight(surface, fan, d, reason);
+    return most_straight(surface, fan, -1, d, reason);
   }
 
 private:
-  // Of the section's rays from the vertex into each wedge, the one most nearly along d.
-  std::optional<DirectionIn> most_straight(const SurfaceMesh& surface, const Fan& fan, const Eigen::Vector3d& d,
-                                           std::string& reason) const {
+  // Of the section's rays from the vertex into each wedge, the one most nearly along d, other than the ray back
+  // along which the path arrived (in wedge `arrival`).
+  std::optional<DirectionIn> most_straight(const SurfaceMesh& surface, const Fan& fan, int arrival,
+                                           const Eigen::Vector3d& d, std::string& reason) const {
     std::optional<DirectionIn> best;
     double best_score = -2;
-    for (const auto& wedge : fan.wedges) {
+    for (std::size_t i = 0; i < fan.wedges.size(); ++i) {
+      const auto& wedge = fan.wedges[i];
       const Eigen::Vector3d line = surface.face_normal(wedge.triangle).cross(m_);
       if (!(line.norm() > 1e-12)) continue;
       for (double sign : {1.0, -1.0}) {
@@ -62,17 +64,17 @@ private:
         const double angle = detail::angle_in_wedge(surface, wedge.triangle, wedge.corner, ray);
         const double slack = 1e-9 * wedge.angle;
         if (angle < -slack || angle > wedge.angle + slack) continue;
+        if (static_cast<int>(i) == arrival && ray.dot(d) < -1 + 1e-9) continue;  // the way back
         if (ray.dot(d) > best_score) {
           best_score = ray.dot(d);
           best = DirectionIn{wedge.triangle, detail::direction_in_wedge(surface, wedge, angle)};
         }
       }
     }
-    if (!best || best_score <= -1e-9) {
+    if (!best) {
       const auto& w = fan.wedges.front();
-      reason = fmt::format("the cutting plane leaves the surface at vertex {}",
+      reason = fmt::format("the cutting plane meets no triangle around vertex {} beyond the path",
                            surface.mesh().triangles[w.triangle][w.corner]);
-      return std::nullopt;
     }
     return best;
   }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "needlekit/core/errors.hpp"
 #include "surface_walk.hpp"
@@ -39,9 +40,15 @@ public:
 
   std::optional<DirectionIn> leave_vertex(const SurfaceMesh& surface, const Fan& fan, int start,
                                           const Eigen::Vector3d& d, std::string& reason) const override {
-    // The direction's angle from the start wedge's first edge, continued around the fan (the polar map).
+    // The polar map at a vertex: a direction inside the start wedge keeps its angle; the directions outside it
+    // (2 pi - theta of them) are spread proportionally over the rest of a closed fan (total angle - theta), so that
+    // every wedge of a saddle or cone vertex is reachable. An open fan is continued unscaled.
     const auto& in = fan.wedges[start];
-    const double angle = detail::angle_in_wedge(surface, in.triangle, in.corner, d);
+    double angle = detail::angle_in_wedge(surface, in.triangle, in.corner, d);
+    if (fan.closed && (angle < 0 || angle > in.angle)) {
+      const double outside = (angle < 0 ? angle + 2 * std::numbers::pi : angle) - in.angle;
+      angle = in.angle + outside * (fan.total_angle - in.angle) / (2 * std::numbers::pi - in.angle);
+    }
     const auto out = detail::wedge_at(fan, fan.angle_before(start) + angle);
     if (!out) {
       reason = fmt::format("the direction points off the surface at the boundary vertex {}",

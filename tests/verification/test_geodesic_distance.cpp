@@ -98,6 +98,29 @@ TEST(GeodesicDistance, ConvergesToTheGreatCircleDistanceOnASphereAtSecondOrder) 
   }
 }
 
+TEST(GeodesicDistance, BendsAtASaddleVertexWhenTheShortestPathMust) {
+  // Six triangles around a saddle vertex V (rim alternately 0.5 above and below): its total angle is
+  // 6 acos(0.2) = 471 degrees. Points in opposite triangles see more than 180 degrees between them on both sides, so
+  // the shortest path runs through V and no straightest geodesic from p reaches q.
+  geometry::TriangleMesh saddle;
+  saddle.vertices.push_back({0, 0, 0});
+  for (int k = 0; k < 6; ++k) {
+    saddle.vertices.push_back({std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3), k % 2 ? -0.5 : 0.5});
+  }
+  for (int k = 0; k < 6; ++k) saddle.triangles.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  const SurfaceMesh surface(saddle);
+  const geometry::SurfaceLocation p{0, {0.2, 0.5, 0.3}}, q{3, {0.3, 0.4, 0.3}};
+  const double exact = geometry::position(surface, p).norm() + geometry::position(surface, q).norm();
+  const auto d = geometry::geodesic_distance(surface, p, q);
+  ASSERT_EQ(d.status, DistanceStatus::Converged) << d.reason;
+  EXPECT_EQ(d.via_vertex, 0);
+  EXPECT_NEAR(d.distance, exact, 1e-12);
+  EXPECT_LT((d.path.end_point - geometry::position(surface, q)).norm(), 1e-12);
+  geometry::GeodesicDistanceOptions no_detour;
+  no_detour.saddle_detour = false;
+  EXPECT_EQ(geometry::geodesic_distance(surface, p, q, no_detour).status, DistanceStatus::NotConverged);
+}
+
 TEST(GeodesicDistance, IsSymmetricAndAboveTheChordOnTheNeck) {
   const std::filesystem::path file = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes/vh_male_head_neck_loop2.obj";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared mesh " << file;

@@ -1,15 +1,17 @@
 // Geodesic distance between two points of a triangle surface by shooting straightest geodesics (Polthier & Schmies
 // 1998) with Newton's method on the initial angle and the length.
 //
-// What is exact and what is not: a path found here is straight in the unfolding of the triangles it crosses, so its
-// length is the exact length of a locally shortest path on the polyhedral surface whenever it passes through no
-// vertex (always so when it converges beside the vertices, e.g. on convex surfaces such as a sphere, where shortest
-// paths never touch a vertex; on a plane and on a polygonal cylinder the answer is exact to rounding). It is the
-// globally shortest one when the two points are closer than the surface's cut locus (nearby points on a smooth
-// surface, the use for patch springs). It is an upper bound, not the exact shortest distance, when the true shortest
-// path must bend around a saddle vertex (total angle > 2 pi): straightest paths pass saddle vertices with equal
-// angles on both sides, shortest ones with at least pi on each. The exact polyhedral algorithm for that case
-// (Mitchell-Mount-Papadimitriou / Chen-Han) is not implemented.
+// What is exact and what is not: a path found by shooting is straight in the unfolding of the triangles it crosses,
+// so its length is the exact length of a locally shortest path on the polyhedral surface when it passes through no
+// vertex (on convex surfaces such as a sphere shortest paths never touch a vertex; on a plane and on a polygonal
+// cylinder the answer is exact to rounding). It is the globally shortest one when the two points are closer than the
+// surface's cut locus (nearby points on a smooth surface: the use for patch springs); extra_shots and the graph
+// fallback look for shorter ones but prove nothing. Behind a saddle vertex (total angle > 2 pi) or a boundary
+// vertex no straightest geodesic from the start arrives (they pass such a vertex with equal angles on both sides,
+// shortest paths bend there); the saddle detour then takes the shortest path through one such vertex near the best
+// shot, d(p, V) + d(V, q), which is exact when the true shortest path bends at exactly that one vertex. Paths that
+// bend at two or more vertices are not found (status NotConverged); the exact polyhedral algorithm for the general
+// case (Mitchell-Mount-Papadimitriou / Chen-Han) is not implemented.
 #pragma once
 #include <string>
 
@@ -26,6 +28,12 @@ struct GeodesicDistanceOptions {
   // Additional shots from initial angles offset by +-0.3, +-0.6, ... rad from the direction towards the target,
   // [0, 20]. The shortest converged path is kept; 0 shoots once (and retries with offsets only on failure).
   int extra_shots = 0;
+  // When no shot from the direction towards the target converges, restart from the direction and length of the
+  // shortest path along mesh edges (Dijkstra; builds the vertex graph, O(triangles) per call).
+  bool graph_fallback = true;
+  // When still no shot converges, try paths that bend at one saddle or boundary vertex near the best shot and the
+  // edge path (up to 64 such vertices, each costing two distance computations).
+  bool saddle_detour = true;
   TraceOptions trace;  // for each traced path
 };
 
@@ -42,6 +50,8 @@ struct GeodesicDistance {
   double euclidean = 0;   // m, the straight-line distance |to - from|, a lower bound
   double miss = 0;        // m, how far the path's end lies from `to`
   int iterations = 0;     // Newton iterations over all shots
+  double graph_distance = 0;  // m, the edge-path length when the graph fallback ran (an upper bound), else 0
+  int via_vertex = -1;        // the saddle or boundary vertex the path bends at (saddle detour), else -1
   SurfacePath path;       // the path from `from` (towards `to`)
 };
 
