@@ -202,6 +202,12 @@ SurfaceLocation checked_location(const SurfaceMesh& surface, const SurfaceLocati
 
 SurfacePath walk(const SurfaceMesh& surface, const SurfaceLocation& start, const Eigen::Vector3d& direction,
                  double length, const WalkRule& rule, const TraceOptions& options) {
+  if (options.max_steps < 1 || !(options.vertex_tolerance >= 0 && options.vertex_tolerance <= 1e-3) ||
+      !(options.degenerate_sine >= 0 && options.degenerate_sine <= 1e-3)) {
+    throw InvalidInput(fmt::format("trace options: max_steps {} (expected >= 1), vertex_tolerance {} (expected "
+                                   "[0, 1e-3]), degenerate_sine {} (expected [0, 1e-3])", options.max_steps,
+                                   options.vertex_tolerance, options.degenerate_sine));
+  }
   const auto& tris = surface.mesh().triangles;
   SurfacePath path;
   int t = start.triangle;

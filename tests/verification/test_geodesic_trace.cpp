@@ -106,6 +106,14 @@ TEST(StraightestGeodesic, StopsAtTheBoundaryAndAtDegenerateTriangles) {
   EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {0, 0, 1}, 1.0), InvalidInput);
   EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {1, 0, 0}, -1.0), InvalidInput);
   EXPECT_THROW((void)geometry::cutting_plane_trace(plane, {999, {1, 0, 0}}, {1, 0, 0}, 1.0), InvalidInput);
+  geometry::TraceOptions few;
+  few.max_steps = 3;  // a 1.8 m walk across the 8 x 8 grid needs more
+  const auto cut_short = geometry::straightest_geodesic(plane, at(plane, {-0.9, 0.1, 0}), {1, 0, 0}, 1.8, few);
+  EXPECT_EQ(cut_short.status, PathStatus::StepLimit);
+  EXPECT_THAT(cut_short.reason, HasSubstr("more than 3 triangles"));
+  EXPECT_LT(cut_short.length, 1.8);
+  few.max_steps = 0;
+  EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {1, 0, 0}, 1.0, few), InvalidInput);
 }
 
 TEST(StraightestGeodesic, IsExactOnAPolygonalCylinderAndConvergesToTheHelixAtSecondOrder) {
