@@ -28,19 +28,12 @@ struct SurfaceArguments {
   std::vector<int> geodesic;  // two vertex indices, or empty
 };
 
-// The location of vertex `vertex`: the first triangle that uses it, at that corner.
 geometry::SurfaceLocation vertex_location(const geometry::SurfaceMesh& surface, int vertex, const char* what) {
-  if (vertex < 0 || vertex >= surface.vertex_count()) {
-    throw InvalidInput(fmt::format("--geodesic: {} vertex {} is not in [0, {})", what, vertex,
-                                   surface.vertex_count()));
+  try {
+    return geometry::vertex_location(surface, vertex);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("--geodesic: {} {}", what, error.what()));
   }
-  const auto& tris = surface.mesh().triangles;
-  for (int t = 0; t < surface.triangle_count(); ++t) {
-    for (int c = 0; c < 3; ++c) {
-      if (tris[t][c] == vertex) return {t, Eigen::Vector3d::Unit(c)};
-    }
-  }
-  throw InvalidInput(fmt::format("--geodesic: {} vertex {} belongs to no triangle", what, vertex));
 }
 
 void run_surface(const SurfaceArguments& arguments) {

@@ -62,6 +62,7 @@ Eigen::Vector3d barycentric_of(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 struct SurfaceMesh::Impl {
   TriangleMesh mesh;
   std::vector<std::array<int, 3>> neighbors;
+  std::vector<int> vertex_triangles;  // a triangle using each vertex, or -1
   std::vector<Eigen::Vector3d> face_normals;
   std::vector<Eigen::Vector3d> vertex_normals;
   SurfaceCheck check;
@@ -253,6 +254,10 @@ SurfaceMesh::SurfaceMesh(TriangleMesh mesh) : impl_(std::make_unique<Impl>()) {
                                    impl_->mesh.vertices.size(), impl_->mesh.triangles.size(),
                                    impl_->check.problems));
   }
+  impl_->vertex_triangles.assign(impl_->mesh.vertices.size(), -1);
+  for (int t = static_cast<int>(impl_->mesh.triangles.size()) - 1; t >= 0; --t) {
+    for (int v : impl_->mesh.triangles[t]) impl_->vertex_triangles[v] = t;
+  }
   Normals normals = normals_of(impl_->mesh);
   impl_->face_normals = std::move(normals.face);
   impl_->vertex_normals = std::move(normals.vertex);
@@ -278,6 +283,7 @@ const TriangleMesh& SurfaceMesh::mesh() const { return impl_->mesh; }
 int SurfaceMesh::triangle_count() const { return static_cast<int>(impl_->mesh.triangles.size()); }
 int SurfaceMesh::vertex_count() const { return static_cast<int>(impl_->mesh.vertices.size()); }
 int SurfaceMesh::neighbor(int triangle, int edge) const { return impl_->neighbors.at(triangle).at(edge); }
+int SurfaceMesh::vertex_triangle(int vertex) const { return impl_->vertex_triangles.at(vertex); }
 bool SurfaceMesh::is_inner(int triangle) const {
   const auto& n = impl_->neighbors.at(triangle);
   return n[0] >= 0 && n[1] >= 0 && n[2] >= 0;

@@ -82,6 +82,10 @@ TEST(SurfaceMesh, CubeAdjacencyNormalsAndCheck) {
     const Eigen::Vector3d expected = (cube.mesh().vertices[k] - centre).normalized();
     EXPECT_LT((cube.vertex_normal(k) - expected).norm(), 1e-14) << "vertex " << k;
   }
+  for (int v = 0; v < 8; ++v) {
+    const auto& tri = cube.mesh().triangles[cube.vertex_triangle(v)];
+    EXPECT_TRUE(tri[0] == v || tri[1] == v || tri[2] == v);
+  }
   // The interpolated normal at a corner is the corner normal; in the middle of a face's diagonal it is the blend.
   EXPECT_LT((cube.interpolated_normal(0, {1, 0, 0}) - cube.vertex_normal(0)).norm(), 1e-15);
 }

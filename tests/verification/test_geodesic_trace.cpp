@@ -106,6 +106,10 @@ TEST(StraightestGeodesic, StopsAtTheBoundaryAndAtDegenerateTriangles) {
   EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {0, 0, 1}, 1.0), InvalidInput);
   EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {1, 0, 0}, -1.0), InvalidInput);
   EXPECT_THROW((void)geometry::cutting_plane_trace(plane, {999, {1, 0, 0}}, {1, 0, 0}, 1.0), InvalidInput);
+  for (int v : {0, 40, 80}) {
+    EXPECT_EQ(geometry::position(plane, geometry::vertex_location(plane, v)), plane.mesh().vertices[v]);
+  }
+  EXPECT_THROW((void)geometry::vertex_location(plane, 81), InvalidInput);
   geometry::TraceOptions few;
   few.max_steps = 3;  // a 1.8 m walk across the 8 x 8 grid needs more
   const auto cut_short = geometry::straightest_geodesic(plane, at(plane, {-0.9, 0.1, 0}), {1, 0, 0}, 1.8, few);

@@ -18,6 +18,9 @@ struct SurfaceLocation {
   Eigen::Vector3d barycentric = Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3);
 };
 inline SurfaceLocation surface_location(const ClosestPoint& point) { return {point.triangle, point.barycentric}; }
+// The location of a mesh vertex (e.g. a suggested patch centre). Throws InvalidInput for an index out of range or a
+// vertex that no triangle uses.
+SurfaceLocation vertex_location(const SurfaceMesh& surface, int vertex);
 // The position of a location in space (m).
 Eigen::Vector3d position(const SurfaceMesh& surface, const SurfaceLocation& location);
 
