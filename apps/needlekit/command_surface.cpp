@@ -25,6 +25,7 @@ struct SurfaceArguments {
   std::string mesh_path;
   std::string unit;
   bool json = false;
+  bool weld = false;
   std::vector<int> geodesic;  // two vertex indices, or empty
 };
 
@@ -44,6 +45,7 @@ void run_surface(const SurfaceArguments& arguments) {
   if (!(unit > 0)) throw InvalidInput(fmt::format("--unit: '{}' must be a positive length", arguments.unit));
   const auto started = std::chrono::steady_clock::now();
   geometry::TriangleMesh mesh = geometry::read_triangle_mesh(arguments.mesh_path, unit);
+  if (arguments.weld) mesh = geometry::welded_mesh(mesh);
   const geometry::SurfaceCheck check = geometry::surface_check(mesh);
   if (!check.problems.empty()) {
     throw InvalidInput(fmt::format("{}: not usable as a body surface: {}", arguments.mesh_path, check.problems));
@@ -70,6 +72,7 @@ void run_surface(const SurfaceArguments& arguments) {
   out["boundary_edges"] = check.boundary_edges;
   out["outer_triangles"] = check.outer_triangles;
   out["degenerate_triangles"] = check.degenerate_triangles;
+  out["coincident_vertices"] = check.coincident_vertices;
   out["area_mm2"] = geometry::surface_area(m) / (mm * mm);
   if (check.closed) out["volume_mm3"] = geometry::signed_volume(m) / (mm * mm * mm);
   out["size_mm"] = {box.sizes().x() / mm, box.sizes().y() / mm, box.sizes().z() / mm};
@@ -103,6 +106,10 @@ void run_surface(const SurfaceArguments& arguments) {
                arguments.geodesic[1], g["distance_mm"].get<double>(), g["status"].get<std::string>(),
                g["euclidean_mm"].get<double>());
   }
+  if (check.coincident_vertices > 0) {
+    fmt::print("note: {} vertices share a position with another: seams split in the file; --weld merges them\n",
+               check.coincident_vertices);
+  }
   fmt::print("read and indexed in {:.0f} ms\n", load_ms);
 }
 
@@ -117,6 +124,8 @@ void add_surface_command(CLI::App& app) {
                       "(\"15.8 mm\" for the skull mesh's arbitrary units)")
       ->required();
   command->add_flag("--json", arguments->json, "print the report as JSON (lengths in mm)");
+  command->add_flag("--weld", arguments->weld,
+                    "merge vertices with identical coordinates first (meshes exported with split seams)");
   command->add_option("--geodesic", arguments->geodesic, "geodesic distance between two vertices (0-based indices)")
       ->expected(2)
       ->type_name("I J");

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -157,6 +158,18 @@ SurfaceCheck adjacency_check(const TriangleMesh& mesh, std::vector<std::array<in
                   "them is flipped)",
                   check.inconsistent_edges, inconsistent_examples);
   if (!check.problems.empty()) check.problems.resize(check.problems.size() - 2);  // the trailing "; "
+  // Vertices sharing a position: sort by coordinates and count repeats.
+  std::vector<int> order(mesh.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  const auto less = [&](int x, int y) {
+    const auto& p = mesh.vertices[x];
+    const auto& q = mesh.vertices[y];
+    return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    check.coincident_vertices += mesh.vertices[order[i]] == mesh.vertices[order[i - 1]];
+  }
   return check;
 }
 

@@ -260,6 +260,26 @@ TEST(SurfaceMesh, RefusesFlippedAndNonManifoldMeshesSayingWhere) {
               testing::ThrowsMessage<InvalidInput>(HasSubstr("triangle 3 refers to vertex 8")));
 }
 
+TEST(SurfaceMesh, CountsSplitSeamsAndWeldingClosesThem) {
+  // The cube as a triangle soup: every triangle has its own three vertices.
+  const TriangleMesh cube = test::cube_mesh();
+  TriangleMesh soup;
+  for (const auto& t : cube.triangles) {
+    const int base = static_cast<int>(soup.vertices.size());
+    for (int c : t) soup.vertices.push_back(cube.vertices[c]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  const SurfaceMesh split(soup);
+  EXPECT_EQ(split.check().boundary_edges, 36);
+  EXPECT_EQ(split.check().coincident_vertices, 36 - 8);
+  EXPECT_EQ(split.check().outer_triangles, 12);
+  const SurfaceMesh welded(geometry::welded_mesh(soup));
+  EXPECT_EQ(welded.vertex_count(), 8);
+  EXPECT_TRUE(welded.check().closed);
+  EXPECT_EQ(welded.check().coincident_vertices, 0);
+  EXPECT_NEAR(geometry::signed_volume(welded.mesh()), 1.0, 1e-15);
+}
+
 TEST(SurfaceMesh, AcceptsAndCountsDegenerateTriangles) {
   // A flat square split into two triangles plus a sliver with a repeated vertex position on the boundary edge.
   TriangleMesh mesh;
@@ -388,6 +408,7 @@ TEST(ReadTriangleMesh, RealMeshesHaveTheCountsOfTheirReadme) {
     EXPECT_EQ(surface.check().outer_triangles == 0, e.closed) << e.file;
     EXPECT_TRUE(surface.check().consistently_oriented) << e.file;
     EXPECT_EQ(surface.check().degenerate_triangles, 0) << e.file;
+    EXPECT_EQ(surface.check().coincident_vertices, 0) << e.file;
     Eigen::AlignedBox3d box;
     for (const auto& v : mesh.vertices) box.extend(v);
     EXPECT_GT(box.sizes().maxCoeff(), e.extent_min) << e.file;

@@ -22,6 +22,7 @@ struct SurfaceCheck {
   int inconsistent_edges = 0;
   int degenerate_triangles = 0;
   int outer_triangles = 0;              // triangles with at least one boundary edge (§5.6); the rest are inner
+  int coincident_vertices = 0;          // vertices at the position of another (split seams: see welded_mesh)
   std::string problems;                 // empty when usable; else a readable list of what is wrong
 };
 
