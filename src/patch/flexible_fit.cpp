@@ -53,8 +53,8 @@ Eigen::Vector3d plane_direction(const Eigen::Vector3d& m, const TriangleFrame& f
 
 }  // namespace
 
-SurfaceWalk cutting_plane_walk(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& start, int triangle,
-                               const Eigen::Vector3d& direction, double length) {
+SurfaceWalk surface_walk(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& start, int triangle,
+                         const Eigen::Vector3d& direction, double length, WalkMethod method) {
   SurfaceWalk walk;
   walk.point = start;
   walk.triangle = triangle;
@@ -111,12 +111,21 @@ SurfaceWalk cutting_plane_walk(const geometry::SurfaceMesh& surface, const Eigen
       if ((there[e] == b && there[(e + 1) % 3] == a) || (there[e] == a && there[(e + 1) % 3] == b)) entry_edge = e;
     }
     walk.triangle = next;
+    const Eigen::Vector3d previous_normal = f.normal;
     f = triangle_frame(surface, next);
     if (f.degenerate) {
       walk.stop = SurfaceWalk::Stop::Degenerate;
       return walk;
     }
-    dir = plane_direction(m, f, dir);
+    if (method == WalkMethod::CuttingPlane) {
+      dir = plane_direction(m, f, dir);
+    } else {
+      // Unfolding: turn the direction about the shared edge by the dihedral angle (straightest geodesic).
+      const Eigen::Vector3d axis = (surface.mesh().vertices[b] - surface.mesh().vertices[a]).normalized();
+      const double angle = std::atan2(previous_normal.cross(f.normal).dot(axis), previous_normal.dot(f.normal));
+      dir = Eigen::AngleAxisd(angle, axis) * dir;
+      dir = (dir - dir.dot(f.normal) * f.normal).normalized();
+    }
   }
   walk.stop = SurfaceWalk::Stop::Degenerate;
   return walk;
@@ -165,7 +174,7 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
     return d.x() * frame.u + d.y() * frame.v;
   };
 
-  std::vector<Eigen::Vector3d> position(n), surface_point(n);
+  std::vector<Eigen::Vector3d> position(n), surface_point(n), tangent_u(n), tangent_v(n);
   std::vector<int> surface_triangle(n, -1);
   std::vector<bool> mapped(n, false), on_surface(n, false);
   std::vector<int> boundary_nodes, degenerate_nodes, capped_nodes;
@@ -174,6 +183,10 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
     position[first] = surface_point[first] = cp.point;
     surface_triangle[first] = cp.triangle;
     mapped[first] = on_surface[first] = true;
+    // The patch frame turned onto the tangent plane at the first node.
+    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(-frame.approach, surface.face_normal(cp.triangle));
+    tangent_u[first] = turn * frame.u;
+    tangent_v[first] = turn * frame.v;
   }
   const double length_scale = design.width_u + design.width_v;
   std::deque<int> active{first};  // Alg 5.1: ActiveNodeList
@@ -184,7 +197,20 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
       if (mapped[k]) continue;
       // Alg 5.2 / §5.7.2: walk the rest length along the original direction (Alg 5.3).
       const Eigen::Vector3d d = offset(a, k);
-      const SurfaceWalk walk = cutting_plane_walk(surface, surface_point[a], surface_triangle[a], d, d.norm());
+      // The spring's direction in the active node's tangent frame: the patch's (U, V) frame carried from node to node
+      // by the minimal rotation between successive surface normals (discrete parallel transport), so that the
+      // eight directions keep their angles on a tilted or curved surface. The cutting plane contains this direction
+      // and the surface normal (Alg 5.3; notes).
+      const Eigen::Vector2d rest = design.rest_positions[k] - design.rest_positions[a];
+      const Eigen::Vector3d turned = rest.x() * tangent_u[a] + rest.y() * tangent_v[a];
+      const SurfaceWalk walk =
+          surface_walk(surface, surface_point[a], surface_triangle[a], turned, d.norm(), options.walk);
+      {
+        const Eigen::Quaterniond carry = Eigen::Quaterniond::FromTwoVectors(surface.face_normal(surface_triangle[a]),
+                                                                            surface.face_normal(walk.triangle));
+        tangent_u[k] = carry * tangent_u[a];
+        tangent_v[k] = carry * tangent_v[a];
+      }
       if (walk.stop == SurfaceWalk::Stop::Boundary) boundary_nodes.push_back(k);
       if (walk.stop == SurfaceWalk::Stop::Degenerate) degenerate_nodes.push_back(k);
       const Eigen::Vector3d conforming = walk.point;   // N_int

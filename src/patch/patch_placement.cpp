@@ -54,7 +54,7 @@ PatchFrame patch_frame(const geometry::SurfaceMesh& surface, const Placement& pl
   const Eigen::Vector3d& a = frame.approach;
   Eigen::Vector3d reference = std::abs(a.x()) > 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
   Eigen::Vector3d u = (reference - reference.dot(a) * a).normalized();
-  u = Eigen::AngleAxisd(placement.rotation, a) * u;
+  u = Eigen::AngleAxisd(placement.rotation, -a) * u;  // right-handed about the patch normal −a
   frame.u = u;
   frame.v = (-a).cross(u);
   frame.approach_height = placement.approach_height > 0 ? placement.approach_height : patch_diagonal + needle_length;

@@ -27,10 +27,17 @@ enum class FirstNode {
   Corner,        // N(0,0), the corner of minimum U and V (Alg 5.1 as printed)
 };
 
+enum class WalkMethod {
+  CuttingPlane,  // Alg 5.3: the intersection of the surface with the plane through d and the start normal
+  Unfolding,     // the straightest geodesic: the direction is carried across each edge by unfolding the two
+                 // triangles (Polthier & Schmies); exact geodesics on developable surfaces such as the cylinder
+};
+
 struct FlexibleFitOptions {
   double max_spring_energy = 5e-5;     // J, (0, inf]: E_cri per spring (0.05 mJ); inf = conform completely
   FirstNode first_node = FirstNode::FirstContact;
   int cap_samples = 32;                // [2, 10000]: samples of λ before bisection in the energy cap
+  WalkMethod walk = WalkMethod::CuttingPlane;  // how the geodesic traverse crosses triangle edges
 };
 
 // Throws InvalidInput for a non-positive E_cri or cap_samples out of range. Traverses that reach the surface's
@@ -38,16 +45,16 @@ struct FlexibleFitOptions {
 FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,
                          const FlexibleFitOptions& options = {});
 
-// Alg 5.3, the cutting-plane walk (until the surface branch's geodesic_trace is merged): from `start` on triangle
-// `triangle`, along the intersection of the surface with the plane through `start` spanned by `direction` and the
-// triangle's normal, for a path length `length`.
+// The geodesic traverse of Alg 5.3 (until the surface branch's geodesic_trace is merged): from `start` on
+// `triangle`, in the tangent direction closest to `direction`, across adjacent triangles for a path length
+// `length`; CuttingPlane keeps to the plane through `start` spanned by `direction` and the triangle's normal.
 struct SurfaceWalk {
   Eigen::Vector3d point;
   int triangle = -1;
   double length = 0;     // m, walked (< requested when stopped early)
   enum class Stop { Done, Boundary, Degenerate } stop = Stop::Done;
 };
-SurfaceWalk cutting_plane_walk(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& start, int triangle,
-                               const Eigen::Vector3d& direction, double length);
+SurfaceWalk surface_walk(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& start, int triangle,
+                         const Eigen::Vector3d& direction, double length, WalkMethod method = WalkMethod::CuttingPlane);
 
 }  // namespace needlekit::patch

@@ -20,7 +20,7 @@ std::string_view to_string(Approach approach);
 struct Placement {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // m: a point on (or near) the surface under the patch centre
   std::optional<int> center_vertex;   // when set, the centre is this mesh vertex and `center` is ignored
-  double rotation = 0;                // rad, any: turns the patch's U axis about the approach axis (right-handed)
+  double rotation = 0;                // rad, any: turns the patch's U axis about the patch normal (−approach), right-handed
   Approach approach = Approach::MinusZ;
   double max_center_distance = 1e-3;  // m, (0, inf): how far `center` may lie from the surface
   double approach_height = 0;         // m, >= 0: start height of the patch above the centre point; 0 = the patch's
