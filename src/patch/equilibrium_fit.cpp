@@ -27,11 +27,15 @@ double max_stiffness(const PatchDesign& design) {
 
 // Signed gap of a point (negative inside) and the outward normal there.
 std::pair<double, Eigen::Vector3d> gap(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& x) {
+  // The gap's gradient: the unit vector from the closest point (the face normal when the point is on the surface).
   const geometry::ClosestPoint cp = surface.closest_point(x);
-  Eigen::Vector3d n = surface.interpolated_normal(cp.triangle, cp.barycentric);
   const Eigen::Vector3d face = surface.face_normal(cp.triangle);
-  const double side = (x - cp.point).dot(face);
-  return {side >= 0 ? cp.distance : -cp.distance, n};
+  const Eigen::Vector3d offset = x - cp.point;
+  const double side = offset.dot(face);
+  const double distance = offset.norm();
+  if (distance <= 1e-14) return {0.0, face};
+  const Eigen::Vector3d n = side >= 0 ? Eigen::Vector3d(offset / distance) : Eigen::Vector3d(-offset / distance);
+  return {side >= 0 ? distance : -distance, n};
 }
 
 double potential(const Model& m, const std::vector<Eigen::Vector3d>& x) {
@@ -127,6 +131,8 @@ FittedPatch equilibrium_fit(const geometry::SurfaceMesh& surface, const PatchDes
   Eigen::SparseMatrix<double> H;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   double energy = potential(model, x);
+  const double max_move = 0.25 * std::min(design.pitch_u, design.pitch_v);
+  double radius = max_move;
   bool converged = false;
   int iteration = 0;
   for (; iteration < options.max_iterations; ++iteration) {
@@ -141,7 +147,13 @@ FittedPatch equilibrium_fit(const geometry::SurfaceMesh& surface, const PatchDes
     H += (1e-8 * k) * I;
     solver.compute(H);
     if (solver.info() != Eigen::Success) break;
-    const Eigen::VectorXd step = -solver.solve(g);
+    Eigen::VectorXd step = -solver.solve(g);
+    // A flat membrane has no stiffness across its plane: limit every node's move to a quarter of the pitch (a
+    // trust region), so the patch comes down onto the surface in steps instead of jumping through it.
+    double largest = 0;
+    for (int i = 0; i < n; ++i) largest = std::max(largest, step.segment<3>(3 * i).norm());
+    if (largest > radius) step *= radius / largest;
+    const double moved = std::min(largest, radius);
     double t = 1;
     bool accepted = false;
     for (int backtrack = 0; backtrack < 40; ++backtrack, t *= 0.5) {
@@ -155,6 +167,8 @@ FittedPatch equilibrium_fit(const geometry::SurfaceMesh& surface, const PatchDes
         break;
       }
     }
+    // Trust radius: shrink to the accepted move when the line search cut the step, grow when the full step passed.
+    radius = t < 1 ? std::max(t * moved, 1e-6 * max_move) : std::min(2 * radius, max_move);
     if (!accepted) {
       // No decrease within round-off: converged as far as the energy can tell.
       converged = g.lpNorm<Eigen::Infinity>() < 1e3 * options.tolerance * options.node_load;
