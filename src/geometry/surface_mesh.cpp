@@ -145,6 +145,7 @@ SurfaceCheck adjacency_check(const TriangleMesh& mesh, std::vector<std::array<in
     }
     i = j;
   }
+  for (const auto& n : neighbors) check.outer_triangles += (n[0] < 0 || n[1] < 0 || n[2] < 0);
   check.edge_manifold = check.non_manifold_edges == 0;
   check.consistently_oriented = check.inconsistent_edges == 0 && check.edge_manifold;
   check.closed = check.boundary_edges == 0 && check.edge_manifold;
@@ -277,6 +278,10 @@ const TriangleMesh& SurfaceMesh::mesh() const { return impl_->mesh; }
 int SurfaceMesh::triangle_count() const { return static_cast<int>(impl_->mesh.triangles.size()); }
 int SurfaceMesh::vertex_count() const { return static_cast<int>(impl_->mesh.vertices.size()); }
 int SurfaceMesh::neighbor(int triangle, int edge) const { return impl_->neighbors.at(triangle).at(edge); }
+bool SurfaceMesh::is_inner(int triangle) const {
+  const auto& n = impl_->neighbors.at(triangle);
+  return n[0] >= 0 && n[1] >= 0 && n[2] >= 0;
+}
 const Eigen::Vector3d& SurfaceMesh::face_normal(int triangle) const { return impl_->face_normals.at(triangle); }
 const Eigen::Vector3d& SurfaceMesh::vertex_normal(int vertex) const { return impl_->vertex_normals.at(vertex); }
 const SurfaceCheck& SurfaceMesh::check() const { return impl_->check; }

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "../support/analytic_surfaces.hpp"
 #include "../support/scratch_files.hpp"
@@ -123,6 +125,11 @@ TEST(SurfaceMesh, OpenCylinderHasTwoBoundaryLoopsAndRadialNormals) {
   expect_symmetric_adjacency(cylinder);
   EXPECT_EQ(cylinder.check().boundary_edges, 2 * around);
   EXPECT_EQ(boundary_edge_count(cylinder), 2 * around);
+  // Each ring of quads touches the boundary with one triangle per quad (the alternating split).
+  EXPECT_EQ(cylinder.check().outer_triangles, 2 * around);
+  int inner = 0;
+  for (int t = 0; t < cylinder.triangle_count(); ++t) inner += cylinder.is_inner(t);
+  EXPECT_EQ(inner, cylinder.triangle_count() - 2 * around);
   EXPECT_FALSE(cylinder.check().closed);
   EXPECT_TRUE(cylinder.check().consistently_oriented);
   for (int t = 0; t < cylinder.triangle_count(); ++t) {
@@ -263,6 +270,20 @@ TEST(SurfaceMesh, AcceptsAndCountsDegenerateTriangles) {
   EXPECT_NEAR(sliver.face_normal(1).z(), 1.0, 1e-14);  // borrowed from its corners
 }
 
+TEST(SurfaceMesh, ConcurrentQueriesAgreeWithSerialOnes) {
+  const SurfaceMesh sphere(test::icosphere_mesh(1.0, 4));
+  std::vector<Eigen::Vector3d> queries;
+  for (int k = 0; k < 2000; ++k) queries.push_back(1.5 * Eigen::Vector3d(std::sin(k), std::cos(3.0 * k), std::sin(7.0 * k)));
+  std::vector<double> serial, parallel(queries.size());
+  for (const auto& q : queries) serial.push_back(sphere.closest_point(q).distance);
+  std::thread other([&] {
+    for (std::size_t i = 0; i < queries.size(); i += 2) parallel[i] = sphere.closest_point(queries[i]).distance;
+  });
+  for (std::size_t i = 1; i < queries.size(); i += 2) parallel[i] = sphere.closest_point(queries[i]).distance;
+  other.join();
+  EXPECT_EQ(serial, parallel);
+}
+
 TEST(SurfaceMesh, MovesKeepTheTree) {
   SurfaceMesh a(test::cube_mesh());
   SurfaceMesh b = std::move(a);
@@ -360,6 +381,7 @@ TEST(ReadTriangleMesh, RealMeshesHaveTheCountsOfTheirReadme) {
     EXPECT_EQ(mesh.vertices.size(), e.vertices) << e.file;
     const SurfaceMesh surface(mesh);
     EXPECT_EQ(surface.check().closed, e.closed) << e.file;
+    EXPECT_EQ(surface.check().outer_triangles == 0, e.closed) << e.file;
     EXPECT_TRUE(surface.check().consistently_oriented) << e.file;
     EXPECT_EQ(surface.check().degenerate_triangles, 0) << e.file;
     Eigen::AlignedBox3d box;
