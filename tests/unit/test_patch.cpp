@@ -126,16 +126,28 @@ TEST(PatchFit, APatchBesideTheSurfaceMissesIt) {
   EXPECT_THROW(flexible_fit(plane, d, frame, {.max_spring_energy = 0}), InvalidInput);
 }
 
-TEST(SurfaceWalk, StopsAtADegenerateTriangle) {
-  // A(0,0) B(1,0) C(2,0) D(1,1): T0 = ABD, T1 = BCD and the zero-area T2 = CBA below them.
-  geometry::TriangleMesh mesh;
-  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1, 1, 0}};
-  mesh.triangles = {{0, 1, 3}, {1, 2, 3}, {2, 1, 0}};
-  const geometry::SurfaceMesh surface(mesh);
-  const SurfaceWalk walk = surface_walk(surface, Eigen::Vector3d(0.7, 0.3, 0), 0, Eigen::Vector3d(0, -1, 0), 1.0);
-  EXPECT_EQ(walk.stop, SurfaceWalk::Stop::Degenerate);
-  EXPECT_NEAR(walk.point.y(), 0, 1e-15);
-  EXPECT_NEAR(walk.length, 0.3, 1e-15);
+TEST(PatchFit, ATraverseAcrossDegenerateTrianglesStopsAndNamesTheNodes) {
+  // A 20 x 20 mm plane whose column of cells at x = 2-3 mm is squeezed to zero width: zero-area triangles.
+  geometry::TriangleMesh mesh = test::plane_grid_mesh(0.01, 20);
+  for (auto& v : mesh.vertices) {
+    if (std::abs(v.x() - 0.003) < 1e-9) v.x() = 0.002;
+  }
+  const geometry::SurfaceMesh plane(mesh);
+  const PatchDesign d = patch_design(options_of(10, 10e-3));
+  Placement p;
+  p.center = {-0.0025, 0.0003, 0};
+  const FittedPatch fit = flexible_fit(plane, d, patch_frame(plane, p, 0.015, 4e-4), {.max_spring_energy = 1});
+  EXPECT_EQ(fit.status, FitStatus::DegenerateSurface);
+  EXPECT_THAT(fit.reason, HasSubstr("degenerate triangle"));
+  // The traverses into the strip at x = 2 mm (column i = 9) stop there, and so do those that start from a node
+  // left in it; the nodes far from it are not named.
+  ASSERT_FALSE(fit.affected_nodes.empty());
+  bool strip = false;
+  for (const int k : fit.affected_nodes) {
+    strip = strip || d.column(k) == 9;
+    EXPECT_GE(d.column(k), 6) << "node " << k;
+  }
+  EXPECT_TRUE(strip);
 }
 
 TEST(Equilibrium, OnAPlaneThePatchRestsFlatWithZeroSpringEnergy) {

@@ -225,31 +225,5 @@ TEST(PatchFitting, MetreAndMicrometreScalesAgree) {
   }
 }
 
-TEST(CuttingPlaneWalk, FollowsStraightLinesOnAPlaneAndCirclesOnACylinder) {
-  const geometry::SurfaceMesh plane(test::plane_grid_mesh(0.02, 17));
-  const Eigen::Vector3d start(0.0011, -0.0007, 0);
-  const int t = plane.closest_point(start).triangle;
-  const Eigen::Vector3d direction = Eigen::Vector3d(0.6, 0.8, 0.3);
-  const SurfaceWalk walk = surface_walk(plane, start, t, direction, 0.01);
-  EXPECT_EQ(walk.stop, SurfaceWalk::Stop::Done);
-  EXPECT_NEAR((walk.point - (start + 0.01 * Eigen::Vector3d(0.6, 0.8, 0))).norm(), 0, 1e-15);
-
-  const double r = 0.02;
-  const geometry::SurfaceMesh cylinder(x_cylinder(r, 0.06, 720, 24));
-  const Eigen::Vector3d top(0.0003, 0, r);
-  const int ct = cylinder.closest_point(top).triangle;
-  const SurfaceWalk around = surface_walk(cylinder, top, ct, Eigen::Vector3d::UnitY(), 0.5 * std::numbers::pi * r);
-  EXPECT_EQ(around.stop, SurfaceWalk::Stop::Done);
-  // A quarter of the (720-gon) circumference: from the top to the side.
-  EXPECT_NEAR(around.point.y(), r, 1e-5 * r);
-  EXPECT_NEAR(around.point.z(), 0, 1e-5 * r);
-  EXPECT_NEAR(around.point.x(), 0.0003, 1e-12);
-  // Off the end of the open cylinder: the boundary stops the walk.
-  const SurfaceWalk off = surface_walk(cylinder, top, ct, Eigen::Vector3d::UnitX(), 0.05);
-  EXPECT_EQ(off.stop, SurfaceWalk::Stop::Boundary);
-  EXPECT_NEAR(off.point.x(), 0.03, 1e-12);
-  EXPECT_NEAR(off.length, 0.03 - 0.0003, 1e-12);
-}
-
 }  // namespace
 }  // namespace needlekit::patch
