@@ -128,13 +128,13 @@ TEST(PatchFitting, OnACylinderTheFlexiblePatchWrapsWithoutStretchAlongTheGenerat
   EXPECT_LT(e.angle.max, 0.03);
   EXPECT_EQ(e.penetrating, 100);
   // Exact geodesic distances between the fitted nodes: the rest length for every spring when the traverse unfolds
-  // (the cylinder is developable); within 3e-4 along U and V with the cutting plane (its diagonals cut ellipses).
+  // (the cylinder is developable); within 6e-4 along U and V with the cutting plane (its diagonals cut ellipses).
   const SpringGeodesics g = spring_geodesics(cylinder, d, fit);
   EXPECT_EQ(g.not_converged, 0);
   for (std::size_t s = 0; s < d.springs.size(); ++s) {
     const bool axial = d.springs[s].direction == SpringDirection::U || d.springs[s].direction == SpringDirection::V;
     if (walk == WalkMethod::Unfolding) EXPECT_NEAR(g.strain[s], 0, 1e-6) << "spring " << s;
-    if (axial) EXPECT_NEAR(g.strain[s], 0, 3e-4) << "spring " << s;
+    if (axial) EXPECT_NEAR(g.strain[s], 0, 6e-4) << "spring " << s;
   }
   }
 }
