@@ -29,6 +29,13 @@ constexpr double kMaxAngleStep = 0.5;
 // Shots without improvement after which a shot is abandoned.
 constexpr int kStall = 6;
 
+// A path through a vertex whose total angle is below 2 pi can be shortened by passing beside it: it is a geodesic
+// but never a shortest path, so the search goes on.
+bool through_cone_vertex(const SurfacePath& path) {
+  return std::any_of(path.vertex_crossings.begin(), path.vertex_crossings.end(),
+                     [](const VertexCrossing& v) { return v.total_angle < 2 * std::numbers::pi - 1e-9; });
+}
+
 struct Shot {
   bool converged = false;
   double miss = std::numeric_limits<double>::infinity();
@@ -180,7 +187,7 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
   Shot best;
   const auto fire = [&](double angle0, double length0, int planned) {
     for (int k = 0; k < std::max(planned, 7); ++k) {
-      if (k >= planned && best.converged) break;
+      if (k >= planned && best.converged && !through_cone_vertex(best.path)) break;
       const double offset = (k == 0) ? 0.0 : ((k + 1) / 2) * 0.3 * (k % 2 ? 1.0 : -1.0);
       Shot shot = shoot(angle0 + offset, length0);
       result.iterations += shot.iterations;
@@ -190,7 +197,7 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
     }
   };
   fire(0.0, result.euclidean, 1 + options.extra_shots);
-  if (!best.converged && options.graph_fallback) {
+  if ((!best.converged || through_cone_vertex(best.path)) && options.graph_fallback) {
     // Aim along the shortest edge path: at its point a quarter of the way along, with its length (an upper
     // bound) shortened by the typical excess of edge paths.
     const EdgePath edges = shortest_edge_path(surface, a.triangle, p, b.triangle, q);

@@ -289,6 +289,7 @@ SurfacePath walk(const SurfaceMesh& surface, const SurfaceLocation& start, const
       b = unit_corner(vertex_corner);
       path.points.back() = position(surface, {t, b});
       const Fan fan = fan_around(surface, t, vertex_corner);
+      path.vertex_crossings.push_back({tris[t][vertex_corner], fan.total_angle});
       std::string reason;
       const auto through = rule.through_vertex(surface, fan, fan.index_of(t), d, reason);
       if (!through) return finish(PathStatus::HitBoundary, reason);

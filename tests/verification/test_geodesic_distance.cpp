@@ -121,6 +121,21 @@ TEST(GeodesicDistance, BendsAtASaddleVertexWhenTheShortestPathMust) {
   EXPECT_EQ(geometry::geodesic_distance(surface, p, q, no_detour).status, DistanceStatus::NotConverged);
 }
 
+TEST(GeodesicDistance, RunsBesideCubeCornersNotThroughThem) {
+  // From corner 0 to the opposite corner 7 of a cube of side a: two faces unfolded into an a x 2a rectangle,
+  // sqrt(5) a. The first shot, along a face diagonal, converges through corners ((1 + sqrt 2) a: a geodesic but not
+  // a shortest path, since a corner's total angle is 3 pi / 2), so the search must go on.
+  for (double a : {1e-6, 1.0}) {
+    const SurfaceMesh cube(test::cube_mesh(a));
+    const geometry::SurfaceLocation corner0{0, {1, 0, 0}};  // triangle {0, 2, 1}
+    const geometry::SurfaceLocation corner7{3, {0, 1, 0}};  // triangle {5, 7, 6}
+    const auto d = geometry::geodesic_distance(cube, corner0, corner7);
+    ASSERT_EQ(d.status, DistanceStatus::Converged) << d.reason;
+    EXPECT_NEAR(d.distance, std::sqrt(5.0) * a, 1e-12 * a);
+    EXPECT_TRUE(d.path.vertex_crossings.empty());
+  }
+}
+
 TEST(GeodesicDistance, IsSymmetricAndAboveTheChordOnTheNeck) {
   const std::filesystem::path file = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes/vh_male_head_neck_loop2.obj";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared mesh " << file;

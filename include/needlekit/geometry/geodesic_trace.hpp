@@ -41,6 +41,12 @@ struct TraceOptions {
   double degenerate_sine = 1e-10;
 };
 
+// A vertex the path passed through (where the walk's vertex rule chose how to go on).
+struct VertexCrossing {
+  int vertex = -1;
+  double total_angle = 0;  // rad, the sum of the triangle angles around the vertex (2 pi where it is flat)
+};
+
 // The result of walking on the surface. Everything travelled so far is kept when the walk ends early.
 struct SurfacePath {
   PathStatus status = PathStatus::Completed;
@@ -51,6 +57,7 @@ struct SurfacePath {
   double length = 0;                   // m travelled along the surface (the requested length when Completed)
   std::vector<Eigen::Vector3d> points; // m: the start, every edge or vertex crossing, the end
   std::vector<int> triangles;          // the triangle of each segment points[i] -> points[i+1]
+  std::vector<VertexCrossing> vertex_crossings;  // vertices passed through on the way, in order
 };
 
 // The straightest geodesic from `start` with initial direction `direction` (any length; projected onto the start
