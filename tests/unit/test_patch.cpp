@@ -233,9 +233,9 @@ model = "brain"
     }
     return std::string("no error");
   };
-  EXPECT_THAT(error_of("size = \"20 mm\"", "size = 20"), HasSubstr("case.toml:10: key 'patch.size': is a bare number"));
+  EXPECT_THAT(error_of("size = \"20 mm\"", "size = 20"), HasSubstr("case.toml:10: key 'patch.size': 20 is a bare number"));
   EXPECT_THAT(error_of("v = \"2 N/mm\"", "v = \"-2 N/mm\""), HasSubstr("'patch.spring_constant.v'"));
-  EXPECT_THAT(error_of("kind = \"flexible\"", "kind = \"soft\""), HasSubstr("unknown patch kind 'soft'"));
+  EXPECT_THAT(error_of("kind = \"flexible\"", "kind = \"soft\""), HasSubstr("unknown value 'soft'"));
   EXPECT_THAT(error_of("center_vertex = 12", "center_vertex = 12\ncenter = [\"0 mm\", \"0 mm\", \"0 mm\"]"),
               HasSubstr("given together with center_vertex"));
   EXPECT_THAT(error_of("max_spring_energy = \"0.05 mJ\"", ""), HasSubstr("missing for a flexible patch"));
