@@ -48,19 +48,15 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
   FittedPatch fit = rigid_fit(surface, design, frame);
   if (fit.status == FitStatus::MissesSurface) return fit;
   const std::vector<Eigen::Vector3d> start = flat_positions(design, frame, frame.approach_height);
-  int first = fit.first_node;
-  Eigen::Vector3d first_point = fit.positions[first];
-  if (options.first_node == FirstNode::Corner) {
-    first = design.node(0, 0);
-    const auto hit = surface.first_hit(start[first], frame.approach);
-    if (!hit) {
-      fit.status = FitStatus::MissesSurface;
-      fit.reason = "the first node N(0,0) is not over the surface along the approach direction: node 0";
-      fit.affected_nodes = {first};
-      return fit;
-    }
-    first_point = hit->point;
+  const int first = options.first_node == FirstNode::Corner ? design.node(0, 0) : fit.first_node;
+  const auto hit = surface.first_hit(start[first], frame.approach);  // Alg 5.1: project the first node
+  if (!hit) {
+    fit.status = FitStatus::MissesSurface;
+    fit.reason = "the first node N(0,0) is not over the surface along the approach direction: node 0";
+    fit.affected_nodes = {first};
+    return fit;
   }
+  const Eigen::Vector3d first_point = hit->point;
   fit.first_node = first;
   fit.affected_nodes.clear();
   fit.status = FitStatus::Ok;

@@ -149,8 +149,8 @@ TEST(PatchFitting, RigidPatchOnACylinderTouchesAlongTheTopAndTiltsTheOuterNeedle
   const PatchEvaluation e = evaluate_needles(cylinder, d, fit);
   // The outermost row at y = 4.5 mm: θ = asin(4.5/20).
   EXPECT_NEAR(e.angle.max, std::asin(4.5e-3 / r), 2e-3);
-  // Its needles stop short by the sag of the cylinder: travel = L − (z(0.5 mm) − z(4.5 mm)) along the axis.
-  const double sag = std::sqrt(r * r - 0.25e-6) - std::sqrt(r * r - 4.5e-3 * 4.5e-3);
+  // The plate touches the top generator (z = r); the outermost needles stop short by the sag of the cylinder.
+  const double sag = r - std::sqrt(r * r - 4.5e-3 * 4.5e-3);
   EXPECT_NEAR(e.travel.min, 400e-6 - sag, 2e-6);
 }
 
@@ -180,8 +180,14 @@ TEST(PatchFitting, SmallEnergyCapKeepsThePatchRigidLargeCapConforms) {
   const FittedPatch rigid = fit_patch(sphere, d, frame, {PatchKind::Rigid, {}, {}});
   const FittedPatch stiff = fit_patch(sphere, d, frame, flexible(1e-18));
   const FittedPatch soft = fit_patch(sphere, d, frame, flexible(kInf));
+  // E_cri → 0: the rigid patch's shape, moved along the approach only (it hangs from its first node, the rigid
+  // plate from the highest surface point under it).
+  const Eigen::Vector3d shift = stiff.positions[0] - rigid.positions[0];
+  EXPECT_LT(shift.cross(frame.approach).norm(), 1e-9);
   double stiff_gap = 0;
-  for (int k = 0; k < d.node_count(); ++k) stiff_gap = std::max(stiff_gap, (stiff.positions[k] - rigid.positions[k]).norm());
+  for (int k = 0; k < d.node_count(); ++k) {
+    stiff_gap = std::max(stiff_gap, (stiff.positions[k] - rigid.positions[k] - shift).norm());
+  }
   EXPECT_LT(stiff_gap, 1e-6);
   const PatchEvaluation es = evaluate_needles(sphere, d, stiff), ef = evaluate_needles(sphere, d, soft);
   EXPECT_GT(es.angle.max, 5 * ef.angle.max);
