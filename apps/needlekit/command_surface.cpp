@@ -25,22 +25,16 @@ struct SurfaceArguments {
   std::string mesh_path;
   std::string unit;
   bool json = false;
+  bool weld = false;
   std::vector<int> geodesic;  // two vertex indices, or empty
 };
 
-// The location of vertex `vertex`: the first triangle that uses it, at that corner.
 geometry::SurfaceLocation vertex_location(const geometry::SurfaceMesh& surface, int vertex, const char* what) {
-  if (vertex < 0 || vertex >= surface.vertex_count()) {
-    throw InvalidInput(fmt::format("--geodesic: {} vertex {} is not in [0, {})", what, vertex,
-                                   surface.vertex_count()));
+  try {
+    return geometry::vertex_location(surface, vertex);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("--geodesic: {} {}", what, error.what()));
   }
-  const auto& tris = surface.mesh().triangles;
-  for (int t = 0; t < surface.triangle_count(); ++t) {
-    for (int c = 0; c < 3; ++c) {
-      if (tris[t][c] == vertex) return {t, Eigen::Vector3d::Unit(c)};
-    }
-  }
-  throw InvalidInput(fmt::format("--geodesic: {} vertex {} belongs to no triangle", what, vertex));
 }
 
 void run_surface(const SurfaceArguments& arguments) {
@@ -51,6 +45,7 @@ void run_surface(const SurfaceArguments& arguments) {
   if (!(unit > 0)) throw InvalidInput(fmt::format("--unit: '{}' must be a positive length", arguments.unit));
   const auto started = std::chrono::steady_clock::now();
   geometry::TriangleMesh mesh = geometry::read_triangle_mesh(arguments.mesh_path, unit);
+  if (arguments.weld) mesh = geometry::welded_mesh(mesh);
   const geometry::SurfaceCheck check = geometry::surface_check(mesh);
   if (!check.problems.empty()) {
     throw InvalidInput(fmt::format("{}: not usable as a body surface: {}", arguments.mesh_path, check.problems));
@@ -77,6 +72,7 @@ void run_surface(const SurfaceArguments& arguments) {
   out["boundary_edges"] = check.boundary_edges;
   out["outer_triangles"] = check.outer_triangles;
   out["degenerate_triangles"] = check.degenerate_triangles;
+  out["coincident_vertices"] = check.coincident_vertices;
   out["area_mm2"] = geometry::surface_area(m) / (mm * mm);
   if (check.closed) out["volume_mm3"] = geometry::signed_volume(m) / (mm * mm * mm);
   out["size_mm"] = {box.sizes().x() / mm, box.sizes().y() / mm, box.sizes().z() / mm};
@@ -110,6 +106,10 @@ void run_surface(const SurfaceArguments& arguments) {
                arguments.geodesic[1], g["distance_mm"].get<double>(), g["status"].get<std::string>(),
                g["euclidean_mm"].get<double>());
   }
+  if (check.coincident_vertices > 0) {
+    fmt::print("note: {} vertices share a position with another: seams split in the file; --weld merges them\n",
+               check.coincident_vertices);
+  }
   fmt::print("read and indexed in {:.0f} ms\n", load_ms);
 }
 
@@ -120,10 +120,14 @@ void add_surface_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "surface", "Check a body surface mesh (OBJ, STL, PLY, OFF) for patch fitting and report its size and density");
   command->add_option("MESH", arguments->mesh_path, "triangle mesh file: .obj, .stl, .ply or .off")->required();
-  command->add_option("--unit", arguments->unit, "length unit of the file's coordinates: nm, um, mm, cm, m, or the length of one file unit "
-                      "(\"15.8 mm\" for the skull mesh's arbitrary units)")
+  command
+      ->add_option("--unit", arguments->unit,
+                   "length unit of the file's coordinates: nm, um, mm, cm, m, or the length of one file unit "
+                   "(\"15.8 mm\" for the skull mesh's arbitrary units)")
       ->required();
   command->add_flag("--json", arguments->json, "print the report as JSON (lengths in mm)");
+  command->add_flag("--weld", arguments->weld,
+                    "merge vertices with identical coordinates first (meshes exported with split seams)");
   command->add_option("--geodesic", arguments->geodesic, "geodesic distance between two vertices (0-based indices)")
       ->expected(2)
       ->type_name("I J");

@@ -27,6 +27,17 @@ Eigen::Vector3d position(const SurfaceMesh& surface, const SurfaceLocation& loca
   return location.barycentric[0] * v[t[0]] + location.barycentric[1] * v[t[1]] + location.barycentric[2] * v[t[2]];
 }
 
+SurfaceLocation vertex_location(const SurfaceMesh& surface, int vertex) {
+  if (vertex < 0 || vertex >= surface.vertex_count()) {
+    throw InvalidInput(fmt::format("vertex {} is not in [0, {})", vertex, surface.vertex_count()));
+  }
+  const int t = surface.vertex_triangle(vertex);
+  if (t < 0) throw InvalidInput(fmt::format("vertex {} belongs to no triangle", vertex));
+  const auto& tri = surface.mesh().triangles[t];
+  const int corner = tri[0] == vertex ? 0 : (tri[1] == vertex ? 1 : 2);
+  return {t, Eigen::Vector3d::Unit(corner)};
+}
+
 namespace detail {
 namespace {
 

@@ -53,6 +53,7 @@ TEST(SurfaceCli, ReportsACubeAndTheGeodesicBetweenOppositeCorners) {
   EXPECT_EQ(report["vertices"], 8);
   EXPECT_EQ(report["triangles"], 12);
   EXPECT_EQ(report["closed"], true);
+  EXPECT_EQ(report["coincident_vertices"], 0);
   EXPECT_NEAR(report["area_mm2"].get<double>(), 24.0, 1e-9);
   EXPECT_NEAR(report["volume_mm3"].get<double>(), 8.0, 1e-9);
   EXPECT_NEAR(report["size_mm"][0].get<double>(), 2.0, 1e-12);
@@ -60,6 +61,25 @@ TEST(SurfaceCli, ReportsACubeAndTheGeodesicBetweenOppositeCorners) {
   EXPECT_EQ(report["geodesic"]["status"], "converged");
   EXPECT_NEAR(report["geodesic"]["distance_mm"].get<double>(), std::sqrt(20.0), 1e-9);
   EXPECT_NEAR(report["geodesic"]["euclidean_mm"].get<double>(), std::sqrt(12.0), 1e-12);
+}
+
+TEST(SurfaceCli, WeldsSplitSeams) {
+  // The cube with its top face's vertices duplicated (as exporters do along texture seams).
+  const auto dir = needlekit::test::scratch_directory("surface_cli_seams");
+  std::string obj = cube_obj(false);
+  obj += "v 0 0 2\nv 2 0 2\nv 0 2 2\nv 2 2 2\n";
+  const auto top = obj.find("f 5 6 7\nf 6 8 7\n");
+  ASSERT_NE(top, std::string::npos);
+  obj.replace(top, 16, "f 9 10 11\nf 10 12 11\n");
+  needlekit::test::write_text(dir / "seams.obj", obj);
+  const auto split = run_cli("surface '" + (dir / "seams.obj").string() + "' --unit mm --json");
+  ASSERT_EQ(split.first, 0) << split.second;
+  EXPECT_EQ(nlohmann::json::parse(split.second)["closed"], false);
+  EXPECT_EQ(nlohmann::json::parse(split.second)["coincident_vertices"], 4);
+  const auto welded = run_cli("surface '" + (dir / "seams.obj").string() + "' --unit mm --json --weld");
+  ASSERT_EQ(welded.first, 0) << welded.second;
+  EXPECT_EQ(nlohmann::json::parse(welded.second)["closed"], true);
+  EXPECT_EQ(nlohmann::json::parse(welded.second)["vertices"], 8);
 }
 
 TEST(SurfaceCli, RefusesUnusableMeshesWithOneLineAndExitCode2) {

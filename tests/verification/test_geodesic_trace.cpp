@@ -66,8 +66,9 @@ TEST(StraightestGeodesic, IsTheStraightLineOnAPlaneThroughEdgesAndVertices) {
       const Eigen::Vector3d start = scale * c.start;
       const Eigen::Vector3d d = Eigen::Vector3d(c.direction.x(), c.direction.y(), 0).normalized();
       for (const bool cutting : {false, true}) {
-        const auto path = cutting ? geometry::cutting_plane_trace(plane, at(plane, start), c.direction, scale * c.length)
-                                  : geometry::straightest_geodesic(plane, at(plane, start), c.direction, scale * c.length);
+        const auto path = cutting
+                              ? geometry::cutting_plane_trace(plane, at(plane, start), c.direction, scale * c.length)
+                              : geometry::straightest_geodesic(plane, at(plane, start), c.direction, scale * c.length);
         ASSERT_EQ(path.status, PathStatus::Completed) << path.reason;
         EXPECT_LT((path.end_point - (start + scale * c.length * d)).norm(), 1e-12 * scale)
             << "start " << c.start.transpose() << (cutting ? " (cutting plane)" : "");
@@ -106,6 +107,10 @@ TEST(StraightestGeodesic, StopsAtTheBoundaryAndAtDegenerateTriangles) {
   EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {0, 0, 1}, 1.0), InvalidInput);
   EXPECT_THROW((void)geometry::straightest_geodesic(plane, at(plane, {0, 0, 0}), {1, 0, 0}, -1.0), InvalidInput);
   EXPECT_THROW((void)geometry::cutting_plane_trace(plane, {999, {1, 0, 0}}, {1, 0, 0}, 1.0), InvalidInput);
+  for (int v : {0, 40, 80}) {
+    EXPECT_EQ(geometry::position(plane, geometry::vertex_location(plane, v)), plane.mesh().vertices[v]);
+  }
+  EXPECT_THROW((void)geometry::vertex_location(plane, 81), InvalidInput);
   geometry::TraceOptions few;
   few.max_steps = 3;  // a 1.8 m walk across the 8 x 8 grid needs more
   const auto cut_short = geometry::straightest_geodesic(plane, at(plane, {-0.9, 0.1, 0}), {1, 0, 0}, 1.8, few);
@@ -125,7 +130,8 @@ TEST(StraightestGeodesic, IsExactOnAPolygonalCylinderAndConvergesToTheHelixAtSec
     const double side = 2 * radius * std::sin(std::numbers::pi / around);
     const double z0 = 1.1;
     const Eigen::Vector3d start = prism_point(radius, around, 0.5 * side, z0);
-    const Eigen::Vector3d tangent = (prism_point(radius, around, side, z0) - prism_point(radius, around, 0, z0)).normalized();
+    const Eigen::Vector3d tangent =
+        (prism_point(radius, around, side, z0) - prism_point(radius, around, 0, z0)).normalized();
     const Eigen::Vector3d direction = std::cos(alpha) * tangent + std::sin(alpha) * Eigen::Vector3d::UnitZ();
     const auto path = geometry::straightest_geodesic(cylinder, at(cylinder, start), direction, length);
     ASSERT_EQ(path.status, PathStatus::Completed) << path.reason;
