@@ -242,7 +242,8 @@ void add_patch_command(CLI::App& app) {
       "             approach = \"-z\" (default) | \"normal\"\n"
       "  [patch]    kind = \"rigid\" | \"flexible\" | \"equilibrium\"; size = \"10 mm\"; needles_per_row = 10;\n"
       "             spring_constant = \"1 N/mm\" or { u = , v = , diagonal = }; max_spring_energy = \"0.05 mJ\";\n"
-      "             first_node = \"first-contact\" | \"corner\"; load = \"0.0712 N\" (equilibrium)\n"
+      "             first_node = \"first-contact\" | \"corner\"; walk = \"cutting-plane\" | \"unfolding\";\n"
+      "             load = \"0.0712 N\" (equilibrium: force per node)\n"
       "  [needle], [tissue], [insertion]  as in design files (see needlekit evaluate --help)");
   command->callback([arguments] { run_patch(*arguments); });
 }
