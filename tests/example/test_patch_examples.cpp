@@ -91,6 +91,12 @@ TEST_F(PatchCli, RigidAndFlexiblePatchesOnTheNeck_Section_6_4_1) {
   EXPECT_THAT(text_of(dir_ / "flexible/needles.vtu"), HasSubstr("Name=\"buckling_force_N\""));
   EXPECT_THAT(text_of(dir_ / "flexible/patch.vtu"), HasSubstr("Name=\"strain_energy_mJ\""));
   EXPECT_THAT(text_of(dir_ / "flexible/ATTRIBUTION.md"), HasSubstr("CC BY 4.0"));
+
+  // The static equilibrium of the same patch also conforms (beyond the dissertation).
+  const nlohmann::json equilibrium = summary("patch_neck_equilibrium.toml", "equilibrium");
+  EXPECT_EQ(equilibrium["status"], "ok");
+  EXPECT_EQ(equilibrium["penetrating"], 100);
+  EXPECT_LT(equilibrium["angle_deg"]["max"].get<double>(), 10);
 }
 
 TEST_F(PatchCli, SpringEnergySweepOnTheNeck_Figure_6_25) {
