@@ -12,5 +12,6 @@ void add_materials_command(CLI::App& app);  // command_materials.cpp
 void add_mesh_command(CLI::App& app);       // command_mesh.cpp
 void add_tissue_mesh_command(CLI::App& app);  // command_tissue_mesh.cpp
 void add_surface_command(CLI::App& app);    // command_surface.cpp
+void add_patch_command(CLI::App& app);      // command_patch.cpp
 
 }  // namespace needlekit::cli

@@ -1,0 +1,121 @@
+#include "needlekit/io/patch_config.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "needlekit/io/design_config.hpp"
+#include "toml_config.hpp"
+
+namespace needlekit::io {
+namespace {
+
+using namespace config;  // the TOML reading helpers of toml_config.hpp
+
+void read_surface(const Section& t, const std::filesystem::path& base, PatchCase& c) {
+  const std::string mesh_expected = "a mesh file name (OBJ, STL, PLY or OFF)";
+  c.mesh = base / text_of(t, t.required("mesh", mesh_expected), "mesh", mesh_expected);
+  const std::string unit_expected = "the length of one file unit, e.g. \"mm\" or \"15.8 mm\"";
+  const toml::node& unit = t.required("unit", unit_expected);
+  const std::string unit_text = text_of(t, unit, "unit", unit_expected);
+  c.mesh_unit = t.at(unit, [&] {
+    try {
+      return units::unit_factor(unit_text, Dimension::Length, t.what("unit"));
+    } catch (const InvalidInput&) {
+      return units::parse_quantity(unit_text, Dimension::Length, t.what("unit"));
+    }
+  });
+  if (!(c.mesh_unit > 0)) t.fail(unit, "unit", fmt::format("'{}' is not positive, expected {}", unit_text, unit_expected));
+  const toml::node* vertex = t.optional("center_vertex");
+  const toml::node* center = t.optional("center");
+  if (vertex && center) t.fail(*center, "center", "given together with center_vertex, expected one of them");
+  if (!vertex && !center) {
+    t.fail(t.table(), "center_vertex",
+           "missing, expected center_vertex = <0-based vertex index> or center = [\"x mm\", \"y mm\", \"z mm\"]");
+  }
+  if (vertex) {
+    c.placement.center_vertex = integer_at_least(t, *vertex, "center_vertex", 0);
+  } else {
+    if (!center->is_array() || center->as_array()->size() != 3) {
+      t.fail(*center, "center", fmt::format("{} is not a point, expected [\"x mm\", \"y mm\", \"z mm\"]", describe(*center)));
+    }
+    for (int i = 0; i < 3; ++i) c.placement.center[i] = quantity_of(t, *center->as_array()->get(i), "center", Dimension::Length);
+  }
+  if (const toml::node* node = t.optional("rotation")) {
+    c.placement.rotation = quantity_of(t, *node, "rotation", Dimension::Angle);
+  }
+  if (const toml::node* node = t.optional("approach")) {
+    c.placement.approach = choice_of<patch::Approach>(
+        t, *node, "approach", {{"-z", patch::Approach::MinusZ}, {"normal", patch::Approach::SurfaceNormal}});
+  }
+}
+
+void read_patch(const Section& t, PatchCase& c) {
+  c.fit.kind = choice_of<patch::PatchKind>(t, t.required("kind", "\"rigid\", \"flexible\" or \"equilibrium\""), "kind",
+                                           {{"rigid", patch::PatchKind::Rigid},
+                                            {"flexible", patch::PatchKind::Flexible},
+                                            {"equilibrium", patch::PatchKind::Equilibrium}});
+  c.design.width_u = c.design.width_v = positive_quantity(t, "size", Dimension::Length);
+  const toml::node& count = t.required("needles_per_row", "an integer >= 2");
+  c.design.needles_u = c.design.needles_v = integer_at_least(t, count, "needles_per_row", 2);
+  const toml::node& spring = t.required("spring_constant", expected_quantity(Dimension::Stiffness));
+  if (spring.is_table()) {
+    const Section springs = t.subsection(spring, "spring_constant", {"u", "v", "diagonal"});
+    c.design.stiffness_u = positive_quantity(springs, "u", Dimension::Stiffness);
+    c.design.stiffness_v = positive_quantity(springs, "v", Dimension::Stiffness);
+    c.design.stiffness_diagonal = positive_quantity(springs, "diagonal", Dimension::Stiffness);
+  } else {
+    c.design.stiffness_u = c.design.stiffness_v = c.design.stiffness_diagonal =
+        positive_quantity_of(t, spring, "spring_constant", Dimension::Stiffness);
+  }
+  if (const auto energy = optional_positive_quantity(t, "max_spring_energy", Dimension::Energy)) {
+    c.fit.flexible.max_spring_energy = *energy;
+  } else if (c.fit.kind == patch::PatchKind::Flexible) {
+    t.fail(t.table(), "max_spring_energy",
+           fmt::format("missing for a flexible patch, expected {}", expected_quantity(Dimension::Energy)));
+  }
+  if (const toml::node* node = t.optional("first_node")) {
+    c.fit.flexible.first_node = choice_of<patch::FirstNode>(
+        t, *node, "first_node", {{"first-contact", patch::FirstNode::FirstContact}, {"corner", patch::FirstNode::Corner}});
+  }
+  if (const toml::node* node = t.optional("walk")) {
+    c.fit.flexible.walk = choice_of<patch::WalkMethod>(
+        t, *node, "walk", {{"cutting-plane", patch::WalkMethod::CuttingPlane}, {"unfolding", patch::WalkMethod::Unfolding}});
+  }
+  if (const auto load = optional_positive_quantity(t, "load", Dimension::Force)) {
+    c.fit.equilibrium.node_load = *load;
+    c.load_given = true;
+  }
+}
+
+}  // namespace
+
+PatchCase parse_patch_case_toml(std::string_view text, std::string_view source_name,
+                                const std::filesystem::path& base_folder) {
+  const std::string file(source_name);
+  // [needle], [tissue], [insertion] as in design files; this also rejects unknown tables and bad TOML.
+  const DesignFile needle = parse_needle_tables(text, file, {"surface", "patch"});
+  const toml::table root = parse_toml(text, file);
+  const Section top(root, "", file, {"surface", "patch", "needle", "tissue", "insertion"});
+  PatchCase c;
+  read_surface(top.required_subsection("surface", {"mesh", "unit", "center_vertex", "center", "rotation", "approach"}),
+               base_folder, c);
+  read_patch(top.required_subsection("patch", {"kind", "size", "needles_per_row", "spring_constant",
+                                               "max_spring_energy", "first_node", "walk", "load"}),
+             c);
+  c.design.needle = needle.design.needle;
+  c.design.material = needle.design.material;
+  c.evaluation.conditions = needle.conditions;
+  c.evaluation.index = needle.options;
+  if (!c.load_given) {
+    // The force that punctures one needle, |F(A)| (Eq 4.2); at least 1 µN.
+    c.fit.equilibrium.node_load = std::max(
+        1e-6, std::abs(analysis::puncture_force(needle::tip_area(c.design.needle), c.evaluation.conditions.tissue)));
+  }
+  return c;
+}
+
+PatchCase read_patch_case(const std::filesystem::path& path) {
+  return parse_patch_case_toml(read_text(path), path.string(), path.parent_path());
+}
+
+}  // namespace needlekit::io
