@@ -2,8 +2,6 @@
 
 #include <cholmod.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -41,7 +39,6 @@ SparseCholesky::SparseCholesky(int64_t n, const std::vector<int64_t>& colptr, co
     impl_->factor = cholmod_l_analyze(impl_->a, &c);
   }
   if (!impl_->factor) throw std::runtime_error("CHOLMOD: symbolic analysis failed");
-  if (getenv("NK_DEBUG")) fprintf(stderr, "cholmod n=%ld nnzA=%ld lnz=%g fl=%g ordering=%d super=%d\n", (long)n, (long)nnz, c.lnz, c.fl, c.selected, c.supernodal);
 }
 
 SparseCholesky::~SparseCholesky() {
