@@ -964,6 +964,7 @@ const std::vector<int>& QuasiStaticSolver::contact_flag() const { return impl_->
 const std::vector<double>& QuasiStaticSolver::contact_pressure() const { return impl_->contact_pressure; }
 const SolverOptions& QuasiStaticSolver::options() const { return impl_->opt; }
 int QuasiStaticSolver::dof_count() const { return impl_->ndof; }
+double QuasiStaticSolver::factor_nonzeros() const { return impl_->cholesky->factor_nonzeros(); }
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->free_dofs.size()); }
 
 ElementFields QuasiStaticSolver::element_fields() const {

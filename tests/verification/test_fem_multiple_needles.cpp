@@ -32,6 +32,7 @@ TEST(MultipleNeedles, TwoSeparatedNeedlesEachCarryTheSingleNeedleForce) {
     EXPECT_NEAR(r2.indenter_force[0] / r2.indenter_force[1], 1.0, 0.1) << to_string(contact);
     EXPECT_NEAR(r2.indenter_force[1] / r1.indenter_force[0], 1.0, 0.05) << to_string(contact);
     EXPECT_EQ(r2.contact_nodes[1], r1.contact_nodes[0]);
+    EXPECT_GT(two.factor_nonzeros(), two.free_dof_count());
     int flagged_left = 0, flagged_right = 0;
     for (int f : two.contact_flag()) flagged_left += f == 1, flagged_right += f == 2;
     EXPECT_EQ(flagged_left, r2.contact_nodes[0]);

@@ -191,6 +191,7 @@ public:
   const SolverOptions& options() const;
   int dof_count() const;        // 3 * nodes
   int free_dof_count() const;   // unknowns of the linear systems
+  double factor_nonzeros() const;  // entries of the Cholesky factor (its memory is about 8 bytes each)
 
 private:
   struct Impl;
