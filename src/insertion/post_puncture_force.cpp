@@ -247,13 +247,14 @@ std::vector<double> post_puncture_forces(const PostPunctureLoads& loads, const s
     const double h = inserted_depths[s];
     while (next < n && first_depth(loads.triangles[static_cast<std::size_t>(loads.by_first_depth[next])]) < h)
       active.push_back(loads.by_first_depth[next++]);
+    // Complete triangles (every vertex strictly above h, as clipped_load counts them) come from the prefix sums.
     const std::size_t complete = static_cast<std::size_t>(
-        std::upper_bound(loads.last_depth_sorted.begin(), loads.last_depth_sorted.end(), h) -
+        std::lower_bound(loads.last_depth_sorted.begin(), loads.last_depth_sorted.end(), h) -
         loads.last_depth_sorted.begin());
     double total = loads.full_prefix[complete];
     for (std::size_t i = 0; i < active.size();) {
       const LoadedTriangle& t = loads.triangles[static_cast<std::size_t>(active[i])];
-      if (last_depth(t) <= h) {  // complete: counted in the prefix sum from now on
+      if (last_depth(t) < h) {  // complete: counted in the prefix sum from now on
         active[i] = active.back();
         active.pop_back();
         continue;
