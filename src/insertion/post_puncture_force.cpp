@@ -45,10 +45,72 @@ double clipped_load(const LoadedTriangle& t, double h) {
   return full_load(t) - t.weight * t.area * u0 * u1 * (3 * f2 + u0 * (f0 - f2) + u1 * (f1 - f2)) / 3.0;
 }
 
-// Algorithm 3.1 for one β-triangle: the loads δ/R at its vertices (before the cap) and its Fig 3.9 case.
-struct BetaLoad {
-  std::array<double, 3> delta{};
-  BetaCase beta_case = BetaCase::NoVertexOnTip;
+// The support function of the tip's footprint (the tip vertices projected on the plane normal to d, relative to the
+// axis): x_open(e) = max_j r_j·e, by a binary search over the edge normals of the footprint's convex hull (the tip of
+// a fine needle mesh has hundreds of vertices and every β-triangle asks).
+class TipFootprint {
+public:
+  TipFootprint(const std::vector<Eigen::Vector3d>& radial, const Eigen::Vector3d& d) {
+    u1_ = any_perpendicular(d);
+    u2_ = d.cross(u1_);
+    std::vector<Eigen::Vector2d> points;
+    points.reserve(radial.size());
+    for (const auto& r : radial) points.emplace_back(r.dot(u1_), r.dot(u2_));
+    std::sort(points.begin(), points.end(),
+              [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+    };
+    // Andrew's monotone chain: counter-clockwise hull without collinear points.
+    std::vector<Eigen::Vector2d> hull(2 * points.size() + 1);
+    std::size_t k = 0;
+    for (const auto& p : points) {
+      while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0) --k;
+      hull[k++] = p;
+    }
+    for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+      while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+      hull[k++] = points[i];
+    }
+    hull.resize(points.size() > 1 ? k - 1 : points.size());
+    hull_ = hull;
+    if (hull_.size() < 8) return;  // small: brute force
+    const std::size_t m = hull_.size();
+    std::vector<std::pair<double, std::size_t>> normals(m);  // outward normal angle of edge i -> i+1
+    for (std::size_t i = 0; i < m; ++i) {
+      const Eigen::Vector2d edge = hull_[(i + 1) % m] - hull_[i];
+      normals[i] = {std::atan2(-edge.x(), edge.y()), i};
+    }
+    std::sort(normals.begin(), normals.end());
+    angles_.reserve(m);
+    edges_.reserve(m);
+    for (const auto& [angle, edge] : normals) {
+      angles_.push_back(angle);
+      edges_.push_back(edge);
+    }
+  }
+
+  double operator()(const Eigen::Vector3d& e) const {
+    const Eigen::Vector2d direction(e.dot(u1_), e.dot(u2_));
+    double best = 0;  // x_open >= 0: the axis itself is always open
+    if (angles_.empty()) {
+      for (const auto& p : hull_) best = std::max(best, p.dot(direction));
+      return best;
+    }
+    // The extreme vertex for a direction between the normals of edges i−1 and i is the start of edge i.
+    const double phi = std::atan2(direction.y(), direction.x());
+    std::size_t i = static_cast<std::size_t>(std::lower_bound(angles_.begin(), angles_.end(), phi) - angles_.begin());
+    if (i == angles_.size()) i = 0;
+    const std::size_t m = hull_.size(), v = edges_[i];
+    for (std::size_t j : {(v + m - 1) % m, v, (v + 1) % m}) best = std::max(best, hull_[j].dot(direction));
+    return best;
+  }
+
+private:
+  Eigen::Vector3d u1_, u2_;
+  std::vector<Eigen::Vector2d> hull_;
+  std::vector<double> angles_;       // ascending
+  std::vector<std::size_t> edges_;   // hull edge of each angle
 };
 
 }  // namespace
@@ -108,6 +170,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
   std::vector<Eigen::Vector3d> tip_radial;
   tip_radial.reserve(tip_vertices.size());
   for (int i : tip_vertices) tip_radial.push_back(radial_of(vertex(needle, i)));
+  const TipFootprint x_open_of(tip_radial, d);
 
   double radius = options.reference_radius;
   if (radius == 0)
@@ -166,8 +229,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     for (int k = 1; k < 3; ++k)
       if (a[k] < a[q1] || (a[k] == a[q1] && x[k] < x[q1])) q1 = k;
     // The opening line: the edge of the tip in this plane.
-    double x_open = 0;
-    for (const auto& r : tip_radial) x_open = std::max(x_open, r.dot(e));
+    const double x_open = x_open_of(e);
     const double b = std::max(0.0, x[q1] - x_open);
     // The meridian slope of the triangle itself (for edges across the meridian, where an edge angle means nothing):
     // tan θ_T = (n·d)/(n·e).
@@ -198,26 +260,22 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     loads.triangles.push_back(loaded);
   }
 
-  // Tables for evaluation at many depths.
+  // Tables for evaluation at many depths: triangles by their first and by their last depth.
   const std::size_t n = loads.triangles.size();
+  std::vector<std::pair<double, int>> first(n), last(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    first[i] = {first_depth(loads.triangles[i]), static_cast<int>(i)};
+    last[i] = {last_depth(loads.triangles[i]), static_cast<int>(i)};
+  }
+  std::sort(first.begin(), first.end());
+  std::sort(last.begin(), last.end());
   loads.by_first_depth.resize(n);
-  std::iota(loads.by_first_depth.begin(), loads.by_first_depth.end(), 0);
-  std::sort(loads.by_first_depth.begin(), loads.by_first_depth.end(), [&](int i, int j) {
-    return first_depth(loads.triangles[static_cast<std::size_t>(i)]) <
-           first_depth(loads.triangles[static_cast<std::size_t>(j)]);
-  });
-  std::vector<int> by_last(n);
-  std::iota(by_last.begin(), by_last.end(), 0);
-  std::sort(by_last.begin(), by_last.end(), [&](int i, int j) {
-    return last_depth(loads.triangles[static_cast<std::size_t>(i)]) <
-           last_depth(loads.triangles[static_cast<std::size_t>(j)]);
-  });
   loads.last_depth_sorted.resize(n);
   loads.full_prefix.assign(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const LoadedTriangle& t = loads.triangles[static_cast<std::size_t>(by_last[i])];
-    loads.last_depth_sorted[i] = last_depth(t);
-    loads.full_prefix[i + 1] = loads.full_prefix[i] + full_load(t);
+    loads.by_first_depth[i] = first[i].second;
+    loads.last_depth_sorted[i] = last[i].first;
+    loads.full_prefix[i + 1] = loads.full_prefix[i] + full_load(loads.triangles[static_cast<std::size_t>(last[i].second)]);
   }
   return loads;
 }
