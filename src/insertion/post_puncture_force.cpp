@@ -132,6 +132,9 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
   if (!(options.tip_tolerance >= 0 && options.tip_tolerance <= 1e-2))
     throw InvalidInput(fmt::format("tip_tolerance: {}, expected a relative tolerance in [0, 0.01]",
                                    options.tip_tolerance));
+  if (!(options.max_edge_fraction >= 0 && options.max_edge_fraction <= 1))
+    throw InvalidInput(fmt::format("max_edge_fraction: {}, expected a fraction of the needle length in [0, 1]",
+                                   options.max_edge_fraction));
   if (!(options.reference_radius >= 0) || !std::isfinite(options.reference_radius))
     throw InvalidInput(fmt::format("reference_radius: {} m, expected a finite length >= 0 (0: automatic)",
                                    options.reference_radius));
@@ -181,33 +184,27 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
 
   const auto& classes = loads.classification;
   loads.triangles.reserve(classes.alpha.size() + classes.beta.size());
-  auto triangle_geometry = [&](int t, LoadedTriangle& loaded) {
-    const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
-    const Eigen::Vector3d normal_area =
-        (vertex(needle, tri[1]) - vertex(needle, tri[0])).cross(vertex(needle, tri[2]) - vertex(needle, tri[0]));
-    loaded.triangle = t;
-    loaded.area = 0.5 * normal_area.norm();
-    loaded.weight = options.axial_component ? normal_area.normalized().dot(d) : 1.0;
-    for (int k = 0; k < 3; ++k) loaded.depth[k] = depth[static_cast<std::size_t>(tri[k])];
-    return Eigen::Vector3d(normal_area.normalized());
-  };
-
-  for (int t : classes.alpha) {  // Eq 3.18: uniform pressure K·S
-    LoadedTriangle loaded;
-    loaded.alpha = true;
-    triangle_geometry(t, loaded);
-    loaded.load = {1.0, 1.0, 1.0};
-    loads.alpha_area += loaded.area;
-    loads.triangles.push_back(loaded);
-  }
-
   const double degenerate_axial = 1e-9 * loads.needle_length;
-  for (int t : classes.beta) {  // Algorithm 3.1
+  using Corners = std::array<Eigen::Vector3d, 3>;
+
+  // One loaded (sub-)triangle with corners p of mesh triangle `parent`.
+  auto add_triangle = [&](int parent, const Corners& p, bool alpha) {
     LoadedTriangle loaded;
-    const Eigen::Vector3d n = triangle_geometry(t, loaded);
-    const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
-    // Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
-    const Eigen::Vector3d centroid = (vertex(needle, tri[0]) + vertex(needle, tri[1]) + vertex(needle, tri[2])) / 3.0;
+    const Eigen::Vector3d normal_area = (p[1] - p[0]).cross(p[2] - p[0]);
+    const Eigen::Vector3d n = normal_area.normalized();
+    loaded.triangle = parent;
+    loaded.alpha = alpha;
+    loaded.area = 0.5 * normal_area.norm();
+    loaded.weight = options.axial_component ? n.dot(d) : 1.0;
+    for (int k = 0; k < 3; ++k) loaded.depth[k] = top - p[static_cast<std::size_t>(k)].dot(d);
+    if (alpha) {  // Eq 3.18: uniform pressure K·S
+      loaded.load = {1.0, 1.0, 1.0};
+      loads.alpha_area += loaded.area;
+      loads.triangles.push_back(loaded);
+      return;
+    }
+    // Algorithm 3.1. Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
+    const Eigen::Vector3d centroid = (p[0] + p[1] + p[2]) / 3.0;
     Eigen::Vector3d e = radial_of(centroid);
     if (e.norm() <= 1e-12 * radius) e = n - n.dot(d) * d;  // centroid on the axis: the normal's radial part
     e = e.norm() > 0 ? Eigen::Vector3d(e.normalized()) : any_perpendicular(d);
@@ -217,7 +214,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     int tip_count = 0;
     for (int k = 0; k < 3; ++k) {
       a[k] = loaded.depth[k];
-      x[k] = radial_of(vertex(needle, tri[k])).dot(e);
+      x[k] = radial_of(p[static_cast<std::size_t>(k)]).dot(e);
       on_tip[k] = a[k] <= tip_band;
       tip_count += on_tip[k] ? 1 : 0;
     }
@@ -229,8 +226,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     for (int k = 1; k < 3; ++k)
       if (a[k] < a[q1] || (a[k] == a[q1] && x[k] < x[q1])) q1 = k;
     // The opening line: the edge of the tip in this plane.
-    const double x_open = x_open_of(e);
-    const double b = std::max(0.0, x[q1] - x_open);
+    const double b = std::max(0.0, x[q1] - x_open_of(e));
     // The meridian slope of the triangle itself (for edges across the meridian, where an edge angle means nothing):
     // tan θ_T = (n·d)/(n·e).
     const double theta_triangle = std::atan2(std::max(n.dot(d), 0.0), std::abs(n.dot(e)));
@@ -258,7 +254,29 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     }
     ++loads.case_counts[static_cast<int>(loaded.beta_case)];
     loads.triangles.push_back(loaded);
-  }
+  };
+
+  // Long triangles (a bevel face triangulated edge to edge) are bisected at the midpoint of their longest edge until
+  // no edge exceeds max_edge, so that Algorithm 3.1 sees triangles small against the load's variation.
+  const double max_edge = options.max_edge_fraction * loads.needle_length;
+  auto add_subdivided = [&](auto&& self, int parent, const Corners& p, bool alpha, int level) -> void {
+    const std::array<double, 3> edge{(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()};
+    const int k = static_cast<int>(std::max_element(edge.begin(), edge.end()) - edge.begin());
+    if (max_edge <= 0 || edge[static_cast<std::size_t>(k)] <= max_edge || level >= 48)
+      return add_triangle(parent, p, alpha);
+    // Split edge k (corners k, k+1) at its midpoint m: (k, m, k+2) and (m, k+1, k+2), orientation kept.
+    const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % 3),
+               l = static_cast<std::size_t>((k + 2) % 3);
+    const Eigen::Vector3d m = 0.5 * (p[i] + p[j]);
+    self(self, parent, Corners{p[i], m, p[l]}, alpha, level + 1);
+    self(self, parent, Corners{m, p[j], p[l]}, alpha, level + 1);
+  };
+  for (bool alpha : {true, false})
+    for (int t : alpha ? classes.alpha : classes.beta) {
+      const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
+      add_subdivided(add_subdivided, t, Corners{vertex(needle, tri[0]), vertex(needle, tri[1]), vertex(needle, tri[2])},
+                     alpha, 0);
+    }
 
   // Tables for evaluation at many depths: triangles by their first and by their last depth.
   const std::size_t n = loads.triangles.size();
