@@ -50,6 +50,8 @@ enum class BoundaryCondition {
   SidesAndBottomFixed,    // §3.4: every node on the four sides and the bottom is fixed; top free
   BottomFixed,            // bottom fixed, sides free
   BottomFixedSidesRoller, // bottom fixed, sides slide (normal displacement zero)
+  SymmetryPlanes,         // u_x = 0 on x = min, u_y = 0 on y = min, u_z = 0 on the bottom; other faces free
+                          // (homogeneous uniaxial tests)
 };
 
 std::string to_string(MaterialLaw law);
@@ -57,7 +59,7 @@ std::string to_string(ElementOrder order);
 std::string to_string(ContactModel contact);
 std::string to_string(BoundaryCondition condition);
 // Parse "svk" | "st-venant-kirchhoff", "neo-hookean"; "linear" | "quadratic"; "tip-nodes" | "surface";
-// "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller". Throw InvalidInput naming `what`.
+// "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes". Throw InvalidInput naming `what`.
 MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
