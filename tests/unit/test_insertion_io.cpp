@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "needlekit/core/errors.hpp"
+#include "../support/expect_invalid.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
@@ -11,18 +12,9 @@
 
 using namespace needlekit;
 using testing::HasSubstr;
+using needlekit::test::expect_invalid;
 
 namespace {
-
-template <typename F>
-void expect_invalid(F&& f, const std::string& fragment) {
-  try {
-    f();
-    FAIL() << "expected InvalidInput containing '" << fragment << "'";
-  } catch (const InvalidInput& error) {
-    EXPECT_THAT(error.what(), HasSubstr(fragment));
-  }
-}
 
 TEST(ForceCurveCsv, ReadsUnitsFromTheHeaderInAnyColumnOrder) {
   const auto curve =
