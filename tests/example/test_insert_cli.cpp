@@ -168,4 +168,24 @@ TEST(InsertCli, BadInputExitsWith2AndWritesNothing) {
   fs::remove_all(dir);
 }
 
+TEST(InsertCli, SharpBevelExampleRunsTheFeThenCuts) {
+  // examples/insert_sharp_bevel.toml in a quick mode (coarse mesh, 6 load steps): the FE punctures within the first
+  // 100 um (the dissertation's simulation: < 20 um; needlekit's default mesh: 34 um), then the cutting phase.
+  const fs::path dir = fresh_dir("fe");
+  const CliOutcome r = insert_cli(dir, "insert '" NEEDLEKIT_SOURCE_DIR "/examples/insert_sharp_bevel.toml' --json --no-plot "
+                                "--size-at-tip '40 um' --size-far '600 um' --steps 6");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["pre_puncture_source"], "fe");
+  EXPECT_EQ(json["fe"]["status"], "punctured");
+  ASSERT_FALSE(json["puncture_depth_um"].is_null());
+  EXPECT_GT(json["puncture_depth_um"].get<double>(), 0.0);
+  EXPECT_LT(json["puncture_depth_um"].get<double>(), 100.0);
+  EXPECT_GT(json["puncture_force_N"].get<double>(), 0.0);
+  EXPECT_EQ(json["phase"].back(), "cutting");
+  const auto loads = sharp_bevel_loads();
+  EXPECT_NEAR(json["force_N"].back().get<double>(), insertion::post_puncture_force(loads, 1e-3, 0.2e6, 0.168), 1e-12);
+  fs::remove_all(dir);
+}
+
 }  // namespace
