@@ -12,5 +12,6 @@ void add_materials_command(CLI::App& app);  // command_materials.cpp
 void add_mesh_command(CLI::App& app);       // command_mesh.cpp
 void add_indent_command(CLI::App& app);     // command_indent.cpp
 void add_insert_command(CLI::App& app);     // command_insert.cpp
+void add_surface_command(CLI::App& app);    // command_surface.cpp
 
 }  // namespace needlekit::cli
