@@ -35,7 +35,7 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
   check_positive(o.size_far, "size_far");
   check_positive(o.size_gradient, "size_gradient", 1, "");
   if (o.size_far < o.size_at_site) {
-    throw InvalidInput(fmt::format("layered block: size_far = {} um is smaller than size_at_site = {} um; expected "
+    throw InvalidInput(fmt::format("layered block: size_far = {:g} um is smaller than size_at_site = {:g} um; expected "
                                    "size_far >= size_at_site",
                                    o.size_far * 1e6, o.size_at_site * 1e6));
   }
@@ -48,8 +48,8 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
   for (std::size_t s = 0; s < o.insertion_sites.size(); ++s) {
     const Eigen::Vector2d& p = o.insertion_sites[s];
     if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
-      throw InvalidInput(fmt::format("layered block: insertion site {} at ({}, {}) um is not inside the top surface "
-                                     "(|x| < {} um, |y| < {} um)",
+      throw InvalidInput(fmt::format("layered block: insertion site {} at ({:g}, {:g}) um is not inside the top surface "
+                                     "(|x| < {:g} um, |y| < {:g} um)",
                                      s, p.x() * 1e6, p.y() * 1e6, 0.5 * o.width * 1e6, 0.5 * o.length * 1e6));
     }
   }
@@ -174,6 +174,7 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
     detail::GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
     detail::GmshSession::set_option({"Mesh.Algorithm3D"}, 10);  // HXT
     detail::GmshSession::set_option({"General.NumThreads"}, options.threads);
+    detail::GmshSession::set_option({"Mesh.MaxNumThreads3D"}, options.threads);
     detail::GmshSession::set_option({"Mesh.Optimize"}, 1);
     gmsh::model::mesh::generate(3);
 

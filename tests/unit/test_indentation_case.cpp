@@ -192,7 +192,7 @@ TEST(IndentationCase, ErrorsNameFileLineAndKey) {
               HasSubstr("key 'puncture.critical_pressure': 0.663 is a bare number"));
   // "rest" not last; unknown key; missing depth; a needle outside the block; steps < 1.
   EXPECT_THAT(error_of(replaced(kCase, "thickness = \"20 um\"", "thickness = \"rest\"")),
-              HasSubstr("key 'tissue.layers[0].thickness': \"rest\" for a layer that is not the last"));
+              HasSubstr("key 'tissue.layers[0].thickness': \"rest\" is allowed only for the last layer"));
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "stepz = 20")), HasSubstr("unknown key 'loading.stepz'"));
   EXPECT_THAT(error_of(replaced(kCase, "depth = \"200 um\"\n", "")), HasSubstr("key 'loading.depth': missing"));
   EXPECT_THAT(error_of(replaced(kCase, "[tissue]", "[[needles]]\nx = \"2000 um\"\n[tissue]")),
@@ -200,9 +200,10 @@ TEST(IndentationCase, ErrorsNameFileLineAndKey) {
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 0")),
               HasSubstr("key 'loading.steps': 0 is out of range, expected an integer >= 1"));
   EXPECT_THAT(error_of(replaced(kCase, "size_far = \"250 um\"", "size_far = \"10 um\"")),
-              HasSubstr("key 'mesh.size_far': 10 um is smaller than size_at_tip 20 um"));
-  EXPECT_THAT(error_of(replaced(kCase, "width = \"3000 um\"", "width = \"3000 um\"\npreset = \"liver\"")),
-              HasSubstr("key 'tissue.preset': unknown tissue preset 'liver'"));
+              HasSubstr("key 'mesh.size_far': 10 um is smaller than size_at_tip = 20 um"));
+  const std::string preset_case = std::string(kCase.substr(0, kCase.find("[[tissue.layers]]"))) + "preset = \"liver\"\n[loading]\n"
+                                  "depth = \"200 um\"\n";
+  EXPECT_THAT(error_of(preset_case), HasSubstr("case.toml:10: key 'tissue.preset': unknown tissue preset 'liver'"));
 }
 
 }  // namespace
@@ -226,6 +227,37 @@ TEST(IndentationCase, EveryIndentExampleParses) {
   ASSERT_EQ(four.needles.size(), 4u);
   EXPECT_NEAR((four.needles[1].position - four.needles[0].position).norm(), 1600e-6, 1e-12);  // Fig 6.3
   EXPECT_DOUBLE_EQ(four.block.layers[0].youngs_modulus, 1e9);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(IndentationCase, ToughnessFromTwoInsertions) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "needlekit-case-toughness";
+  std::filesystem::create_directories(dir);
+  // First insertion F = 2x, second F' = x (x in mm, F in N) over 1 mm: ∫(F - F') dx = 0.5 N·mm = 5e-4 J.
+  std::ofstream(dir / "first.csv") << "depth_mm,force_N,comment\n0,0,a\n0.5,1,b\n1,2,c\n";
+  std::ofstream(dir / "second.csv") << "depth_um,force_mN\n0,0\n1000,1000\n";
+  const std::string text = test::replaced(kCase, "toughness = \"100 J/m2\"",
+                                          "toughness_from = { first = \"first.csv\", second = \"second.csv\" }");
+  std::ofstream(dir / "case.toml") << text;
+  const insertion::IndentationCase c = io::read_indentation_case(dir / "case.toml");
+  const double tip_area = M_PI / 4 * 230e-6 * 230e-6;  // the default crack area: the cylinder's tip
+  ASSERT_TRUE(c.puncture.toughness.has_value());
+  EXPECT_NEAR(*c.puncture.toughness, 5e-4 / tip_area, 1e-9 * 5e-4 / tip_area);
+
+  std::ofstream(dir / "second.csv") << "depth,force_mN\n0,0\n1000,1000\n";
+  try {
+    io::read_indentation_case(dir / "case.toml");
+    ADD_FAILURE() << "no error for a header without a unit";
+  } catch (const InvalidInput& error) {
+    EXPECT_THAT(error.what(), HasSubstr("second.csv:1: column 'depth' is not a depth with its unit"));
+    EXPECT_THAT(error.what(), HasSubstr("case.toml:36:"));
+  }
+  std::ofstream(dir / "second.csv") << "depth_um,force_mN\n0,0\n0,1000\n";
+  EXPECT_THROW(io::read_indentation_case(dir / "case.toml"), InvalidInput);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

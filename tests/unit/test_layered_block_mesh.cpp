@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
@@ -143,4 +144,21 @@ TEST(LayeredBlockMesh, DefaultsAreTheDissertationSkin) {
   EXPECT_DOUBLE_EQ(skin[1].youngs_modulus, 0.134e6);
   EXPECT_DOUBLE_EQ(skin[2].youngs_modulus, 0.08e6);
   for (const auto& l : skin) EXPECT_DOUBLE_EQ(l.poisson_ratio, 0.4);
+}
+
+TEST(LayeredBlockMesh, ConcurrentCallsAreSerialisedAndComplete) {
+  // Gmsh is one global state: two threads meshing at once must both get a complete, valid mesh of the block (HXT is
+  // not run-to-run deterministic, so the two meshes differ in detail).
+  const mesh::LayeredBlockOptions o = small_skin_block();
+  mesh::LayeredBlockResult a, b;
+  std::thread first([&] { a = mesh::layered_block_mesh(o); });
+  std::thread second([&] { b = mesh::layered_block_mesh(o); });
+  first.join();
+  second.join();
+  for (const mesh::LayeredBlockResult* r : {&a, &b}) {
+    const mesh::TetMeshCheck check = mesh::tet_mesh_check(r->mesh);
+    EXPECT_TRUE(check.valid());
+    EXPECT_NEAR(check.volume, o.width * o.length * 400e-6, 1e-9 * check.volume);
+    EXPECT_EQ(r->quality.size(), 3u);
+  }
 }

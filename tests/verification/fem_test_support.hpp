@@ -6,7 +6,7 @@
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 
-namespace needlekit::fem::testing {
+namespace needlekit::fem::test_support {
 
 // Axis-aligned box [lo, hi] as a closed outward triangle mesh.
 inline geometry::TriangleMesh box_surface(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
@@ -35,4 +35,33 @@ inline needle::NeedleGeometry flat_cylinder(double radius, double length) {
   return g;
 }
 
-}  // namespace needlekit::fem::testing
+}  // namespace needlekit::fem::test_support
+
+#include <cmath>
+
+#include "needlekit/mesh/structured_block_mesh.hpp"
+
+namespace needlekit::fem::test_support {
+
+// A quarter of a cube block of side 2 * extent (x, y in [0, extent] after the shift below is NOT applied: the block
+// spans [-extent/2, extent/2]^2 x [-extent, 0] and the punch axis is the corner x = y = -extent/2), with a uniform
+// round core of `core` cells over the punch radius `a`, graded outside with ratio about 1.3 per cell.
+inline mesh::TetMesh quarter_punch_block(double a, double extent, int core, double youngs, double nu) {
+  mesh::StructuredBlockOptions o;
+  o.width = o.length = o.height = extent;
+  o.core_cells = core;
+  o.core_half_width = a;
+  o.round_core = true;
+  o.focus = {-extent / 2, -extent / 2};
+  const int out = static_cast<int>(std::ceil(std::log(1 + (extent - a) / (a / core) * 0.3) / std::log(1.3)));
+  o.nx = o.ny = o.nz = core + out;
+  o.material = {"gel", 0, youngs, nu};
+  return mesh::structured_block_mesh(o);
+}
+
+// Sneddon's flat cylindrical punch on a half-space: F = 2 a E delta / (1 - nu^2).
+inline double sneddon_flat_punch_force(double a, double youngs, double nu, double depth) {
+  return 2 * a * youngs * depth / (1 - nu * nu);
+}
+
+}  // namespace needlekit::fem::test_support

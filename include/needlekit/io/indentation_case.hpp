@@ -10,16 +10,19 @@
 //              (default 64) and axial_segments (default 16) of the parametric needle's surface mesh
 //   [[needles]]  optional, one entry per needle: x, y (default "0 um"), tip_height (default: [needle]'s);
 //              without it, one needle at (0, 0)
-//   [tissue]   width, length (default "3000 um"); height (default: the sum of the layers, or the preset's);
-//              preset = a tissue preset name (materials::tissue_preset_names()) and/or [[tissue.layers]] entries
-//              with name, thickness (the last may be "rest": the rest of `height`), youngs_modulus, poisson_ratio
-//   [mesh]     size_at_tip (default "20 um"), size_far (default "250 um"), refinement_radius (default "300 um"),
-//              threads (default 0 = all)
+//   [tissue], [mesh]  as in tissue_config.hpp (shared with `needlekit tissue-mesh`): width, length, height, preset
+//              and/or [[tissue.layers]] (name, thickness or "rest", youngs_modulus, poisson_ratio); size_at_tip,
+//              size_far, refinement_radius, size_gradient, thin_layer_size_factor, sites (one needle per site when
+//              there is no [[needles]]), or file = "tissue.msh" + unit for a user's tetrahedral mesh
 //   [loading]  depth (required), steps (default 20), continue_after_puncture (default false)
 //   [model]    law = "svk" | "neo-hookean" (default "neo-hookean"); contact = "tip-nodes" | "surface" (default
 //              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =
 //              "sides-and-bottom-fixed" (default) | "bottom-fixed" | "bottom-fixed-sides-roller"
 //   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
+//              or toughness_from = { first = "first.csv", second = "second.csv", crack_area = "6661 um2",
+//              min_depth, max_depth }: J by the two-insertion method (Eq 3.16) from two force curves (CSV with
+//              depth_um,force_N; io/force_curve_csv.hpp) measured at the same spot; crack_area defaults to the
+//              parametric needle's tip area
 #pragma once
 #include <filesystem>
 #include <string_view>
