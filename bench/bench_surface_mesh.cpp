@@ -101,12 +101,14 @@ template <bool Cutting>
 void BM_NeckTrace5mm(benchmark::State& state) {
   const SurfaceMesh* s = neck();
   if (!s) return state.SkipWithError("no shared neck mesh");
-  const auto start = surface_location(s->closest_point(s->mesh().vertices[kAnteriorNeck] + Eigen::Vector3d(1e-4, 2e-4, 0)));
+  const auto start =
+      surface_location(s->closest_point(s->mesh().vertices[kAnteriorNeck] + Eigen::Vector3d(1e-4, 2e-4, 0)));
   int k = 0;
   for (auto _ : state) {
     const double a = 0.3927 * (k++ % 16);
     const Eigen::Vector3d d(std::cos(a), std::sin(a), 0);
-    benchmark::DoNotOptimize(Cutting ? cutting_plane_trace(*s, start, d, 5e-3) : straightest_geodesic(*s, start, d, 5e-3));
+    benchmark::DoNotOptimize(Cutting ? cutting_plane_trace(*s, start, d, 5e-3)
+                                     : straightest_geodesic(*s, start, d, 5e-3));
   }
   state.SetItemsProcessed(state.iterations());
 }

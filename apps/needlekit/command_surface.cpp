@@ -120,8 +120,10 @@ void add_surface_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "surface", "Check a body surface mesh (OBJ, STL, PLY, OFF) for patch fitting and report its size and density");
   command->add_option("MESH", arguments->mesh_path, "triangle mesh file: .obj, .stl, .ply or .off")->required();
-  command->add_option("--unit", arguments->unit, "length unit of the file's coordinates: nm, um, mm, cm, m, or the length of one file unit "
-                      "(\"15.8 mm\" for the skull mesh's arbitrary units)")
+  command
+      ->add_option("--unit", arguments->unit,
+                   "length unit of the file's coordinates: nm, um, mm, cm, m, or the length of one file unit "
+                   "(\"15.8 mm\" for the skull mesh's arbitrary units)")
       ->required();
   command->add_flag("--json", arguments->json, "print the report as JSON (lengths in mm)");
   command->add_flag("--weld", arguments->weld,

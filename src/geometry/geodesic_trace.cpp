@@ -34,6 +34,11 @@ public:
     // The reversed incoming direction lies in the arrival wedge; the outgoing one is half the total angle away.
     const double back = std::clamp(detail::angle_in_wedge(surface, in.triangle, in.corner, -d), 0.0, in.angle);
     const auto out = detail::wedge_at(fan, fan.angle_before(arrival) + back + 0.5 * fan.total_angle);
+    if (!out) {
+      reason =
+          fmt::format("the triangles around vertex {} have no angle", surface.mesh().triangles[in.triangle][in.corner]);
+      return std::nullopt;
+    }
     const auto& wedge = fan.wedges[out->first];
     return DirectionIn{wedge.triangle, detail::direction_in_wedge(surface, wedge, out->second)};
   }

@@ -340,7 +340,8 @@ void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, doub
 TriangleMesh welded_mesh(const TriangleMesh& mesh) {
   check_indices(mesh);
   VertexMerger merger;
-  for (const auto& t : mesh.triangles) merger.add_triangle({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
+  for (const auto& t : mesh.triangles)
+    merger.add_triangle({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
   return merger.take();
 }
 

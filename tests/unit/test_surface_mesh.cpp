@@ -297,7 +297,8 @@ TEST(SurfaceMesh, AcceptsAndCountsDegenerateTriangles) {
 TEST(SurfaceMesh, ConcurrentQueriesAgreeWithSerialOnes) {
   const SurfaceMesh sphere(test::icosphere_mesh(1.0, 4));
   std::vector<Eigen::Vector3d> queries;
-  for (int k = 0; k < 2000; ++k) queries.push_back(1.5 * Eigen::Vector3d(std::sin(k), std::cos(3.0 * k), std::sin(7.0 * k)));
+  for (int k = 0; k < 2000; ++k)
+    queries.push_back(1.5 * Eigen::Vector3d(std::sin(k), std::cos(3.0 * k), std::sin(7.0 * k)));
   std::vector<double> serial, parallel(queries.size());
   for (const auto& q : queries) serial.push_back(sphere.closest_point(q).distance);
   std::thread other([&] {

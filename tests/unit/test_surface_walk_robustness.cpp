@@ -111,7 +111,8 @@ TEST(SurfaceWalkRobustness, GeodesicDistancesOnTheSkullConvergeAndAreBounded) {
   std::uniform_real_distribution<double> u(-1, 1);
   int converged = 0, total = 0;
   for (int k = 0; k < 60; ++k) {
-    const Eigen::Vector3d p = s.mesh().vertices[(k * 131) % s.vertex_count()] + 1e-4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d p =
+        s.mesh().vertices[(k * 131) % s.vertex_count()] + 1e-4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
     const auto from = geometry::surface_location(s.closest_point(p));
     // A target 8 mm along a straightest geodesic: a path of that length exists, so the distance is at most that.
     const Eigen::Vector3d d(u(rng), u(rng), u(rng));

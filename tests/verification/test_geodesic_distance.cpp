@@ -36,9 +36,11 @@ TEST(GeodesicDistance, IsTheStraightDistanceOnAPlaneAtEveryScale) {
       EXPECT_LT((d.path.end_point - q).norm(), 1e-11 * scale);
     }
     // Between grid vertices along grid lines and diagonals (paths through vertices and along edges).
-    const auto along = geometry::geodesic_distance(plane, at(plane, {-0.5 * scale, 0, 0}), at(plane, {0.5 * scale, 0, 0}));
+    const auto along =
+        geometry::geodesic_distance(plane, at(plane, {-0.5 * scale, 0, 0}), at(plane, {0.5 * scale, 0, 0}));
     EXPECT_NEAR(along.distance, scale, 1e-12 * scale);
-    const auto diagonal = geometry::geodesic_distance(plane, at(plane, {0, 0, 0}), at(plane, {0.5 * scale, 0.5 * scale, 0}));
+    const auto diagonal =
+        geometry::geodesic_distance(plane, at(plane, {0, 0, 0}), at(plane, {0.5 * scale, 0.5 * scale, 0}));
     EXPECT_NEAR(diagonal.distance, std::sqrt(0.5) * scale, 1e-12 * scale);
   }
 }
@@ -105,7 +107,8 @@ TEST(GeodesicDistance, BendsAtASaddleVertexWhenTheShortestPathMust) {
   geometry::TriangleMesh saddle;
   saddle.vertices.push_back({0, 0, 0});
   for (int k = 0; k < 6; ++k) {
-    saddle.vertices.push_back({std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3), k % 2 ? -0.5 : 0.5});
+    saddle.vertices.push_back(
+        {std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3), k % 2 ? -0.5 : 0.5});
   }
   for (int k = 0; k < 6; ++k) saddle.triangles.push_back({0, 1 + k, 1 + (k + 1) % 6});
   const SurfaceMesh surface(saddle);

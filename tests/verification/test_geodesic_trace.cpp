@@ -66,8 +66,9 @@ TEST(StraightestGeodesic, IsTheStraightLineOnAPlaneThroughEdgesAndVertices) {
       const Eigen::Vector3d start = scale * c.start;
       const Eigen::Vector3d d = Eigen::Vector3d(c.direction.x(), c.direction.y(), 0).normalized();
       for (const bool cutting : {false, true}) {
-        const auto path = cutting ? geometry::cutting_plane_trace(plane, at(plane, start), c.direction, scale * c.length)
-                                  : geometry::straightest_geodesic(plane, at(plane, start), c.direction, scale * c.length);
+        const auto path = cutting
+                              ? geometry::cutting_plane_trace(plane, at(plane, start), c.direction, scale * c.length)
+                              : geometry::straightest_geodesic(plane, at(plane, start), c.direction, scale * c.length);
         ASSERT_EQ(path.status, PathStatus::Completed) << path.reason;
         EXPECT_LT((path.end_point - (start + scale * c.length * d)).norm(), 1e-12 * scale)
             << "start " << c.start.transpose() << (cutting ? " (cutting plane)" : "");
@@ -129,7 +130,8 @@ TEST(StraightestGeodesic, IsExactOnAPolygonalCylinderAndConvergesToTheHelixAtSec
     const double side = 2 * radius * std::sin(std::numbers::pi / around);
     const double z0 = 1.1;
     const Eigen::Vector3d start = prism_point(radius, around, 0.5 * side, z0);
-    const Eigen::Vector3d tangent = (prism_point(radius, around, side, z0) - prism_point(radius, around, 0, z0)).normalized();
+    const Eigen::Vector3d tangent =
+        (prism_point(radius, around, side, z0) - prism_point(radius, around, 0, z0)).normalized();
     const Eigen::Vector3d direction = std::cos(alpha) * tangent + std::sin(alpha) * Eigen::Vector3d::UnitZ();
     const auto path = geometry::straightest_geodesic(cylinder, at(cylinder, start), direction, length);
     ASSERT_EQ(path.status, PathStatus::Completed) << path.reason;

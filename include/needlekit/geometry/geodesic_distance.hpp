@@ -1,18 +1,18 @@
 // Geodesic distance between two points of a triangle surface by shooting straightest geodesics (Polthier & Schmies
 // 1998) with Newton's method on the initial angle and the length.
 //
-// What is exact and what is not: a path found by shooting is straight in the unfolding of the triangles it crosses,
-// so its length is the exact length of a locally shortest path on the polyhedral surface when it passes through no
-// vertex (on convex surfaces such as a sphere shortest paths never touch a vertex; on a plane and on a polygonal
-// cylinder the answer is exact to rounding). It is the globally shortest one when the two points are closer than the
-// surface's cut locus (nearby points on a smooth surface: the use for patch springs); extra_shots and the graph
-// fallback look for shorter ones but prove nothing. A converged path through a vertex whose total angle is below
-// 2 pi (a cube's corner) is a geodesic but never a shortest path: the search then goes on with the other shots. Behind a saddle vertex (total angle > 2 pi) or a boundary
-// vertex no straightest geodesic from the start arrives (they pass such a vertex with equal angles on both sides,
-// shortest paths bend there); the saddle detour then takes the shortest path through one such vertex near the best
-// shot, d(p, V) + d(V, q), which is exact when the true shortest path bends at exactly that one vertex. Paths that
-// bend at two or more vertices are not found (status NotConverged); the exact polyhedral algorithm for the general
-// case (Mitchell-Mount-Papadimitriou / Chen-Han) is not implemented.
+// What is exact and what is not: a path found by shooting is straight in the unfolding of the triangles it crosses, so
+// its length is the exact length of a locally shortest path on the polyhedral surface when it passes through no vertex
+// (on convex surfaces such as a sphere shortest paths never touch a vertex; on a plane and on a polygonal cylinder the
+// answer is exact to rounding). It is the globally shortest one when the two points are closer than the surface's cut
+// locus (nearby points on a smooth surface: the use for patch springs); extra_shots and the graph fallback look for
+// shorter ones but prove nothing. A converged path through a vertex whose total angle is below 2 pi (a cube's corner)
+// is a geodesic but never a shortest path: the search then goes on with the other shots. Behind a saddle vertex (total
+// angle > 2 pi) or a boundary vertex no straightest geodesic from the start arrives (they pass such a vertex with equal
+// angles on both sides, shortest paths bend there); the saddle detour then takes the shortest path through one such
+// vertex near the best shot, d(p, V) + d(V, q), which is exact when the true shortest path bends at exactly that one
+// vertex. Paths that bend at two or more vertices are not found (status NotConverged); the exact polyhedral algorithm
+// for the general case (Mitchell-Mount-Papadimitriou / Chen-Han) is not implemented.
 #pragma once
 #include <string>
 

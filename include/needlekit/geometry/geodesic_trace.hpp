@@ -64,11 +64,11 @@ struct SurfacePath {
 };
 
 // The straightest geodesic from `start` with initial direction `direction` (any length; projected onto the start
-// triangle's plane) for arc length `length` (m, >= 0). A start on an edge leaves into the triangle the direction
-// points into; a start at a vertex uses the polar map: a direction within the start triangle's corner keeps its
-// angle, the directions outside it are spread proportionally over the other triangles around the vertex (so that
-// all of a saddle vertex's surroundings, more than 2 pi, can be reached). Throws InvalidInput for an invalid location, a negative or non-finite length, or a
-// direction normal to the surface.
+// triangle's plane) for arc length `length` (m, >= 0). A start on an edge leaves into the triangle the direction points
+// into; a start at a vertex uses the polar map: a direction within the start triangle's corner keeps its angle, the
+// directions outside it are spread proportionally over the other triangles around the vertex (so that all of a saddle
+// vertex's surroundings, more than 2 pi, can be reached). Throws InvalidInput for an invalid location, a negative or
+// non-finite length, or a direction normal to the surface.
 SurfacePath straightest_geodesic(const SurfaceMesh& surface, const SurfaceLocation& start,
                                  const Eigen::Vector3d& direction, double length, const TraceOptions& options = {});
 
