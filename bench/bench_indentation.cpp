@@ -1,7 +1,7 @@
 // Benchmarks of the FE indentation (issue 3): the default skin block (3000 x 3000 x 1150 um, SC 20 um / EP to
 // 160 um / DM, 100 MPa / 0.134 MPa / 0.08 MPa, nu = 0.4) indented by a 230 um flat cylinder, 20 load steps to
 // 200 um, linear tetrahedra, neo-Hookean, the dissertation's tip-node contact. The argument is the target number of
-// tetrahedra in thousands (100, 300, 1000): the element sizes are scaled from a measured 100k-tet setting.
+// tetrahedra in thousands (100, 300, 1000).
 // Run one size per process (peak RSS): build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentation/100/'
 // Meshing alone is BM_SkinBlockMesh (bench_tissue_mesh.cpp). Counters: tets, dofs, steps_done, mesh_s, setup_s,
 // newton_iterations, assembly_s_per_iteration, solve_s_per_iteration, total_s, peak_rss_GB.
