@@ -25,7 +25,8 @@ constexpr const char* kTissueFileHelp = R"(CASE file (TOML; other tables such as
                                poisson_ratio = 0.4   (the last layer may have thickness = "rest")
             height = "1150 um"                        (optional; the block height that "rest" fills)
   [mesh]    size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um",
-            size_gradient = 0.3, thin_layer_size_factor = 2, sites = [["0 um", "0 um"]]
+            size_gradient = 0.3, thin_layer_size_factor = 2, sites = [["0 um", "0 um"]],
+            site_circle_radius = "115 um"   (optional: nodes on a circle around each site, e.g. a punch's edge)
             or file = "tissue.msh", unit = "um"  (a tetrahedral Gmsh mesh whose physical volumes are named after
             the layers, top surface at z = 0; layer thicknesses are then not used))";
 

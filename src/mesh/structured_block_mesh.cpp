@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "needlekit/core/errors.hpp"
@@ -12,8 +13,11 @@ namespace needlekit::mesh {
 namespace {
 
 void require(bool ok, const std::string& field, double value, const std::string& expected) {
-  if (!ok)
-    throw InvalidInput("structured block: " + field + " = " + std::to_string(value) + ", expected " + expected);
+  if (!ok) {
+    std::ostringstream s;
+    s << "structured block: " << field << " = " << value << ", expected " << expected;
+    throw InvalidInput(s.str());
+  }
 }
 
 // Coordinates of one side of the focus: m cells over `length`, spacing growing geometrically from the focus so that

@@ -36,6 +36,7 @@ poisson_ratio = 0.45
 size_at_tip = "15 um"
 size_far = "0.2 mm"
 sites = [["-500 um", "0 um"], ["0.5 mm", "100 um"]]
+site_circle_radius = "115 um"
 [needle]
 anything = "is ignored here"
 )";
@@ -57,6 +58,7 @@ TEST(TissueConfig, LayersWithUnitsAndRest) {
   ASSERT_EQ(o.insertion_sites.size(), 2u);
   EXPECT_DOUBLE_EQ(o.insertion_sites[1].x(), 500e-6);
   EXPECT_DOUBLE_EQ(o.insertion_sites[1].y(), 100e-6);
+  EXPECT_DOUBLE_EQ(o.site_circle_radius, 115e-6);
 }
 
 TEST(TissueConfig, DefaultsAndPresets) {

@@ -65,3 +65,34 @@ inline double sneddon_flat_punch_force(double a, double youngs, double nu, doubl
 }
 
 }  // namespace needlekit::fem::test_support
+
+namespace needlekit::fem::test_support {
+
+// A closed cone pointing down: apex at (x, y, 0), half-angle `half_angle` (rad), height `height`, base cap on top.
+inline geometry::TriangleMesh cone_surface(double x, double y, double half_angle, double height, int segments = 128) {
+  geometry::TriangleMesh m;
+  const double r = height * std::tan(half_angle);
+  m.vertices.emplace_back(x, y, 0.0);          // 0: apex
+  m.vertices.emplace_back(x, y, height);       // 1: base centre
+  for (int k = 0; k < segments; ++k) {
+    const double t = 2 * M_PI * k / segments;
+    m.vertices.emplace_back(x + r * std::cos(t), y + r * std::sin(t), height);
+  }
+  for (int k = 0; k < segments; ++k) {
+    const int a = 2 + k, b = 2 + (k + 1) % segments;
+    m.triangles.push_back({0, b, a});  // side, outward
+    m.triangles.push_back({1, a, b});  // base cap, facing +z
+  }
+  if (geometry::signed_volume(m) < 0)
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+// Sneddon's rigid cone on a half-space: contact radius c = (2/pi) tan(half_angle) delta and
+// F = (2/pi) E / (1 - nu^2) tan(half_angle) delta^2 (= (2/pi) E* cot(alpha) delta^2 with alpha = 90 deg - half
+// angle, the angle between the cone's face and the surface).
+inline double sneddon_cone_force(double half_angle, double youngs, double nu, double depth) {
+  return 2 / M_PI * youngs / (1 - nu * nu) * std::tan(half_angle) * depth * depth;
+}
+
+}  // namespace needlekit::fem::test_support

@@ -9,7 +9,8 @@
 //             their sum if given).
 //   [mesh]    size_at_tip (default "20 um"), size_far (default "250 um"), refinement_radius (default "300 um"),
 //             size_gradient (number, default 0.3), thin_layer_size_factor (number >= 0, default 2),
-//             sites = [["-800 um", "-800 um"], ...] (insertion sites (x, y); default one at the centre);
+//             sites = [["-800 um", "-800 um"], ...] (insertion sites (x, y); default one at the centre),
+//             site_circle_radius (a circle of nodes around each site, e.g. a flat punch's edge; default none);
 //             or file = "tissue.msh" (a user's tetrahedral Gmsh mesh, relative to the case file, whose physical volume
 //             groups are named after the [[tissue.layers]]; its top surface must be z = 0) and unit (the file's
 //             length unit, default "um").

@@ -24,6 +24,8 @@ struct LayeredBlockOptions {
   double thin_layer_size_factor = 2.0;  // 1, [0, inf): the element size inside a layer is capped at this times its
                                         // thickness so that thin layers (the stratum corneum) keep well-shaped
                                         // elements; 0 = no cap
+  double site_circle_radius = 0;        // m, >= 0: a circle of this radius around each site is embedded in the top
+                                        // surface, so that mesh nodes lie on a flat punch's edge; 0 = none
 };
 
 struct LayerQuality {
