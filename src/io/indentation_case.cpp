@@ -1,0 +1,231 @@
+#include "needlekit/io/indentation_case.hpp"
+
+#include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/io/force_curve_csv.hpp"
+#include "needlekit/needle/needle_surface_mesh.hpp"
+#include "tissue_config_toml.hpp"
+#include "toml_config.hpp"
+
+namespace needlekit::io {
+namespace {
+
+using namespace config;  // the TOML reading helpers of toml_config.hpp
+
+double quantity_at_least_zero(const Section& section, const toml::node& node, std::string_view key,
+                              Dimension dimension, std::string_view meaning) {
+  const double value = quantity_of(section, node, key, dimension);
+  if (!(value >= 0)) {
+    section.fail(node, key, fmt::format("'{}' is negative: {}, expected a {} >= 0", node.as_string()->get(), meaning,
+                                        units::dimension_name(dimension)));
+  }
+  return value;
+}
+
+// ---- [needle] -----------------------------------------------------------------------------------------------------
+
+struct NeedleRead {
+  geometry::TriangleMesh mesh;
+  std::optional<needle::NeedleGeometry> geometry;
+  double tip_height = 0;
+};
+
+NeedleRead read_needle(const Section& section, const toml::table& root, const std::filesystem::path& base) {
+  NeedleRead result;
+  if (const toml::node* node = section.optional("tip_height")) {
+    result.tip_height = quantity_at_least_zero(section, *node, "tip_height", Dimension::Length,
+                                               "the needle would start inside the tissue");
+  }
+  if (const toml::node* mesh_node = section.optional("mesh")) {
+    for (std::string_view key : {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "segments",
+                                 "axial_segments"}) {
+      if (const toml::node* other = section.optional(key)) {
+        section.fail(*other, key, "given together with mesh, expected either a needle mesh or a parametric needle");
+      }
+    }
+    const std::string file = text_of(section, *mesh_node, "mesh", "an STL file name");
+    const toml::node& unit_node = section.required("mesh_unit", "the length unit of the STL coordinates, e.g. \"um\"");
+    const std::string unit_text = text_of(section, unit_node, "mesh_unit", "a length unit, e.g. \"um\"");
+    const double unit =
+        section.at(unit_node, [&] { return units::unit_factor(unit_text, Dimension::Length, section.what("mesh_unit")); });
+    const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base / file;
+    result.mesh = geometry::read_stl(path, unit);
+    const geometry::MeshTopologyReport topology = geometry::topology_report(result.mesh);
+    if (result.mesh.triangles.empty() || !topology.closed || !topology.consistently_oriented) {
+      section.fail(*mesh_node, "mesh",
+                   fmt::format("'{}' is not a closed, consistently oriented surface ({} triangles, {} boundary "
+                               "edges), expected a closed needle surface",
+                               path.string(), result.mesh.triangles.size(), topology.boundary_edges));
+    }
+    if (geometry::signed_volume(result.mesh) < 0) {  // inward normals: flip to outward
+      for (auto& triangle : result.mesh.triangles) std::swap(triangle[1], triangle[2]);
+    }
+    return result;
+  }
+  needle::NeedleGeometry geometry = needle_of(section);
+  validate_at_keys(root, section.file(), section.table(), [&] { needle::validate(geometry, "needle"); });
+  needle::NeedleMeshOptions mesh_options;
+  if (const toml::node* node = section.optional("segments")) {
+    mesh_options.circumferential_segments = integer_at_least(section, *node, "segments", 8);
+  }
+  if (const toml::node* node = section.optional("axial_segments")) {
+    mesh_options.axial_segments = integer_at_least(section, *node, "axial_segments", 1);
+  }
+  result.mesh = needle::needle_surface_mesh(geometry, mesh_options);
+  result.geometry = geometry;
+  return result;
+}
+
+std::vector<insertion::NeedleSite> read_sites(const Section& top, double default_tip_height,
+                                             const std::vector<Eigen::Vector2d>& mesh_sites) {
+  const toml::node* node = top.optional("needles");
+  if (!node) {  // one needle at each [mesh] site (default: one at the centre)
+    std::vector<insertion::NeedleSite> sites;
+    for (const Eigen::Vector2d& p : mesh_sites) sites.push_back({p, default_tip_height});
+    return sites;
+  }
+  if (!node->is_array_of_tables() || node->as_array()->empty()) {
+    top.fail(*node, "needles", fmt::format("{} is not an array of tables, expected [[needles]] entries with x, y",
+                                           describe(*node)));
+  }
+  std::vector<insertion::NeedleSite> sites;
+  const toml::array& array = *node->as_array();
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const Section entry = top.subsection(*array.get(i), fmt::format("needles[{}]", i), {"x", "y", "tip_height"});
+    insertion::NeedleSite site;
+    site.tip_height = default_tip_height;
+    if (const toml::node* x = entry.optional("x")) site.position.x() = quantity_of(entry, *x, "x", Dimension::Length);
+    if (const toml::node* y = entry.optional("y")) site.position.y() = quantity_of(entry, *y, "y", Dimension::Length);
+    if (const toml::node* h = entry.optional("tip_height")) {
+      site.tip_height = quantity_at_least_zero(entry, *h, "tip_height", Dimension::Length,
+                                               "the needle would start inside the tissue");
+    }
+    sites.push_back(site);
+  }
+  return sites;
+}
+
+// ---- the rest -----------------------------------------------------------------------------------------------------
+
+void read_model(const Section& section, fem::SolverOptions& solver) {
+  if (const toml::node* node = section.optional("law")) {
+    solver.law = choice_of<fem::MaterialLaw>(section, *node, "law",
+                                             {{"svk", fem::MaterialLaw::StVenantKirchhoff},
+                                              {"st-venant-kirchhoff", fem::MaterialLaw::StVenantKirchhoff},
+                                              {"neo-hookean", fem::MaterialLaw::NeoHookean}});
+  }
+  if (const toml::node* node = section.optional("contact")) {
+    solver.contact = choice_of<fem::ContactModel>(
+        section, *node, "contact", {{"tip-nodes", fem::ContactModel::TipNodes}, {"surface", fem::ContactModel::Surface}});
+  }
+  if (const toml::node* node = section.optional("element")) {
+    solver.order = choice_of<fem::ElementOrder>(
+        section, *node, "element", {{"linear", fem::ElementOrder::Linear}, {"quadratic", fem::ElementOrder::Quadratic}});
+  }
+  if (const toml::node* node = section.optional("boundary")) {
+    solver.boundary = choice_of<fem::BoundaryCondition>(
+        section, *node, "boundary",
+        {{"sides-and-bottom-fixed", fem::BoundaryCondition::SidesAndBottomFixed},
+         {"bottom-fixed", fem::BoundaryCondition::BottomFixed},
+         {"bottom-fixed-sides-roller", fem::BoundaryCondition::BottomFixedSidesRoller}});
+  }
+}
+
+// toughness_from = { first = "a.csv", second = "b.csv", crack_area = "6661 um2", min_depth?, max_depth? }: J of
+// Eq 3.16 from two insertions at the same spot; the crack area defaults to the parametric needle's tip area.
+double two_insertion_toughness_of(const Section& puncture, const toml::node& node,
+                                  const std::optional<needle::NeedleGeometry>& geometry,
+                                  const std::filesystem::path& base) {
+  const Section table =
+      puncture.subsection(node, "toughness_from", {"first", "second", "crack_area", "min_depth", "max_depth"});
+  const auto curve = [&](std::string_view key) {
+    const toml::node& file_node = table.required(key, "a CSV file with columns depth_um,force_N");
+    const std::filesystem::path file = text_of(table, file_node, key, "a CSV file name");
+    return table.at(file_node, [&] { return read_force_curve_csv(file.is_absolute() ? file : base / file); });
+  };
+  const insertion::ForceDepthCurve first = curve("first"), second = curve("second");
+  insertion::ToughnessOptions options;
+  if (auto area = optional_positive_quantity(table, "crack_area", Dimension::Area)) {
+    options.crack_area = *area;
+  } else if (geometry) {
+    options.crack_area = needle::tip_area(*geometry);
+  } else {
+    table.fail(node, "crack_area", "missing for a needle given as a mesh, expected an area, e.g. \"6661 um2\"");
+  }
+  if (const toml::node* min = table.optional("min_depth")) {
+    options.min_depth = quantity_at_least_zero(table, *min, "min_depth", Dimension::Length, "before the surface");
+  }
+  options.max_depth = optional_positive_quantity(table, "max_depth", Dimension::Length);
+  return table.at(node, [&] { return insertion::two_insertion_toughness(first, second, options).toughness; });
+}
+
+}  // namespace
+
+insertion::IndentationCase parse_indentation_case_toml(std::string_view text, std::string_view source_name,
+                                                       const std::filesystem::path& base_directory) {
+  const std::string file(source_name);
+  const toml::table root = parse_toml(text, file);
+  const Section top(root, "", file, {"name", "needle", "needles", "tissue", "mesh", "loading", "model", "puncture"});
+
+  insertion::IndentationCase result;
+  result.name = std::filesystem::path(file).stem().string();
+  if (const toml::node* node = top.optional("name")) result.name = text_of(top, *node, "name", "a case name");
+  result.solver.law = fem::MaterialLaw::NeoHookean;
+  result.solver.contact = fem::ContactModel::Surface;
+
+  const Section needle = top.required_subsection(
+      "needle", {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "material", "mesh", "mesh_unit",
+                 "tip_height", "segments", "axial_segments"});
+  NeedleRead needle_read = read_needle(needle, root, base_directory);
+  result.needle = std::move(needle_read.mesh);
+  result.geometry = needle_read.geometry;
+  // [tissue] and [mesh]: the reader shared with `needlekit tissue-mesh` (tissue_config.hpp).
+  top.required("tissue", "a table [tissue] with a preset or [[tissue.layers]]");
+  const TissueCase tissue = tissue_case_of(root, file, base_directory);
+  result.block = tissue.block;
+  if (!tissue.msh_file.empty()) result.tissue_mesh = tissue_mesh(tissue).mesh;
+  if (top.optional("needles") && top.optional("mesh") && top.optional("mesh")->as_table() &&
+      top.optional("mesh")->as_table()->get("sites")) {
+    top.fail(*top.optional("mesh")->as_table()->get("sites"), "mesh.sites",
+             "given together with [[needles]], expected the sites in one of them");
+  }
+  result.needles = read_sites(top, needle_read.tip_height, tissue.block.insertion_sites);
+  for (std::size_t i = 0; i < result.needles.size(); ++i) {
+    const Eigen::Vector2d p = result.needles[i].position;
+    if (!result.tissue_mesh && !(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
+      const toml::node& at = top.optional("needles") ? *top.optional("needles")->as_array()->get(i) : root;
+      throw InvalidInput(fmt::format("{} key 'needles[{}]': ({}, {}) is outside the {} x {} block, expected "
+                                     "|x| < width/2 and |y| < length/2",
+                                     location(file, at.source()), i, units::format(p.x(), "um"),
+                                     units::format(p.y(), "um"), units::format(result.block.width, "um"),
+                                     units::format(result.block.length, "um")));
+    }
+  }
+
+  const Section loading = top.required_subsection("loading", {"depth", "steps", "continue_after_puncture"});
+  result.depth = positive_quantity(loading, "depth", Dimension::Length);
+  if (const toml::node* node = loading.optional("steps")) result.steps = integer_at_least(loading, *node, "steps", 1);
+  if (const toml::node* node = loading.optional("continue_after_puncture")) {
+    result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
+  }
+  if (const auto model = top.optional_subsection("model", {"law", "contact", "element", "boundary"})) {
+    read_model(*model, result.solver);
+  }
+  if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
+    result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);
+    result.puncture.toughness = optional_positive_quantity(*puncture, "toughness", Dimension::Stiffness);
+    if (const toml::node* node = puncture->optional("toughness_from")) {
+      if (result.puncture.toughness) {
+        puncture->fail(*node, "toughness_from", "given together with toughness, expected one of them");
+      }
+      result.puncture.toughness = two_insertion_toughness_of(*puncture, *node, result.geometry, base_directory);
+    }
+  }
+  validate_at_keys(root, file, root, [&] { insertion::validate(result); });
+  return result;
+}
+
+insertion::IndentationCase read_indentation_case(const std::filesystem::path& path) {
+  return parse_indentation_case_toml(read_text(path), path.string(), path.parent_path());
+}
+
+}  // namespace needlekit::io
