@@ -294,7 +294,7 @@ struct QuasiStaticSolver::Impl {
   }
 
   // Preconditioned CG on the current values with the last factorization; false if it does not converge in time.
-  bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations) {
+  bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance) {
     const double bnorm = rhs.norm();
     x = Eigen::VectorXd::Zero(rhs.size());
     if (bnorm == 0) return true;
@@ -307,7 +307,7 @@ struct QuasiStaticSolver::Impl {
       const double alpha = rz / pq;
       x += alpha * p;
       r -= alpha * q;
-      if (r.norm() <= opt.linear_tolerance * bnorm) return x.allFinite();
+      if (r.norm() <= tolerance * bnorm) return x.allFinite();
       z = apply_factor(r);
       const double rz_new = r.dot(z);
       p = z + (rz_new / rz) * p;
@@ -318,10 +318,15 @@ struct QuasiStaticSolver::Impl {
 
   // Solve K du = rhs: CG preconditioned by the last factorization when allowed, else (or on failure) a fresh
   // factorization (with a diagonal shift if K is not positive definite).
-  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord* rec = nullptr) {
+  // `target` (N): the residual the Newton step should leave; CG stops at relative residual
+  // clamp(0.01 * target / |rhs|, linear_tolerance, 1e-2) (inexact Newton: loose early, tight near convergence).
+  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord* rec = nullptr,
+                        double target = 0) {
     if (opt.reuse_factorization && have_factor) {
       int its = 0;
-      if (reuse_solve(rhs, du, its)) {
+      const double bnorm = rhs.norm();
+      const double tol = bnorm > 0 ? std::clamp(0.01 * target / bnorm, opt.linear_tolerance, 1e-2) : 1.0;
+      if (reuse_solve(rhs, du, its, tol)) {
         if (rec) rec->linear_iterations = its;
         return true;
       }
@@ -389,7 +394,7 @@ struct QuasiStaticSolver::Impl {
       }
       t0 = Clock::now();
       Eigen::VectorXd du;
-      if (!factor_and_solve(-r, du, &rec)) {
+      if (!factor_and_solve(-r, du, &rec, opt.residual_tolerance * ref)) {
         why = "the tangent matrix could not be factorized";
         return false;
       }

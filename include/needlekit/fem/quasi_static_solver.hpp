@@ -112,7 +112,8 @@ struct SolverOptions {
   // max_reuse_iterations iterations (the tangent changes little between iterations and load steps).
   bool reuse_factorization = true;       // see above
   int max_reuse_iterations = 40;         // >= 1: CG iterations before a fresh factorization is taken
-  double linear_tolerance = 1e-10;       // (0, 1): CG relative residual
+  double linear_tolerance = 1e-10;       // (0, 1): tightest CG relative residual; each Newton step's CG stops at
+                                         // clamp(0.01 * residual target / |R|, linear_tolerance, 1e-2)
 
   int threads = 0;                       // TBB threads for assembly, 0 = default
   std::function<void(const SolverProgress&)> progress;  // optional
