@@ -11,7 +11,7 @@
 //   [[needles]]  optional, one entry per needle: x, y (default "0 um"), tip_height (default: [needle]'s);
 //              without it, one needle at (0, 0)
 //   [tissue], [mesh]  as in tissue_config.hpp (shared with `needlekit tissue-mesh`): width, length, height, preset
-//              and/or [[tissue.layers]] (name, thickness or "rest", youngs_modulus, poisson_ratio); size_at_tip,
+//              or [[tissue.layers]] (name, thickness or "rest", youngs_modulus, poisson_ratio); size_at_tip,
 //              size_far, refinement_radius, size_gradient, thin_layer_size_factor, sites (one needle per site when
 //              there is no [[needles]]), or file = "tissue.msh" + unit for a user's tetrahedral mesh
 //   [loading]  depth (required), steps (default 20), continue_after_puncture (default false)
