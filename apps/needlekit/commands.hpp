@@ -10,5 +10,6 @@ void add_optimize_command(CLI::App& app);   // command_optimize.cpp
 void add_sweep_command(CLI::App& app);      // command_sweep.cpp
 void add_materials_command(CLI::App& app);  // command_materials.cpp
 void add_mesh_command(CLI::App& app);       // command_mesh.cpp
+void add_reproduce_command(CLI::App& app);  // command_reproduce.cpp
 
 }  // namespace needlekit::cli
