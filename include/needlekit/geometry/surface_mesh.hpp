@@ -65,6 +65,10 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
+// The manifold/orientation check alone (indices out of range or non-finite coordinates still throw InvalidInput),
+// for reporting what is wrong with a mesh that the SurfaceMesh constructor would refuse.
+SurfaceCheck surface_check(const TriangleMesh& mesh);
+
 // Reads OBJ, STL (ASCII or binary), PLY or OFF by the file's extension, scaling coordinates by `unit_to_metre`
 // (e.g. 1e-3 for a file in mm). Throws IoError naming the file (and line where the reader reports one).
 TriangleMesh read_triangle_mesh(const std::filesystem::path& path, double unit_to_metre);

@@ -1,0 +1,163 @@
+#include "needlekit/insertion/insertion_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::insertion {
+namespace {
+
+// Linear interpolation of the pre-puncture curve at depth x >= 0, from (0, 0) to its first sample; held at its last.
+double pre_puncture_force_at(const ForceDepthCurve& curve, double x) {
+  if (x <= 0) return 0;
+  const auto& depth = curve.depth;
+  const auto it = std::lower_bound(depth.begin(), depth.end(), x);
+  if (it == depth.end()) return curve.force.back();
+  const std::size_t j = static_cast<std::size_t>(it - depth.begin());
+  if (depth[j] == x) return curve.force[j];
+  const double x0 = j == 0 ? 0.0 : depth[j - 1], f0 = j == 0 ? 0.0 : curve.force[j - 1];
+  return f0 + (curve.force[j] - f0) * (x - x0) / (depth[j] - x0);
+}
+
+struct Sample {
+  double displacement = 0;
+  bool after_punctures = false;  // at a puncture displacement: the sample after the relaxation drop
+  bool operator<(const Sample& other) const {
+    return displacement < other.displacement ||
+           (displacement == other.displacement && !after_punctures && other.after_punctures);
+  }
+  bool operator==(const Sample& other) const {
+    return displacement == other.displacement && after_punctures == other.after_punctures;
+  }
+};
+
+}  // namespace
+
+std::string to_string(InsertionPhase phase) {
+  return phase == InsertionPhase::Cutting ? "cutting" : "indentation";
+}
+
+std::string to_string(InsertionStatus status) {
+  return status == InsertionStatus::Complete ? "complete" : "no-puncture";
+}
+
+InsertionCurve insertion_curve(const std::vector<NeedleInsertion>& needles, const InsertionCurveOptions& options) {
+  if (needles.empty()) throw InvalidInput("needles: none given, expected at least one needle");
+  if (!(options.final_depth > 0) || !std::isfinite(options.final_depth))
+    throw InvalidInput(fmt::format("final_depth: {} m, expected a finite depth > 0", options.final_depth));
+  if (options.cutting_samples < 1)
+    throw InvalidInput(fmt::format("cutting_samples: {}, expected >= 1", options.cutting_samples));
+
+  const std::size_t count = needles.size();
+  std::vector<double> puncture_displacement(count, std::numeric_limits<double>::infinity());
+  double end = options.final_depth;
+  InsertionCurve result;
+  for (std::size_t i = 0; i < count; ++i) {
+    const NeedleInsertion& needle = needles[i];
+    const std::string what = fmt::format("needle {} pre-puncture curve", i + 1);
+    validate_force_curve(needle.pre_puncture.curve, what);
+    if (needle.pre_puncture.curve.depth.front() < 0)
+      throw InvalidInput(fmt::format("{}: first depth {:.6g} m, expected depths >= 0", what,
+                                     needle.pre_puncture.curve.depth.front()));
+    if (needle.loads == nullptr)
+      throw InvalidInput(fmt::format("needle {}: no post-puncture loads given", i + 1));
+    if (!(needle.stiffness > 0) || !std::isfinite(needle.stiffness))
+      throw InvalidInput(fmt::format("needle {} stiffness: {} N/m^2, expected a finite value > 0", i + 1,
+                                     needle.stiffness));
+    if (!(needle.scale > 0) || !std::isfinite(needle.scale))
+      throw InvalidInput(fmt::format("needle {} scale: {}, expected a finite value > 0", i + 1, needle.scale));
+    if (!(needle.contact_offset >= 0) || !std::isfinite(needle.contact_offset))
+      throw InvalidInput(fmt::format("needle {} contact_offset: {} m, expected a finite length >= 0", i + 1,
+                                     needle.contact_offset));
+    const double last = needle.pre_puncture.curve.depth.back();
+    if (needle.pre_puncture.puncture) {
+      const double x = needle.pre_puncture.puncture->depth;
+      if (!(x > 0) || x > last * (1 + 1e-12))
+        throw InvalidInput(fmt::format("{}: puncture depth {:.6g} m, expected a depth in (0, {:.6g}] m (within the "
+                                       "curve)",
+                                       what, x, last));
+      puncture_displacement[i] = needle.contact_offset + x;
+    } else if (needle.contact_offset + last < end) {
+      end = needle.contact_offset + last;
+      result.status = InsertionStatus::NoPuncture;
+      result.reason = fmt::format("needle {} did not puncture within its pre-puncture curve (to {:.6g} um); the "
+                                  "curve stops at a displacement of {:.6g} um",
+                                  i + 1, last * 1e6, end * 1e6);
+    }
+  }
+  if (result.reason.empty())
+    result.reason = fmt::format("reached the final depth {:.6g} um", options.final_depth * 1e6);
+
+  // Samples: every pre-puncture sample until its needle punctures, both sides of every puncture, and an equally
+  // spaced cutting grid from the first puncture to the end.
+  std::vector<Sample> samples{{0.0, false}};
+  double first_puncture = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < count; ++i) {
+    const double offset = needles[i].contact_offset;
+    for (double x : needles[i].pre_puncture.curve.depth) {
+      const double u = offset + x;
+      if (u <= end && u <= puncture_displacement[i]) samples.push_back({u, false});
+    }
+    if (puncture_displacement[i] <= end) {
+      samples.push_back({puncture_displacement[i], false});
+      samples.push_back({puncture_displacement[i], true});
+      first_puncture = std::min(first_puncture, puncture_displacement[i]);
+    }
+  }
+  if (first_puncture <= end)
+    for (int k = 1; k <= options.cutting_samples; ++k)
+      samples.push_back(
+          {first_puncture + (end - first_puncture) * k / static_cast<double>(options.cutting_samples), false});
+  std::sort(samples.begin(), samples.end());
+  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
+
+  auto punctured = [&](std::size_t i, const Sample& s) {
+    return s.displacement > puncture_displacement[i] ||
+           (s.displacement == puncture_displacement[i] && s.after_punctures);
+  };
+
+  const std::size_t m = samples.size();
+  result.depth.resize(m);
+  result.force.assign(m, 0.0);
+  result.punctured_needles.assign(m, 0);
+  result.phase.assign(m, InsertionPhase::Indentation);
+  for (std::size_t s = 0; s < m; ++s) result.depth[s] = samples[s].displacement;
+  for (std::size_t i = 0; i < count; ++i) {
+    const NeedleInsertion& needle = needles[i];
+    std::vector<std::size_t> cutting;
+    std::vector<double> cutting_depth;
+    for (std::size_t s = 0; s < m; ++s) {
+      const double x = samples[s].displacement - needle.contact_offset;
+      if (punctured(i, samples[s])) {
+        cutting.push_back(s);
+        cutting_depth.push_back(x);
+        ++result.punctured_needles[s];
+      } else {
+        result.force[s] += pre_puncture_force_at(needle.pre_puncture.curve, x);
+      }
+    }
+    const std::vector<double> cut =
+        post_puncture_forces(*needle.loads, cutting_depth, needle.stiffness, needle.scale);
+    for (std::size_t k = 0; k < cutting.size(); ++k) result.force[cutting[k]] += cut[k];
+    if (puncture_displacement[i] <= end) {
+      PunctureEvent event;
+      event.needle = static_cast<int>(i);
+      event.displacement = puncture_displacement[i];
+      event.depth = needle.pre_puncture.puncture->depth;
+      event.force_before = pre_puncture_force_at(needle.pre_puncture.curve, event.depth);
+      event.force_after = post_puncture_force(*needle.loads, event.depth, needle.stiffness, needle.scale);
+      event.drop = event.force_before - event.force_after;
+      result.punctures.push_back(event);
+    }
+  }
+  for (std::size_t s = 0; s < m; ++s)
+    if (result.punctured_needles[s] > 0) result.phase[s] = InsertionPhase::Cutting;
+  std::stable_sort(result.punctures.begin(), result.punctures.end(),
+                   [](const PunctureEvent& a, const PunctureEvent& b) { return a.displacement < b.displacement; });
+  return result;
+}
+
+}  // namespace needlekit::insertion

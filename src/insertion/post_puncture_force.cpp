@@ -1,0 +1,321 @@
+#include "needlekit/insertion/post_puncture_force.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numeric>
+
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::insertion {
+namespace {
+
+const Eigen::Vector3d& vertex(const geometry::TriangleMesh& mesh, int i) {
+  return mesh.vertices[static_cast<std::size_t>(i)];
+}
+
+// A unit vector perpendicular to the unit vector d.
+Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& d) {
+  const Eigen::Vector3d trial = std::abs(d.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return (trial - trial.dot(d) * d).normalized();
+}
+
+double full_load(const LoadedTriangle& t) {
+  return t.weight * t.area * (t.load[0] + t.load[1] + t.load[2]) / 3.0;  // Eqs 3.19-3.20: the load prism's volume
+}
+
+double first_depth(const LoadedTriangle& t) { return std::min({t.depth[0], t.depth[1], t.depth[2]}); }
+double last_depth(const LoadedTriangle& t) { return std::max({t.depth[0], t.depth[1], t.depth[2]}); }
+
+// ∫ p/(K·S) dA over the part of the triangle with a <= h: the load is linear over the triangle, the part is a
+// triangle (h below the middle vertex) or the triangle minus one (above it); each integral is area × mean load.
+double clipped_load(const LoadedTriangle& t, double h) {
+  std::array<int, 3> o{0, 1, 2};
+  std::sort(o.begin(), o.end(), [&](int i, int j) { return t.depth[i] < t.depth[j]; });
+  const double a0 = t.depth[o[0]], a1 = t.depth[o[1]], a2 = t.depth[o[2]];
+  const double f0 = t.load[o[0]], f1 = t.load[o[1]], f2 = t.load[o[2]];
+  if (h <= a0) return 0;
+  if (h >= a2) return full_load(t);
+  if (h <= a1) {
+    const double t1 = (h - a0) / (a1 - a0), t2 = (h - a0) / (a2 - a0);
+    return t.weight * t.area * t1 * t2 * (3 * f0 + t1 * (f1 - f0) + t2 * (f2 - f0)) / 3.0;
+  }
+  const double u0 = (a2 - h) / (a2 - a0), u1 = (a2 - h) / (a2 - a1);
+  return full_load(t) - t.weight * t.area * u0 * u1 * (3 * f2 + u0 * (f0 - f2) + u1 * (f1 - f2)) / 3.0;
+}
+
+// Algorithm 3.1 for one β-triangle: the loads δ/R at its vertices (before the cap) and its Fig 3.9 case.
+struct BetaLoad {
+  std::array<double, 3> delta{};
+  BetaCase beta_case = BetaCase::NoVertexOnTip;
+};
+
+}  // namespace
+
+double load_prism_volume(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, const Eigen::Vector3d& p3, double h1,
+                         double h2, double h3) {
+  const Eigen::Vector3d normal_area = (p2 - p1).cross(p3 - p1);
+  const Eigen::Vector3d n = normal_area.normalized();
+  const Eigen::Vector3d q1 = p1 + h1 * n, q2 = p2 + h2 * n, q3 = p3 + h3 * n;
+  // Eq 3.19 for each tetrahedron of the pentahedron p1 p2 p3 q1 q2 q3; Eq 3.20 sums them.
+  auto tetrahedron = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                        const Eigen::Vector3d& d) { return std::abs((a - d).dot((b - d).cross(c - d))) / 6.0; };
+  return tetrahedron(p1, p2, p3, q1) + tetrahedron(p2, p3, q1, q2) + tetrahedron(p3, q1, q2, q3);
+}
+
+PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
+                                      const TriangleClassificationOptions& classification,
+                                      const PostPunctureOptions& options, const geometry::SurfaceMesh* surface) {
+  if (!(options.tip_tolerance >= 0 && options.tip_tolerance <= 1e-2))
+    throw InvalidInput(fmt::format("tip_tolerance: {}, expected a relative tolerance in [0, 0.01]",
+                                   options.tip_tolerance));
+  if (!(options.reference_radius >= 0) || !std::isfinite(options.reference_radius))
+    throw InvalidInput(fmt::format("reference_radius: {} m, expected a finite length >= 0 (0: automatic)",
+                                   options.reference_radius));
+
+  PostPunctureLoads loads;
+  loads.classification = classify_triangles(needle, classification, surface);
+  const Eigen::Vector3d d = loads.classification.insertion_direction;
+
+  // Axial positions: a(P) = distance behind the tip plane.
+  const std::size_t nv = needle.vertices.size();
+  std::vector<double> along(nv);
+  for (std::size_t i = 0; i < nv; ++i) along[i] = needle.vertices[i].dot(d);
+  const double top = *std::max_element(along.begin(), along.end());
+  const double bottom = *std::min_element(along.begin(), along.end());
+  loads.needle_length = top - bottom;
+  const double tip_band = options.tip_tolerance * loads.needle_length;
+  std::vector<double> depth(nv);
+  std::vector<int> tip_vertices;
+  for (std::size_t i = 0; i < nv; ++i) {
+    depth[i] = top - along[i];
+    if (depth[i] <= tip_band) tip_vertices.push_back(static_cast<int>(i));
+  }
+
+  // The channel axis through the centre of the tip.
+  Eigen::Vector3d axis_point = options.axis_point;
+  if (!axis_point.allFinite()) {
+    axis_point.setZero();
+    for (int i : tip_vertices) axis_point += vertex(needle, i);
+    axis_point /= static_cast<double>(tip_vertices.size());
+  }
+  loads.axis_point = axis_point;
+  auto radial_of = [&](const Eigen::Vector3d& p) {
+    Eigen::Vector3d r = p - axis_point;
+    return Eigen::Vector3d(r - r.dot(d) * d);
+  };
+  std::vector<Eigen::Vector3d> tip_radial;
+  tip_radial.reserve(tip_vertices.size());
+  for (int i : tip_vertices) tip_radial.push_back(radial_of(vertex(needle, i)));
+
+  double radius = options.reference_radius;
+  if (radius == 0)
+    for (const auto& p : needle.vertices) radius = std::max(radius, radial_of(p).norm());
+  if (!(radius > 0))
+    throw InvalidInput("needle mesh: every vertex lies on the channel axis; expected a needle of non-zero width");
+  loads.reference_radius = radius;
+
+  const auto& classes = loads.classification;
+  loads.triangles.reserve(classes.alpha.size() + classes.beta.size());
+  auto triangle_geometry = [&](int t, LoadedTriangle& loaded) {
+    const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
+    const Eigen::Vector3d normal_area =
+        (vertex(needle, tri[1]) - vertex(needle, tri[0])).cross(vertex(needle, tri[2]) - vertex(needle, tri[0]));
+    loaded.triangle = t;
+    loaded.area = 0.5 * normal_area.norm();
+    loaded.weight = options.axial_component ? normal_area.normalized().dot(d) : 1.0;
+    for (int k = 0; k < 3; ++k) loaded.depth[k] = depth[static_cast<std::size_t>(tri[k])];
+    return Eigen::Vector3d(normal_area.normalized());
+  };
+
+  for (int t : classes.alpha) {  // Eq 3.18: uniform pressure K·S
+    LoadedTriangle loaded;
+    loaded.alpha = true;
+    triangle_geometry(t, loaded);
+    loaded.load = {1.0, 1.0, 1.0};
+    loads.alpha_area += loaded.area;
+    loads.triangles.push_back(loaded);
+  }
+
+  const double degenerate_axial = 1e-9 * loads.needle_length;
+  for (int t : classes.beta) {  // Algorithm 3.1
+    LoadedTriangle loaded;
+    const Eigen::Vector3d n = triangle_geometry(t, loaded);
+    const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
+    // Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
+    const Eigen::Vector3d centroid = (vertex(needle, tri[0]) + vertex(needle, tri[1]) + vertex(needle, tri[2])) / 3.0;
+    Eigen::Vector3d e = radial_of(centroid);
+    if (e.norm() <= 1e-12 * radius) e = n - n.dot(d) * d;  // centroid on the axis: the normal's radial part
+    e = e.norm() > 0 ? Eigen::Vector3d(e.normalized()) : any_perpendicular(d);
+    // Projections Q_k: a (behind the tip) and x (from the axis, toward CG_i).
+    std::array<double, 3> a{}, x{};
+    std::array<bool, 3> on_tip{};
+    int tip_count = 0;
+    for (int k = 0; k < 3; ++k) {
+      a[k] = loaded.depth[k];
+      x[k] = radial_of(vertex(needle, tri[k])).dot(e);
+      on_tip[k] = a[k] <= tip_band;
+      tip_count += on_tip[k] ? 1 : 0;
+    }
+    loaded.beta_case = tip_count == 1 ? BetaCase::OneVertexOnTip
+                       : tip_count >= 2 ? BetaCase::TwoVerticesOnTip
+                                        : BetaCase::NoVertexOnTip;
+    // Q1: the vertex nearest the tip.
+    int q1 = 0;
+    for (int k = 1; k < 3; ++k)
+      if (a[k] < a[q1] || (a[k] == a[q1] && x[k] < x[q1])) q1 = k;
+    // The opening line: the edge of the tip in this plane.
+    double x_open = 0;
+    for (const auto& r : tip_radial) x_open = std::max(x_open, r.dot(e));
+    const double b = std::max(0.0, x[q1] - x_open);
+    // The meridian slope of the triangle itself (for edges across the meridian, where an edge angle means nothing):
+    // tan θ_T = (n·d)/(n·e).
+    const double theta_triangle = std::atan2(std::max(n.dot(d), 0.0), std::abs(n.dot(e)));
+    std::array<double, 3> theta{}, widening{};
+    for (int k = 0; k < 3; ++k) {
+      if (k == q1) continue;
+      const double da = a[k] - a[q1], dx = x[k] - x[q1];
+      if (da > degenerate_axial) {
+        theta[k] = std::atan2(dx, da);  // angle between the axis and Q1Qk
+        widening[k] = dx;               // a·tanθ
+      } else {
+        theta[k] = theta_triangle;
+        widening[k] = 0;
+      }
+    }
+    const int k2 = (q1 + 1) % 3, k3 = (q1 + 2) % 3;
+    std::array<double, 3> delta{};
+    delta[q1] = b / std::cos(0.5 * (theta[k2] + theta[k3]));  // f_T(P1) = K·S·b/cos((θ2 + θ3)/2)
+    for (int k : {k2, k3}) delta[k] = widening[k] + b / std::cos(theta[k]);  // f_T(P_k) = K·S·(a·tanθ + b/cosθ)
+    for (int k = 0; k < 3; ++k) {
+      double load = on_tip[k] ? 0.0 : std::max(0.0, delta[k]) / radius;  // f_T = 0 on the needle's tip
+      if (!std::isfinite(load)) load = options.cap_at_cutting_pressure ? 1.0 : 0.0;
+      if (options.cap_at_cutting_pressure) load = std::min(load, 1.0);
+      loaded.load[k] = load;
+    }
+    ++loads.case_counts[static_cast<int>(loaded.beta_case)];
+    loads.triangles.push_back(loaded);
+  }
+
+  // Tables for evaluation at many depths.
+  const std::size_t n = loads.triangles.size();
+  loads.by_first_depth.resize(n);
+  std::iota(loads.by_first_depth.begin(), loads.by_first_depth.end(), 0);
+  std::sort(loads.by_first_depth.begin(), loads.by_first_depth.end(), [&](int i, int j) {
+    return first_depth(loads.triangles[static_cast<std::size_t>(i)]) <
+           first_depth(loads.triangles[static_cast<std::size_t>(j)]);
+  });
+  std::vector<int> by_last(n);
+  std::iota(by_last.begin(), by_last.end(), 0);
+  std::sort(by_last.begin(), by_last.end(), [&](int i, int j) {
+    return last_depth(loads.triangles[static_cast<std::size_t>(i)]) <
+           last_depth(loads.triangles[static_cast<std::size_t>(j)]);
+  });
+  loads.last_depth_sorted.resize(n);
+  loads.full_prefix.assign(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const LoadedTriangle& t = loads.triangles[static_cast<std::size_t>(by_last[i])];
+    loads.last_depth_sorted[i] = last_depth(t);
+    loads.full_prefix[i + 1] = loads.full_prefix[i] + full_load(t);
+  }
+  return loads;
+}
+
+double post_puncture_load_area(const PostPunctureLoads& loads, double inserted_depth) {
+  double total = 0;
+  for (const LoadedTriangle& t : loads.triangles) total += clipped_load(t, inserted_depth);
+  return total;
+}
+
+double post_puncture_force(const PostPunctureLoads& loads, double inserted_depth, double stiffness, double scale) {
+  return stiffness * scale * post_puncture_load_area(loads, inserted_depth);  // Eqs 3.18 + 3.20
+}
+
+std::vector<double> post_puncture_forces(const PostPunctureLoads& loads, const std::vector<double>& inserted_depths,
+                                         double stiffness, double scale) {
+  const std::size_t m = inserted_depths.size();
+  std::vector<std::size_t> order(m);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t i, std::size_t j) { return inserted_depths[i] < inserted_depths[j]; });
+  std::vector<double> forces(m, 0.0);
+  std::vector<int> active;  // triangles that started before the current depth and may not be complete
+  std::size_t next = 0;
+  const std::size_t n = loads.triangles.size();
+  for (std::size_t s : order) {
+    const double h = inserted_depths[s];
+    while (next < n && first_depth(loads.triangles[static_cast<std::size_t>(loads.by_first_depth[next])]) < h)
+      active.push_back(loads.by_first_depth[next++]);
+    // Complete triangles (every vertex strictly above h, as clipped_load counts them) come from the prefix sums.
+    const std::size_t complete = static_cast<std::size_t>(
+        std::lower_bound(loads.last_depth_sorted.begin(), loads.last_depth_sorted.end(), h) -
+        loads.last_depth_sorted.begin());
+    double total = loads.full_prefix[complete];
+    for (std::size_t i = 0; i < active.size();) {
+      const LoadedTriangle& t = loads.triangles[static_cast<std::size_t>(active[i])];
+      if (last_depth(t) < h) {  // complete: counted in the prefix sum from now on
+        active[i] = active.back();
+        active.pop_back();
+        continue;
+      }
+      total += clipped_load(t, h);
+      ++i;
+    }
+    forces[s] = stiffness * scale * total;
+  }
+  return forces;
+}
+
+void validate_force_curve(const ForceDepthCurve& curve, std::string_view what) {
+  if (curve.depth.size() != curve.force.size())
+    throw InvalidInput(fmt::format("{}: {} depths but {} forces, expected one force per depth", what,
+                                   curve.depth.size(), curve.force.size()));
+  if (curve.depth.empty()) throw InvalidInput(fmt::format("{}: no samples, expected at least one (depth, force)", what));
+  for (std::size_t i = 0; i < curve.depth.size(); ++i) {
+    if (!std::isfinite(curve.depth[i]) || !std::isfinite(curve.force[i]))
+      throw InvalidInput(fmt::format("{}: sample {} is not finite (depth {}, force {})", what, i + 1, curve.depth[i],
+                                     curve.force[i]));
+    if (i > 0 && !(curve.depth[i] > curve.depth[i - 1]))
+      throw InvalidInput(fmt::format("{}: depth is not monotonic: sample {} has depth {:.6g} m after {:.6g} m, "
+                                     "expected strictly increasing depths",
+                                     what, i + 1, curve.depth[i], curve.depth[i - 1]));
+  }
+}
+
+PostPunctureFit fit_post_puncture(const PostPunctureLoads& loads, const ForceDepthCurve& measured,
+                                  const PostPunctureFitOptions& options) {
+  validate_force_curve(measured, "measured curve");
+  if (measured.depth.front() < 0)
+    throw InvalidInput(fmt::format("measured curve: depth {:.6g} m is negative, expected inserted depths >= 0",
+                                   measured.depth.front()));
+  const double fixed = options.fit_stiffness ? options.scale : options.stiffness;
+  if (!(fixed > 0) || !std::isfinite(fixed))
+    throw InvalidInput(fmt::format("{}: {}, expected a finite value > 0",
+                                   options.fit_stiffness ? "scale" : "stiffness", fixed));
+  // F = (K·S)·G(depth): linear least squares for the product K·S.
+  const std::vector<double> unit = post_puncture_forces(loads, measured.depth, 1.0, 1.0);
+  double gg = 0, gf = 0, ff = 0;
+  for (std::size_t i = 0; i < unit.size(); ++i) {
+    gg += unit[i] * unit[i];
+    gf += unit[i] * measured.force[i];
+    ff += measured.force[i] * measured.force[i];
+  }
+  if (!(gg > 0))
+    throw InvalidInput("measured curve: the model load is zero at every measured depth (depths of 0?), nothing to fit");
+  const double product = gf / gg;
+  PostPunctureFit fit;
+  fit.samples = static_cast<int>(unit.size());
+  fit.stiffness = options.fit_stiffness ? product / options.scale : options.stiffness;
+  fit.scale = options.fit_stiffness ? options.scale : product / options.stiffness;
+  double rr = 0;
+  for (std::size_t i = 0; i < unit.size(); ++i) {
+    const double r = measured.force[i] - product * unit[i];
+    rr += r * r;
+  }
+  fit.rms_error = std::sqrt(rr / static_cast<double>(unit.size()));
+  fit.relative_rms = ff > 0 ? fit.rms_error / std::sqrt(ff / static_cast<double>(unit.size())) : 0;
+  return fit;
+}
+
+}  // namespace needlekit::insertion

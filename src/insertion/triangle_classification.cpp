@@ -1,0 +1,176 @@
+#include "needlekit/insertion/triangle_classification.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/geometry/surface_mesh.hpp"
+
+namespace needlekit::insertion {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Vector3d unnormalized_normal(const geometry::TriangleMesh& mesh, int t) {
+  const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
+  const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(tri[0])];
+  return (mesh.vertices[static_cast<std::size_t>(tri[1])] - a).cross(mesh.vertices[static_cast<std::size_t>(tri[2])] - a);
+}
+
+double bounding_diagonal(const geometry::TriangleMesh& mesh) {
+  Eigen::Vector3d lo = mesh.vertices.front(), hi = mesh.vertices.front();
+  for (const auto& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
+// True when a ray from `origin` along `direction` hits the needle at a distance > `skip` (hits closer than that are
+// the triangle the ray starts on or its neighbours).
+bool ray_hits_needle(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& origin,
+                     const Eigen::Vector3d& direction, double skip) {
+  const auto hit = surface.first_hit(origin + skip * direction, direction);
+  return hit.has_value();
+}
+
+}  // namespace
+
+std::string to_string(TriangleClass triangle_class) {
+  switch (triangle_class) {
+    case TriangleClass::Side: return "side";
+    case TriangleClass::Alpha: return "alpha";
+    case TriangleClass::Beta: return "beta";
+    case TriangleClass::Back: return "back";
+    case TriangleClass::Channel: return "channel";
+    case TriangleClass::Occluded: return "occluded";
+  }
+  return "unknown";
+}
+
+void validate_needle_surface(const geometry::TriangleMesh& needle, std::string_view what) {
+  if (needle.vertices.empty() || needle.triangles.empty())
+    throw InvalidInput(fmt::format("{}: the mesh is empty, expected a closed triangle surface of the needle", what));
+  const int n = static_cast<int>(needle.vertices.size());
+  for (std::size_t t = 0; t < needle.triangles.size(); ++t)
+    for (int v : needle.triangles[t])
+      if (v < 0 || v >= n)
+        throw InvalidInput(fmt::format("{}: triangle {} refers to vertex {}, expected an index in [0, {})", what, t,
+                                       v, n));
+  const geometry::MeshTopologyReport topology = geometry::topology_report(needle);
+  if (topology.non_manifold_edges > 0)
+    throw InvalidInput(fmt::format("{}: {} non-manifold edges (used by more than two triangles), expected a closed "
+                                   "manifold surface",
+                                   what, topology.non_manifold_edges));
+  if (topology.boundary_edges > 0)
+    throw InvalidInput(fmt::format("{}: the surface is open ({} boundary edges), expected a closed surface", what,
+                                   topology.boundary_edges));
+  if (!topology.consistently_oriented)
+    throw InvalidInput(fmt::format("{}: the triangles are not consistently oriented (a shared edge is used twice in "
+                                   "the same direction), expected outward-oriented triangles",
+                                   what));
+  const double volume = geometry::signed_volume(needle);
+  if (!(volume > 0))
+    throw InvalidInput(fmt::format("{}: inverted normals: the enclosed volume is {:.6g} m^3 (negative), so the "
+                                   "triangles' normals point inward; expected counter-clockwise triangles seen from "
+                                   "outside (reverse the vertex order of every triangle)",
+                                   what, volume));
+}
+
+TriangleClassification classify_triangles(const geometry::TriangleMesh& needle,
+                                          const TriangleClassificationOptions& options,
+                                          const geometry::SurfaceMesh* surface) {
+  const double d_norm = options.insertion_direction.norm();
+  if (!(d_norm > 0) || !std::isfinite(d_norm))
+    throw InvalidInput("insertion_direction: expected a finite, non-zero vector");
+  for (auto [name, value] : {std::pair{"side_tolerance", options.side_tolerance},
+                             std::pair{"alpha_tolerance", options.alpha_tolerance}})
+    if (!(value >= 0 && value <= kPi / 4))
+      throw InvalidInput(fmt::format("{}: {} rad, expected an angle in [0, 45] deg", name, value));
+  if (!(options.bore_radius >= 0) || !std::isfinite(options.bore_radius))
+    throw InvalidInput(fmt::format("bore_radius: {} m, expected a finite length >= 0", options.bore_radius));
+  if (options.occlusion_test && surface == nullptr)
+    throw InvalidInput("occlusion_test: the occlusion test casts rays against the needle and needs its SurfaceMesh");
+  validate_needle_surface(needle);
+
+  TriangleClassification result;
+  const Eigen::Vector3d d = options.insertion_direction / d_norm;
+  result.insertion_direction = d;
+  const double sin_side = std::sin(options.side_tolerance);
+  const double cos_alpha = std::cos(options.alpha_tolerance);
+  const double size = bounding_diagonal(needle);
+  const double skip = 1e-9 * size;  // rays start this far off the surface
+
+  const std::size_t count = needle.triangles.size();
+  result.classes.resize(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    const Eigen::Vector3d normal_area = unnormalized_normal(needle, static_cast<int>(t));
+    const double twice_area = normal_area.norm();
+    if (!(twice_area > 0)) {  // degenerate: no direction, no area, no load
+      result.classes[t] = TriangleClass::Side;
+      ++result.side;
+      continue;
+    }
+    const Eigen::Vector3d n = normal_area / twice_area;
+    const double cos_angle = n.dot(d);
+    TriangleClass cls;
+    if (std::abs(cos_angle) <= sin_side) cls = TriangleClass::Side;  // angle to d within tolerance of π/2
+    else if (cos_angle < 0) cls = TriangleClass::Back;
+    else cls = cos_angle >= cos_alpha ? TriangleClass::Alpha : TriangleClass::Beta;
+
+    // Channel: an inward-facing triangle (normal toward the axis) inside the bore radius, or not visible from outside.
+    const auto& tri = needle.triangles[t];
+    const Eigen::Vector3d centroid =
+        (needle.vertices[static_cast<std::size_t>(tri[0])] + needle.vertices[static_cast<std::size_t>(tri[1])] +
+         needle.vertices[static_cast<std::size_t>(tri[2])]) / 3.0;
+    Eigen::Vector3d radial = centroid - options.axis_point;
+    radial -= radial.dot(d) * d;
+    const double rho = radial.norm();
+    const bool faces_axis = rho > 0 && n.dot(radial) < -1e-12 * rho;
+    if (faces_axis && cls != TriangleClass::Back) {
+      bool channel = options.bore_radius > 0 && rho <= options.bore_radius * (1 + 1e-6);
+      if (!channel && surface != nullptr && cls != TriangleClass::Side)
+        channel = ray_hits_needle(*surface, centroid, n, skip);
+      if (channel) cls = TriangleClass::Channel;
+    }
+
+    // Occlusion (§3.6.1, jagged needles): a ray from at least one vertex along d must not hit the needle.
+    if (options.occlusion_test && (cls == TriangleClass::Alpha || cls == TriangleClass::Beta)) {
+      bool all_hit = true;
+      for (int corner = 0; corner < 3 && all_hit; ++corner) {
+        const Eigen::Vector3d& v = needle.vertices[static_cast<std::size_t>(tri[corner])];
+        // Start a hair inside the triangle, so that the neighbours sharing the vertex are not hit.
+        const Eigen::Vector3d origin = v + 1e-6 * (centroid - v);
+        all_hit = ray_hits_needle(*surface, origin, d, skip);
+      }
+      if (all_hit) cls = TriangleClass::Occluded;
+    }
+
+    result.classes[t] = cls;
+    switch (cls) {
+      case TriangleClass::Alpha:
+        result.alpha.push_back(static_cast<int>(t));
+        result.alpha_area += 0.5 * twice_area;
+        break;
+      case TriangleClass::Beta:
+        result.beta.push_back(static_cast<int>(t));
+        result.beta_area += 0.5 * twice_area;
+        break;
+      case TriangleClass::Side: ++result.side; break;
+      case TriangleClass::Back: ++result.back; break;
+      case TriangleClass::Channel: ++result.channel; break;
+      case TriangleClass::Occluded: ++result.occluded; break;
+    }
+  }
+  if (result.alpha.empty() && result.beta.empty())
+    throw InvalidInput(fmt::format("needle mesh: no triangle faces the insertion direction ({:.6g}, {:.6g}, {:.6g}) "
+                                   "({} side, {} back, {} channel, {} occluded triangles); expected a tip whose "
+                                   "outward normals point along the insertion direction (is the needle pointing the "
+                                   "other way?)",
+                                   d.x(), d.y(), d.z(), result.side, result.back, result.channel, result.occluded));
+  return result;
+}
+
+}  // namespace needlekit::insertion
