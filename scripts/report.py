@@ -6,7 +6,7 @@ Usage: report.py RUN_DIR
 Reads RUN_DIR/results.json (written by `needlekit reproduce`), draws every figure it lists as a PNG under RUN_DIR
 (matplotlib, Agg backend, no display needed) and writes RUN_DIR/report.html with the PNGs embedded as base64 (no
 network needed to open it). Every number comes from results.json or the CSV files of the run: this script only
-formats them. Figure kinds: "bars", "lines", "points3d" (see each draw_* function for its fields).
+formats them. Figure kinds: "bars", "lines", "scatter2d", "points3d", "patch3d" (see each draw_* function for its fields).
 """
 import base64
 import csv
@@ -114,15 +114,83 @@ def draw_points3d(fig, spec):
     return ax
 
 
+def draw_scatter2d(ax, fig, spec):
+    """A map coloured by a value: "csv" with columns "x", "y" and "value" (names given), "xlabel", "ylabel",
+    "colorbar", "log" (logarithmic colour scale)."""
+    d = read_csv(spec["csv"])
+    values = np.asarray(d[spec["value"]], float)
+    norm = None
+    if spec.get("log"):
+        positive = values[values > 0]
+        if positive.size:
+            norm = matplotlib.colors.LogNorm(vmin=max(positive.min(), positive.max() * 1e-4), vmax=positive.max())
+            values = np.maximum(values, norm.vmin)
+    p = ax.scatter(d[spec["x"]], d[spec["y"]], c=values, s=spec.get("size", 6), cmap=spec.get("cmap", "viridis"),
+                   norm=norm, linewidths=0)
+    fig.colorbar(p, ax=ax, label=spec.get("colorbar", spec["value"]))
+    ax.set_xlabel(spec.get("xlabel", ""))
+    ax.set_ylabel(spec.get("ylabel", ""))
+    ax.set_aspect("equal", adjustable="box")
+
+
+def draw_patch3d(fig, spec):
+    """A fitted patch on its surface, one 3-D panel per value: "csv" (the per-needle CSV with base_/tip_ x, y, z in
+    mm), "surface" (JSON with "vertices" in mm and "triangles" near the patch), "panels" [{"value", "colorbar"}].
+    Each needle is drawn as a base-to-tip segment and its base as a dot, coloured by the panel's value."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    d = read_csv(spec["csv"])
+    with open(os.path.join(RUN_DIR, spec["surface"])) as f:
+        surface = json.load(f)
+    v = np.asarray(surface["vertices"], float).reshape(-1, 3)
+    t = np.asarray(surface["triangles"], int).reshape(-1, 3)
+    base = np.column_stack([d["base_x_mm"], d["base_y_mm"], d["base_z_mm"]])
+    tip = np.column_stack([d["tip_x_mm"], d["tip_y_mm"], d["tip_z_mm"]])
+    centre = base.mean(axis=0)
+    half = 0.6 * max(np.ptp(base[:, 0]), np.ptp(base[:, 1]), np.ptp(base[:, 2]), 1e-3)
+    panels = spec["panels"]
+    for k, panel in enumerate(panels):
+        ax = fig.add_subplot(1, len(panels), k + 1, projection="3d")
+        if len(t):
+            ax.plot_trisurf(v[:, 0], v[:, 1], v[:, 2], triangles=t, color="0.85", alpha=0.35, linewidth=0.1,
+                            edgecolor="0.6", shade=True)
+        values = np.asarray(d[panel["value"]], float)
+        finite = values[np.isfinite(values)]
+        vmin, vmax = (finite.min(), finite.max()) if finite.size else (0.0, 1.0)
+        if vmax <= vmin:
+            vmax = vmin + (abs(vmin) * 1e-3 or 1e-12)
+        norm = matplotlib.colors.Normalize(vmin=vmin, vmax=vmax)
+        cmap = plt.get_cmap("viridis")
+        segments = np.stack([base, base + 4 * (tip - base)], axis=1)  # needles drawn 4x longer to be seen
+        ax.add_collection3d(Line3DCollection(segments, colors=cmap(norm(np.nan_to_num(values, nan=vmin))),
+                                             linewidths=1.2))
+        p = ax.scatter(base[:, 0], base[:, 1], base[:, 2], c=values, cmap=cmap, norm=norm, s=10, depthshade=False)
+        fig.colorbar(p, ax=ax, shrink=0.55, pad=0.08, label=panel.get("colorbar", panel["value"]))
+        ax.set_xlim(centre[0] - half, centre[0] + half)
+        ax.set_ylim(centre[1] - half, centre[1] + half)
+        ax.set_zlim(centre[2] - half, centre[2] + half)
+        ax.set_xlabel("x (mm)", fontsize=7)
+        ax.set_ylabel("y (mm)", fontsize=7)
+        ax.set_zlabel("z (mm)", fontsize=7)
+        ax.tick_params(labelsize=6)
+        ax.view_init(elev=spec.get("elevation", 20), azim=spec.get("azimuth", -60))
+
+
 def draw_figure(figure):
     spec = figure["spec"]
     kind = spec["kind"]
     if kind == "points3d":
         fig = plt.figure(figsize=(7, 5.5))
         draw_points3d(fig, spec)
+    elif kind == "patch3d":
+        fig = plt.figure(figsize=(15, 5))
+        draw_patch3d(fig, spec)
     else:
         fig, ax = plt.subplots(figsize=(7, 4.5))
-        {"bars": draw_bars, "lines": draw_lines}[kind](ax, spec)
+        if kind == "scatter2d":
+            draw_scatter2d(ax, fig, spec)
+        else:
+            {"bars": draw_bars, "lines": draw_lines}[kind](ax, spec)
     if spec.get("title"):
         fig.suptitle(spec["title"], fontsize=10)
     fig.tight_layout()
@@ -142,9 +210,10 @@ def fmt_number(value, digits=6):
         return "yes" if value else "no"
     if isinstance(value, int):
         return str(value)
-    if value == 0:
-        return "0"
-    return f"{value:.{digits}g}"
+    if value == 0 or value != value:
+        return "0" if value == 0 else "&ndash;"
+    magnitude = int(np.floor(np.log10(abs(value))))
+    return f"{value:.{max(digits, magnitude + 2)}g}"
 
 
 def comparison_rows(comparisons):
