@@ -66,7 +66,7 @@ def draw_bars(ax, spec):
     ax.set_ylabel(spec.get("ylabel", ""))
     if spec.get("log"):
         ax.set_yscale("log")
-    ax.legend()
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.28), ncol=min(len(series), 3))
     ax.grid(axis="y", alpha=0.3)
 
 
