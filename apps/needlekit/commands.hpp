@@ -11,5 +11,6 @@ void add_sweep_command(CLI::App& app);      // command_sweep.cpp
 void add_materials_command(CLI::App& app);  // command_materials.cpp
 void add_mesh_command(CLI::App& app);       // command_mesh.cpp
 void add_reproduce_command(CLI::App& app);  // command_reproduce.cpp
+void add_indent_command(CLI::App& app);     // command_indent.cpp
 
 }  // namespace needlekit::cli

@@ -44,6 +44,9 @@ constexpr std::array kUnits{
     UnitEntry{"/m", Dimension::InverseLength, 1.0},  UnitEntry{"1/m", Dimension::InverseLength, 1.0},
     UnitEntry{"N/m", Dimension::Stiffness, 1.0},     UnitEntry{"N/mm", Dimension::Stiffness, 1e3},
     UnitEntry{"N/um", Dimension::Stiffness, 1e6},    UnitEntry{"mN/mm", Dimension::Stiffness, 1.0},
+    // Energy per area (fracture toughness) has the dimension of force per length.
+    UnitEntry{"J/m2", Dimension::Stiffness, 1.0},    UnitEntry{"J/m^2", Dimension::Stiffness, 1.0},
+    UnitEntry{"kJ/m2", Dimension::Stiffness, 1e3},   UnitEntry{"kJ/m^2", Dimension::Stiffness, 1e3},
 };
 
 std::string_view trim(std::string_view s) {

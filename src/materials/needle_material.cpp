@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/materials/preset_key.hpp"
 
 namespace needlekit::materials {
 namespace {
@@ -61,15 +61,6 @@ const std::vector<Preset>& presets() {
   return table;
 }
 
-std::string normalise(std::string_view name) {
-  std::string out;
-  for (char c : name) {
-    if (c == ' ' || c == '_' || c == '-') continue;
-    out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return out;
-}
-
 }  // namespace
 
 std::vector<std::string> material_preset_names() {
@@ -79,9 +70,9 @@ std::vector<std::string> material_preset_names() {
 }
 
 NeedleMaterial material_preset(std::string_view name, std::string_view what) {
-  const std::string wanted = normalise(name);
+  const std::string wanted = preset_key(name);
   for (const auto& p : presets()) {
-    if (normalise(p.key) == wanted) return p.material;
+    if (preset_key(p.key) == wanted) return p.material;
   }
   throw InvalidInput(fmt::format("{}: unknown material '{}', expected one of: {} (or an inline table with "
                                  "youngs_modulus)",

@@ -19,6 +19,10 @@ struct LayeredBlockOptions {
   double refinement_radius = 300e-6;    // m, radius around a site where the size is size_at_site, > 0
   double size_far = 250e-6;             // m, element size far from the sites, >= size_at_site
   int threads = 0;                      // Gmsh threads, 0 = all cores
+  double size_gradient = 0.3;           // 1, (0, inf): growth of the element size per unit distance outside the
+                                        // refinement radius and outside thin layers (0.3: 30 um per 100 um)
+  double thin_layer_size_factor = 2.0;  // 1, [0, inf): the element size inside a layer is capped at this times its
+                                        // thickness so thin layers (stratum corneum) keep well-shaped elements; 0 = no cap
 };
 
 struct LayerQuality {

@@ -1,0 +1,38 @@
+// Hyperelastic laws of the total-Lagrangian FE (dissertation §3.4): the second Piola-Kirchhoff stress S and its
+// material tangent dS/dE as functions of the deformation gradient F, with the strain energy density W.
+#pragma once
+#include <Eigen/Core>
+
+#include "needlekit/fem/quasi_static_solver.hpp"
+
+namespace needlekit::fem {
+
+struct LameConstants {
+  double lambda = 0;  // Pa
+  double mu = 0;      // Pa, shear modulus
+};
+// λ = Eν/((1+ν)(1-2ν)), μ = E/(2(1+ν)): the entries of D in Eqs 3.4/3.5 (prefactor corrected per the notes).
+LameConstants lame_constants(double youngs_modulus, double poisson_ratio);
+
+struct StressResponse {
+  double energy_density = 0;   // W, J/m^3 of reference volume
+  Eigen::Matrix3d second_piola_kirchhoff;  // S = dW/dE, Pa
+  // dS/dE in Voigt form (order xx, yy, zz, xy, yz, zx; tensor shear components, i.e. C_ijkl with the
+  // symmetric-E convention: S_v = C * [E11 E22 E33 2E12 2E23 2E31]).
+  Eigen::Matrix<double, 6, 6> tangent;
+  bool valid = true;           // false when J <= 0 for neo-Hookean
+};
+
+// Green-Lagrange strain E = (F^T F - I)/2 (Eq 3.3, corrected).
+Eigen::Matrix3d green_lagrange_strain(const Eigen::Matrix3d& deformation_gradient);
+
+// S, dS/dE and W of the law at F. SVK: S = λ tr(E) I + 2μE (Eqs 3.4, 3.5). Neo-Hookean:
+// S = μ(I - C^-1) + λ ln J C^-1.
+StressResponse stress_response(MaterialLaw law, const LameConstants& lame, const Eigen::Matrix3d& deformation_gradient,
+                               bool with_tangent = true);
+
+// Cauchy stress σ = F S F^T / J.
+Eigen::Matrix3d cauchy_stress(const Eigen::Matrix3d& deformation_gradient, const Eigen::Matrix3d& second_pk);
+double von_mises_stress(const Eigen::Matrix3d& cauchy);
+
+}  // namespace needlekit::fem

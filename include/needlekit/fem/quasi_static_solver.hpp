@@ -1,0 +1,185 @@
+// Nonlinear quasi-static indentation of a tetrahedral tissue block by rigid needles (dissertation §3.4).
+//
+// Total-Lagrangian tetrahedra (linear, or quadratic T10 built from the linear mesh by adding mid-edge nodes) with
+// the Green-Lagrange strain (Eq 3.3 as corrected in the notes), the dissertation's linear stress-strain law
+// S = D E (Eqs 3.4/3.5, i.e. St Venant-Kirchhoff) or a compressible neo-Hookean law. The prescribed needle
+// displacement is applied in load steps; the first iterate of each step is the linear(ised) elastic solution about
+// the last converged state (§3.4: "we apply the solution obtained from the linear finite element as our initial
+// guessed answer"; for the first step this is exactly the linear-elastic solution). Each step is solved by Newton's
+// method with a backtracking line search on the total potential energy (the problem is conservative; this replaces
+// Matlab's trust-region dogleg of §3.4 and plays the same role); a failed step is cut back automatically.
+// Linear systems: CHOLMOD supernodal Cholesky, symbolic analysis once per solver, numeric factorization per Newton
+// iteration. Element assembly is threaded (TBB).
+//
+// The needle is a rigid indenter in one of two models:
+//  - ContactModel::TipNodes, the dissertation's rule (§3.4, Eq 3.9-3.12): the top-surface nodes under the needle's
+//    flat tip face follow the tip along the indentation direction and are free across it (frictionless); the
+//    reaction force is the sum of their internal forces (Eq 3.11). Only a flat tip face defines such nodes; for a
+//    sharp tip the single top node nearest to the apex is used.
+//  - ContactModel::Surface: frictionless unilateral contact of the tissue's top-surface nodes against the needle's
+//    actual (closed) surface mesh, node-to-surface, enforced by a penalty with augmented-Lagrangian updates (the
+//    multipliers are updated between Newton solves until the penetration is below a tolerance). Cones and bevels
+//    indent with their real shape.
+// Several needles may indent at once; they all move by the same displacement along their own directions.
+//
+// Frame (tet_mesh.hpp): tissue top surface z = 0, tissue z <= 0, needles above moving in -z. SI units throughout.
+#pragma once
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::fem {
+
+enum class MaterialLaw {
+  StVenantKirchhoff,  // S = λ tr(E) I + 2μ E: the dissertation's S = D E (Eqs 3.3-3.5, notes' corrections).
+                      // Softens and can fail under large compression.
+  NeoHookean,         // compressible: W = μ/2 (I1 - 3) - μ ln J + λ/2 (ln J)^2; same small-strain limit.
+};
+enum class ElementOrder {
+  Linear,     // 4-node tetrahedra (the dissertation's); lock for nu -> 0.5
+  Quadratic,  // 10-node tetrahedra (mid-edge nodes added), 4-point Gauss rule: the locking-free option
+};
+enum class ContactModel { TipNodes, Surface };
+enum class BoundaryCondition {
+  SidesAndBottomFixed,    // §3.4: every node on the four sides and the bottom is fixed; top free
+  BottomFixed,            // bottom fixed, sides free
+  BottomFixedSidesRoller, // bottom fixed, sides slide (normal displacement zero)
+  SymmetryPlanes,         // u_x = 0 on x = min, u_y = 0 on y = min, u_z = 0 on the bottom; other faces free
+                          // (homogeneous uniaxial tests)
+};
+
+std::string to_string(MaterialLaw law);
+std::string to_string(ElementOrder order);
+std::string to_string(ContactModel contact);
+std::string to_string(BoundaryCondition condition);
+// Parse "svk" | "st-venant-kirchhoff", "neo-hookean"; "linear" | "quadratic"; "tip-nodes" | "surface";
+// "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes". Throw InvalidInput naming `what`.
+MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
+ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
+ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
+BoundaryCondition boundary_condition_from_string(const std::string& text, const std::string& what = "boundary");
+
+// A rigid needle. `surface` is closed and outward-oriented, already placed in the tissue frame at zero indenter
+// displacement (its tip on or above the top surface z = 0); the needle translates by d * direction.
+struct Indenter {
+  geometry::TriangleMesh surface;               // m
+  Eigen::Vector3d direction{0.0, 0.0, -1.0};    // unit after normalisation; TipNodes requires (0, 0, -1)
+};
+
+// Called after every Newton iteration (from the calling thread).
+struct SolverProgress {
+  double target_displacement = 0;   // m, the displacement of the current (sub)step
+  int iteration = 0;                // Newton iteration within the (sub)step, from 1
+  double residual_norm = 0;         // N, free-dof residual
+  int cutbacks = 0;                 // so far in this advance_to call
+};
+
+struct SolverOptions {
+  MaterialLaw law = MaterialLaw::StVenantKirchhoff;   // constitutive law
+  ElementOrder order = ElementOrder::Linear;          // element order
+  ContactModel contact = ContactModel::TipNodes;      // needle model
+  BoundaryCondition boundary = BoundaryCondition::SidesAndBottomFixed;  // on the mesh's bounding box faces
+  double boundary_tolerance = 1e-9;      // m, >= 0: a node is on a box face within this distance (plus 1e-9 of
+                                         // the box diagonal)
+
+  // Newton convergence: residual AND (displacement OR energy).
+  double residual_tolerance = 1e-7;      // (0, 1): ||R_free|| <= tol * max(||f_reaction||, ||f_int||, tiny)
+  double displacement_tolerance = 1e-8;  // (0, 1): ||du|| <= tol * ||u||
+  double energy_tolerance = 1e-14;       // (0, 1): |du . R| <= tol * |du_1 . R_1| (first iteration of the step)
+  int max_iterations = 25;               // Newton iterations per (sub)step, >= 1
+  bool line_search = true;               // backtracking (Armijo) on the potential energy, with a tangent shift
+                                         // when the factorization is not positive definite
+  int max_cutbacks = 8;                  // halvings of a failed step before giving up, >= 0
+  bool linear_predictor = true;          // first iterate = linearised elastic solution (§3.4); false: previous u
+
+  // Surface contact (ContactModel::Surface).
+  double penalty_factor = 100.0;         // > 0: penalty stiffness per area = factor * E / h of the adjacent elements
+  double penetration_tolerance = 1e-3;   // (0, 1): augmented-Lagrangian updates until max penetration <= tol *
+                                         // max(indenter displacement, smallest contact element size)
+  int max_augmentations = 6;             // augmented-Lagrangian updates per step, >= 0 (0: pure penalty)
+
+  int threads = 0;                       // TBB threads for assembly, 0 = default
+  std::function<void(const SolverProgress&)> progress;  // optional
+};
+
+// One Newton iteration.
+struct IterationRecord {
+  double residual_norm = 0;      // N, free-dof residual before the update
+  double increment_norm = 0;     // m, ||du|| of the update
+  double energy_norm = 0;        // J, |du . R|
+  double step_length = 1;        // line-search factor
+  double assembly_seconds = 0;   // wall time of residual + tangent assembly
+  double solve_seconds = 0;      // wall time of factorization + solve
+};
+
+struct StepResult {
+  bool converged = false;
+  std::string reason;                    // empty when converged; else what failed and at which displacement
+  int newton_iterations = 0;             // total over substeps and augmentations
+  int cutbacks = 0;
+  int substeps = 0;                      // converged substeps taken
+  double indenter_displacement = 0;      // m, displacement actually reached (== target when converged)
+  std::vector<double> indenter_force;    // N, per needle: reaction on the needle along -direction (>0 pushing)
+  std::vector<double> max_contact_pressure;   // Pa, per needle: largest nodal contact pressure
+  std::vector<double> mean_contact_pressure;  // Pa, per needle: force / contact area
+  std::vector<double> contact_area;           // m^2, per needle: tributary area of the nodes in contact
+  std::vector<int> contact_nodes;             // per needle: nodes in contact
+  double max_penetration = 0;            // m, Surface contact: largest penetration after the last augmentation
+  double strain_energy = 0;              // J, stored in the tissue
+  double external_work = 0;              // J, sum over needles of the trapezoidal integral of force over displacement
+                                         // since the solver was built
+  std::vector<IterationRecord> iterations;  // all Newton iterations of this call
+  double assembly_seconds = 0;           // totals of this call
+  double solve_seconds = 0;
+  double total_seconds = 0;
+};
+
+// Per-element outputs (one value per tetrahedron, averaged over its quadrature points) for VTU.
+struct ElementFields {
+  std::vector<Eigen::Matrix3d> cauchy_stress;   // Pa
+  std::vector<double> von_mises_stress;         // Pa
+  std::vector<double> strain_energy_density;    // J/m^3 of reference volume
+  std::vector<double> volume_ratio;             // J = det F
+};
+
+class QuasiStaticSolver {
+public:
+  // Throws InvalidInput for an invalid mesh (empty, inverted or degenerate tetrahedra, a layer index out of range,
+  // E <= 0, nu outside (-1, 0.5)), an indenter whose surface is empty or starts inside the tissue (below z = 0 by
+  // more than the tolerance), or invalid options (naming the field).
+  QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options = {});
+  ~QuasiStaticSolver();
+  QuasiStaticSolver(QuasiStaticSolver&&) noexcept;
+  QuasiStaticSolver& operator=(QuasiStaticSolver&&) noexcept;
+
+  // One load step from the last converged state to the needle displacement `indenter_displacement` (m, may be
+  // smaller than the current one), with automatic cut-back. Never throws for numerical failure: the result says
+  // where and why it stopped, and the solver keeps the last converged state.
+  StepResult advance_to(double indenter_displacement);
+
+  double indenter_displacement() const;                    // m, last converged
+  const std::vector<Eigen::Vector3d>& nodes() const;       // reference positions: the mesh's nodes, then (T10)
+                                                           // one mid-edge node per edge
+  const std::vector<Eigen::Vector3d>& displacement() const;  // m, per node of nodes()
+  // Element connectivity into nodes(): 4 or 10 indices per tet, VTK order (corners, then the mid-points of edges
+  // 01, 12, 20, 03, 13, 23).
+  const std::vector<std::vector<int>>& elements() const;
+  const std::vector<int>& contact_flag() const;            // per node: 0, or 1 + needle index in contact
+  const std::vector<double>& contact_pressure() const;     // Pa, per node (0 where not in contact)
+  ElementFields element_fields() const;
+  const SolverOptions& options() const;
+  int dof_count() const;        // 3 * nodes
+  int free_dof_count() const;   // unknowns of the linear systems
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace needlekit::fem

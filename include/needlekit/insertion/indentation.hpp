@@ -1,0 +1,121 @@
+// Pre-puncture indentation of a layered tissue block by one or several rigid needles (dissertation §3.4-3.5, §6.2):
+// mesh the block (refined at each insertion site), place the needles with their tips just above the surface, push
+// them down in load steps with the nonlinear quasi-static FE solver, evaluate the puncture criteria after every
+// converged step and stop at puncture (or go on to the final depth).
+//
+// Frames. A needle's surface mesh is given in the needle frame of needle_geometry.hpp (axis z, base at z = 0, tip
+// at the largest z, pointing +z). It is turned tip-down by the half-turn about the x axis, (x, y, z) -> (x, −y,
+// z_tip − z), and translated so that its axis passes through (site.x, site.y) and its tip is at z = tip_height in the
+// tissue frame of tet_mesh.hpp (top surface z = 0, tissue below, needles moving in −z). Depth = needle displacement − the smallest tip height.
+//
+// Stable API (used by the post-puncture model and the `insert` command): IndentationCase, IndentationOptions,
+// IndentationResult, run_indentation, pre_puncture_curve.
+#pragma once
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/insertion/force_curve.hpp"
+#include "needlekit/insertion/puncture_criteria.hpp"
+#include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/needle/needle_geometry.hpp"
+
+namespace needlekit::insertion {
+
+// Where one needle of the case starts.
+struct NeedleSite {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // m, (x, y) of the needle axis on the top surface
+  double tip_height = 0;  // m, >= 0: height of the tip above the undeformed surface at the start (0: touching)
+};
+
+struct IndentationCase {
+  std::string name = "indentation";          // for messages and output file names
+  geometry::TriangleMesh needle;             // m, closed and outward-oriented, in the needle frame (tip at max z)
+  std::optional<needle::NeedleGeometry> geometry;  // the parametric needle the mesh was built from, if any
+  std::vector<NeedleSite> needles{NeedleSite{}};   // at least one; all move by the same displacement
+  mesh::LayeredBlockOptions block;           // the tissue block (insertion_sites are taken from `needles`)
+  std::optional<mesh::TetMesh> tissue_mesh;  // when set, used as is instead of meshing `block`
+  double depth = 200e-6;                     // m, > 0: final depth of the tip below the undeformed surface
+  int steps = 20;                            // >= 1: equal load steps from 0 to `depth`
+  fem::SolverOptions solver;                 // law, element order, contact model, boundary, tolerances
+  PunctureOptions puncture;                  // criteria evaluated after each step (none: never punctures)
+  bool stop_at_puncture = true;              // false: continue to `depth` after the puncture point
+};
+
+// Throws InvalidInput naming the field: no needle or an empty needle mesh, a tip height < 0 (the needle would start
+// inside the tissue), a site outside the block, depth <= 0, steps < 1, invalid puncture parameters.
+void validate(const IndentationCase& indentation_case);
+
+// The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them.
+std::vector<fem::Indenter> placed_indenters(const IndentationCase& indentation_case);
+
+enum class IndentationStatus {
+  Punctured,     // a puncture criterion fired (and the run stopped there unless stop_at_puncture is false)
+  ReachedDepth,  // the final depth was reached without puncture
+  SolverFailed,  // a load step did not converge after all cut-backs; every completed step is kept
+};
+std::string to_string(IndentationStatus status);
+
+// One converged load step.
+struct IndentationStep {
+  double depth = 0;                  // m, tip depth below the undeformed surface
+  double force = 0;                  // N, total reaction force on the needles (positive pushing down)
+  std::vector<double> needle_force;  // N, per needle
+  double contact_area = 0;           // m^2, total tissue area in contact with the needles
+  double contact_pressure = 0;       // Pa, mean pressure under the tips: force / contact_area (Eq 3.17's P_s)
+  double max_contact_pressure = 0;   // Pa, largest nodal contact pressure
+  int contact_nodes = 0;             // nodes in contact, all needles
+  double strain_energy = 0;          // J, stored in the tissue (Δ = ½uᵀKu of Eq 3.17)
+  double external_work = 0;          // J, work of the needles since the start (trapezoidal over the steps)
+  int newton_iterations = 0;         // of this step (all substeps)
+  int cutbacks = 0;                  // step halvings needed
+  double max_residual = 0;           // N, residual norm at the first Newton iteration of the step
+  double final_residual = 0;         // N, residual norm at the last Newton iteration of the step
+  double assembly_seconds = 0;       // wall time of this step
+  double solve_seconds = 0;
+  double step_seconds = 0;
+};
+
+struct IndentationProgress {
+  std::string stage;     // "mesh", "setup", "step"
+  int step = 0;          // steps completed so far
+  int steps = 0;         // steps planned
+  double depth = 0;      // m, depth of the last converged step
+  double fraction = 0;   // [0, 1], of the planned steps (or up to the puncture point)
+};
+
+struct IndentationOptions {
+  // Called on the calling thread at each stage and after each converged step.
+  std::function<void(const IndentationProgress&)> progress;
+  // Called after each converged step with the solver in that state (e.g. to write a .vtu of the step).
+  std::function<void(const IndentationStep&, const fem::QuasiStaticSolver&)> on_step;
+  // Called once after meshing with the tissue mesh that is solved (e.g. for its layer ids in output files).
+  std::function<void(const mesh::TetMesh&)> on_mesh;
+};
+
+struct IndentationResult {
+  IndentationStatus status = IndentationStatus::ReachedDepth;
+  std::string reason;                         // why the run stopped (always set)
+  std::vector<IndentationStep> steps;         // every converged step, in order
+  std::optional<PuncturePoint> puncture;      // empty: no criterion fired within the simulated depth
+  int elements = 0;                           // tetrahedra of the tissue mesh
+  int nodes = 0;                              // FE nodes (with the mid-edge nodes of quadratic elements)
+  int dofs = 0;                               // free degrees of freedom
+  std::vector<mesh::LayerQuality> quality;    // per layer, when the block was meshed here
+  double mesh_seconds = 0;                    // wall time of meshing
+  double setup_seconds = 0;                   // building the solver (symbolic factorization, ...)
+  double total_seconds = 0;
+};
+
+// Runs the case. Throws InvalidInput for an invalid case (see validate) or mesh; numerical failure is a status.
+IndentationResult run_indentation(const IndentationCase& indentation_case, const IndentationOptions& options = {});
+
+// The force-depth curve of the converged steps, starting at (0, 0), and the puncture point, for the post-puncture
+// model.
+PrePunctureCurve pre_puncture_curve(const IndentationResult& result);
+
+}  // namespace needlekit::insertion

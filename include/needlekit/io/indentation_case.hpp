@@ -1,0 +1,39 @@
+// Indentation case files (TOML) for `needlekit indent`. Every dimensional value is a string with its unit; a bare
+// number for a dimensional quantity, an unknown key, a missing required key and an out-of-range value are errors
+// that name the file, the line and the key:  FILE:LINE: key 'tissue.layers[2].thickness': <problem>, expected <what>.
+//
+//   name = "flat punch"                 optional; names the outputs
+//   [needle]   either a parametric needle as in design files (shape, tip_diameter, base_diameter, bore_diameter,
+//              length; material is accepted and ignored: the needle is rigid), or mesh = "needle.stl" (relative to
+//              the case file) with mesh_unit = "um" (the STL in the needle frame: axis z, tip at the largest z);
+//              tip_height (default "0 um", >= 0: the tip's height above the surface at the start); segments
+//              (default 64) and axial_segments (default 16) of the parametric needle's surface mesh
+//   [[needles]]  optional, one entry per needle: x, y (default "0 um"), tip_height (default: [needle]'s);
+//              without it, one needle at (0, 0)
+//   [tissue]   width, length (default "3000 um"); height (default: the sum of the layers, or the preset's);
+//              preset = a tissue preset name (materials::tissue_preset_names()) and/or [[tissue.layers]] entries
+//              with name, thickness (the last may be "rest": the rest of `height`), youngs_modulus, poisson_ratio
+//   [mesh]     size_at_tip (default "20 um"), size_far (default "250 um"), refinement_radius (default "300 um"),
+//              threads (default 0 = all)
+//   [loading]  depth (required), steps (default 20), continue_after_puncture (default false)
+//   [model]    law = "svk" | "neo-hookean" (default "neo-hookean"); contact = "tip-nodes" | "surface" (default
+//              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =
+//              "sides-and-bottom-fixed" (default) | "bottom-fixed" | "bottom-fixed-sides-roller"
+//   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
+#pragma once
+#include <filesystem>
+#include <string_view>
+
+#include "needlekit/insertion/indentation.hpp"
+
+namespace needlekit::io {
+
+// Throws IoError (unreadable file, TOML syntax, unreadable needle STL) or InvalidInput (a missing, unknown or invalid
+// key).
+insertion::IndentationCase read_indentation_case(const std::filesystem::path& path);
+// The same from text; `source_name` stands for the file name in messages, `base_directory` resolves a relative
+// needle mesh path.
+insertion::IndentationCase parse_indentation_case_toml(std::string_view text, std::string_view source_name,
+                                                       const std::filesystem::path& base_directory = ".");
+
+}  // namespace needlekit::io

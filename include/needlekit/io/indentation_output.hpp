@@ -1,0 +1,66 @@
+// Outputs of an indentation run: the ParaView grid of one step, the force-depth curve and the per-step solver
+// statistics as CSV (units in the headers), and the result and puncture point as JSON (units in the keys).
+#pragma once
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/insertion/indentation.hpp"
+#include "needlekit/io/vtu_writer.hpp"
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::io {
+
+// The tissue in the solver's current state, on the reference nodes (ParaView: Warp By Vector with displacement_m).
+// Point fields: displacement_m (3), contact_flag (0, or 1 + needle index), contact_pressure_Pa. Cell fields:
+// cauchy_stress_Pa (9), von_mises_stress_Pa, strain_energy_density_J_per_m3, layer_id, youngs_modulus_Pa,
+// poisson_ratio. Cells are linear or quadratic tetrahedra as the solver's elements.
+VtuGrid indentation_grid(const fem::QuasiStaticSolver& solver, const mesh::TetMesh& tissue);
+
+// The needles' surfaces at the solver's current displacement, as triangles (for display next to the tissue).
+VtuGrid needle_grid(const insertion::IndentationCase& indentation_case, double indenter_displacement);
+
+// depth_um,force_N,contact_area_um2,contact_pressure_MPa,max_contact_pressure_MPa,contact_nodes,strain_energy_J,
+// external_work_J — one row per converged step, starting with the undeformed state (0, 0).
+std::string force_depth_csv(const insertion::IndentationResult& result);
+
+// step,depth_um,newton_iterations,cutbacks,first_residual_N,final_residual_N,assembly_s,solve_s,step_s.
+std::string solver_statistics_csv(const insertion::IndentationResult& result);
+
+// {"puncture_depth_um", "puncture_force_N" (null if none), "criterion" ("critical-pressure" | "fracture-energy" |
+//  "none"), "critical_pressure_MPa", "toughness_J_per_m2" (null when not used)}.
+nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
+                             const insertion::IndentationResult& result);
+
+// Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
+// "strain_energy_J", "external_work_J", "newton_iterations" (arrays, one entry per converged step), "elements",
+// "nodes", "dofs", "law", "element", "contact", "needles", "layers", "mesh_quality", "mesh_seconds",
+// "setup_seconds", "total_seconds".
+nlohmann::json indentation_json(const insertion::IndentationCase& indentation_case,
+                                const insertion::IndentationResult& result);
+
+// Writes DIR/NAME.pvd and DIR/NAME_step_KKK.vtu (tissue) and DIR/NAME_needles_step_KKK.vtu after each step, so that
+// a run that stops keeps every completed step; finish() writes NAME_force_depth.csv, NAME_solver_steps.csv,
+// NAME_puncture.json and NAME_result.json. Every file is written to a temporary name and renamed.
+class IndentationWriter {
+public:
+  IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& indentation_case);
+  void set_mesh(const mesh::TetMesh& tissue);
+  void write_step(const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver);
+  void finish(const insertion::IndentationResult& result);
+  // Every file written so far.
+  const std::vector<std::filesystem::path>& files() const { return files_; }
+
+private:
+  std::filesystem::path directory_;
+  const insertion::IndentationCase& case_;
+  mesh::TetMesh tissue_;
+  std::vector<PvdEntry> tissue_series_;
+  std::vector<PvdEntry> needle_series_;
+  std::vector<std::filesystem::path> files_;
+  void remember(const std::filesystem::path& path);
+};
+
+}  // namespace needlekit::io

@@ -1,0 +1,116 @@
+#include "rigid_surface_distance.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace needlekit::fem::detail {
+
+RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh) : v_(mesh.vertices), t_(mesh.triangles) {
+  const size_t nt = t_.size();
+  face_normal_.resize(nt);
+  vertex_normal_.assign(v_.size(), Eigen::Vector3d::Zero());
+  edge_normal_.resize(nt);
+  tri_lo_.resize(nt);
+  tri_hi_.resize(nt);
+  std::map<std::pair<int, int>, Eigen::Vector3d> edge_sum;
+  lo_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  hi_ = -lo_;
+  for (size_t f = 0; f < nt; ++f) {
+    const auto& t = t_[f];
+    const Eigen::Vector3d n = (v_[t[1]] - v_[t[0]]).cross(v_[t[2]] - v_[t[0]]);
+    face_normal_[f] = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+    tri_lo_[f] = v_[t[0]].cwiseMin(v_[t[1]]).cwiseMin(v_[t[2]]);
+    tri_hi_[f] = v_[t[0]].cwiseMax(v_[t[1]]).cwiseMax(v_[t[2]]);
+    lo_ = lo_.cwiseMin(tri_lo_[f]);
+    hi_ = hi_.cwiseMax(tri_hi_[f]);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e1 = (v_[t[(k + 1) % 3]] - v_[t[k]]).normalized();
+      const Eigen::Vector3d e2 = (v_[t[(k + 2) % 3]] - v_[t[k]]).normalized();
+      const double angle = std::acos(std::clamp(e1.dot(e2), -1.0, 1.0));
+      vertex_normal_[t[k]] += angle * face_normal_[f];
+      const int a = t[k], b = t[(k + 1) % 3];
+      edge_sum[{std::min(a, b), std::max(a, b)}] += face_normal_[f];
+    }
+  }
+  for (auto& n : vertex_normal_)
+    if (n.norm() > 0) n.normalize();
+  for (size_t f = 0; f < nt; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t_[f][k], b = t_[f][(k + 1) % 3];
+      edge_normal_[f][k] = edge_sum[{std::min(a, b), std::max(a, b)}];
+    }
+}
+
+namespace {
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5), with the feature:
+// 0..2 vertex, 3..5 edge (k-3) = (k, k+1), 6 face.
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c, int& feature) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) { feature = 0; return a; }
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) { feature = 1; return b; }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) { feature = 3; return a + d1 / (d1 - d3) * ab; }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) { feature = 2; return c; }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) { feature = 5; return a + d2 / (d2 - d6) * ac; }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    feature = 4;
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  feature = 6;
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+}  // namespace
+
+SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, double reach) const {
+  double best = reach * reach;
+  int best_f = -1, best_feature = 6;
+  Eigen::Vector3d best_p;
+  for (size_t f = 0; f < t_.size(); ++f) {
+    const Eigen::Vector3d d = (tri_lo_[f] - q).cwiseMax(q - tri_hi_[f]).cwiseMax(0.0);
+    if (d.squaredNorm() >= best) continue;
+    int feature;
+    const auto& t = t_[f];
+    const Eigen::Vector3d p = closest_on_triangle(q, v_[t[0]], v_[t[1]], v_[t[2]], feature);
+    const double d2 = (q - p).squaredNorm();
+    if (d2 < best) {
+      best = d2;
+      best_f = static_cast<int>(f);
+      best_feature = feature;
+      best_p = p;
+    }
+  }
+  SignedDistance out;
+  if (best_f < 0) {
+    out.distance = reach;
+    out.normal.setZero();
+    return out;
+  }
+  Eigen::Vector3d pseudo;
+  if (best_feature < 3) pseudo = vertex_normal_[t_[best_f][best_feature]];
+  else if (best_feature < 6) {
+    // edges 3: (a,b) = corner 0-1; 4: (b,c) = 1-2; 5: (a,c) = edge 2-0
+    const int k = best_feature == 3 ? 0 : best_feature == 4 ? 1 : 2;
+    pseudo = edge_normal_[best_f][k];
+  } else pseudo = face_normal_[best_f];
+  const double dist = std::sqrt(best);
+  const Eigen::Vector3d diff = q - best_p;
+  const bool inside = diff.dot(pseudo) < 0;
+  out.distance = inside ? -dist : dist;
+  if (dist > 1e-12 * (hi_ - lo_).norm()) out.normal = inside ? Eigen::Vector3d(-diff / dist) : Eigen::Vector3d(diff / dist);
+  else out.normal = pseudo.normalized();
+  return out;
+}
+
+}  // namespace needlekit::fem::detail

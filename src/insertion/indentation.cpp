@@ -1,0 +1,217 @@
+#include "needlekit/insertion/indentation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::insertion {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double lowest_tip_height(const IndentationCase& indentation_case) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const NeedleSite& site : indentation_case.needles) lowest = std::min(lowest, site.tip_height);
+  return lowest;
+}
+
+std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
+
+IndentationStep step_of(const fem::StepResult& solved, double depth) {
+  IndentationStep step;
+  step.depth = depth;
+  step.needle_force = solved.indenter_force;
+  for (double f : solved.indenter_force) step.force += f;
+  for (double a : solved.contact_area) step.contact_area += a;
+  for (double p : solved.max_contact_pressure) step.max_contact_pressure = std::max(step.max_contact_pressure, p);
+  for (int n : solved.contact_nodes) step.contact_nodes += n;
+  step.contact_pressure = contact_pressure({depth, step.force, step.contact_area, 0.0});  // Eq 3.17: P_s = F/dA
+  step.strain_energy = solved.strain_energy;
+  step.newton_iterations = solved.newton_iterations;
+  step.cutbacks = solved.cutbacks;
+  if (!solved.iterations.empty()) {
+    step.max_residual = solved.iterations.front().residual_norm;
+    step.final_residual = solved.iterations.back().residual_norm;
+  }
+  step.assembly_seconds = solved.assembly_seconds;
+  step.solve_seconds = solved.solve_seconds;
+  step.step_seconds = solved.total_seconds;
+  return step;
+}
+
+}  // namespace
+
+std::string to_string(IndentationStatus status) {
+  switch (status) {
+    case IndentationStatus::Punctured: return "punctured";
+    case IndentationStatus::ReachedDepth: return "reached-depth";
+    case IndentationStatus::SolverFailed: return "solver-failed";
+  }
+  return "unknown";
+}
+
+void validate(const IndentationCase& c) {
+  if (c.needle.triangles.empty() || c.needle.vertices.empty()) {
+    throw InvalidInput("needle: the needle surface mesh is empty, expected a closed triangle mesh");
+  }
+  if (c.needles.empty()) throw InvalidInput("needles: no needle, expected at least one insertion site");
+  for (std::size_t i = 0; i < c.needles.size(); ++i) {
+    const NeedleSite& site = c.needles[i];
+    if (!site.position.allFinite()) {
+      throw InvalidInput(fmt::format("needles[{}]: the position is not finite, expected finite x and y", i));
+    }
+    if (!std::isfinite(site.tip_height) || site.tip_height < 0) {
+      throw InvalidInput(fmt::format("needles[{}].tip_height: {} is below the surface: the needle would start inside "
+                                     "the tissue, expected a tip height >= 0",
+                                     i, um(site.tip_height)));
+    }
+    if (!c.tissue_mesh && !(std::abs(site.position.x()) < c.block.width / 2 &&
+                            std::abs(site.position.y()) < c.block.length / 2)) {
+      throw InvalidInput(fmt::format("needles[{}]: ({}, {}) is outside the {} x {} block, expected |x| < width/2 and "
+                                     "|y| < length/2",
+                                     i, um(site.position.x()), um(site.position.y()), um(c.block.width),
+                                     um(c.block.length)));
+    }
+  }
+  if (!std::isfinite(c.depth) || !(c.depth > 0)) {
+    throw InvalidInput(fmt::format("loading.depth: {} is not positive, expected a depth > 0", um(c.depth)));
+  }
+  if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
+  validate(c.puncture);
+}
+
+std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
+  double tip = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& v : c.needle.vertices) tip = std::max(tip, v.z());
+  std::vector<fem::Indenter> indenters;
+  for (const NeedleSite& site : c.needles) {
+    fem::Indenter indenter;
+    indenter.surface = c.needle;
+    // Half-turn about x (a proper rotation: the outward orientation is kept), tip down at z = tip_height.
+    for (Eigen::Vector3d& v : indenter.surface.vertices) {
+      v = Eigen::Vector3d(v.x() + site.position.x(), -v.y() + site.position.y(), tip - v.z() + site.tip_height);
+    }
+    indenters.push_back(std::move(indenter));
+  }
+  return indenters;
+}
+
+IndentationResult run_indentation(const IndentationCase& c, const IndentationOptions& options) {
+  const Clock::time_point start = Clock::now();
+  validate(c);
+  IndentationResult result;
+  auto report = [&](std::string_view stage, double fraction) {
+    if (!options.progress) return;
+    IndentationProgress progress;
+    progress.stage = std::string(stage);
+    progress.step = static_cast<int>(result.steps.size());
+    progress.steps = c.steps;
+    progress.depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
+    progress.fraction = std::clamp(fraction, 0.0, 1.0);
+    options.progress(progress);
+  };
+
+  mesh::TetMesh tissue;
+  if (c.tissue_mesh) {
+    tissue = *c.tissue_mesh;
+  } else {
+    report("mesh", 0.0);
+    mesh::LayeredBlockOptions block = c.block;
+    block.insertion_sites.clear();
+    for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
+    const Clock::time_point mesh_start = Clock::now();
+    mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
+    tissue = std::move(meshed.mesh);
+    result.quality = std::move(meshed.quality);
+    result.mesh_seconds = seconds_since(mesh_start);  // everything: geometry, meshing, quality, conversion
+  }
+  result.elements = static_cast<int>(tissue.tets.size());
+  if (options.on_mesh) options.on_mesh(tissue);
+
+  report("setup", 0.0);
+  const Clock::time_point setup_start = Clock::now();
+  const double lowest = lowest_tip_height(c);
+  fem::SolverOptions solver_options = c.solver;
+  if (options.progress) {  // Newton iterations move the bar within the current step
+    const auto user_progress = c.solver.progress;
+    solver_options.progress = [&, user_progress](const fem::SolverProgress& p) {
+      if (user_progress) user_progress(p);
+      report("step", (p.target_displacement - lowest) / c.depth - 0.5 / c.steps);
+    };
+  }
+  fem::QuasiStaticSolver solver(tissue, placed_indenters(c), solver_options);
+  result.nodes = static_cast<int>(solver.nodes().size());
+  result.dofs = solver.free_dof_count();
+  result.setup_seconds = seconds_since(setup_start);
+
+  std::vector<PunctureSample> samples;
+  bool failed = false;
+  for (int k = 1; k <= c.steps; ++k) {
+    const double depth = c.depth * k / c.steps;
+    const Clock::time_point step_start = Clock::now();
+    const fem::StepResult solved = solver.advance_to(lowest + depth);
+    const double step_seconds = seconds_since(step_start);
+    if (!solved.converged) {
+      failed = true;
+      result.status = IndentationStatus::SolverFailed;
+      result.reason = fmt::format("load step {} of {} (to depth {}) did not converge: {}; the {} completed step{} "
+                                  "are kept",
+                                  k, c.steps, um(depth), solved.reason, result.steps.size(),
+                                  result.steps.size() == 1 ? "" : "s");
+      break;
+    }
+    IndentationStep step = step_of(solved, depth);
+    // External work of the needles, trapezoidal over the converged steps (the needles move only along z).
+    const double previous_depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
+    const double previous_force = result.steps.empty() ? 0.0 : result.steps.back().force;
+    const double previous_work = result.steps.empty() ? 0.0 : result.steps.back().external_work;
+    step.external_work = previous_work + 0.5 * (previous_force + step.force) * (depth - previous_depth);
+    step.step_seconds = step_seconds;  // wall time of the whole step (the solver's own total leaves out its set-up)
+    result.steps.push_back(step);
+    if (options.on_step) options.on_step(step, solver);
+    report("step", static_cast<double>(k) / c.steps);
+    samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});
+    if (!result.puncture) result.puncture = puncture_point(samples, c.puncture);
+    if (result.puncture && c.stop_at_puncture) break;
+  }
+  if (!failed) {
+    if (result.puncture) {
+      result.status = IndentationStatus::Punctured;
+      result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}",
+                                  to_string(result.puncture->criterion), um(result.puncture->depth),
+                                  result.puncture->force,
+                                  c.stop_at_puncture ? "" : fmt::format("; continued to {}", um(c.depth)));
+    } else {
+      result.status = IndentationStatus::ReachedDepth;
+      result.reason = fmt::format("reached the final depth {} without puncture{}", um(c.depth),
+                                  c.puncture.critical_pressure || c.puncture.toughness
+                                      ? ""
+                                      : " (no puncture criterion given)");
+    }
+  }
+  result.total_seconds = seconds_since(start);
+  return result;
+}
+
+PrePunctureCurve pre_puncture_curve(const IndentationResult& result) {
+  PrePunctureCurve curve;
+  curve.curve.depth.push_back(0.0);
+  curve.curve.force.push_back(0.0);
+  for (const IndentationStep& step : result.steps) {
+    curve.curve.depth.push_back(step.depth);
+    curve.curve.force.push_back(step.force);
+  }
+  curve.puncture = result.puncture;
+  return curve;
+}
+
+}  // namespace needlekit::insertion

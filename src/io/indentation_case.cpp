@@ -1,0 +1,282 @@
+#include "needlekit/io/indentation_case.hpp"
+
+#include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/needle/needle_surface_mesh.hpp"
+#include "toml_config.hpp"
+
+namespace needlekit::io {
+namespace {
+
+using namespace config;  // the TOML reading helpers of toml_config.hpp
+
+constexpr double kDefaultHeight = 1150e-6;  // m, the dissertation's block (§3.3.2, §6.2)
+
+double quantity_at_least_zero(const Section& section, const toml::node& node, std::string_view key,
+                              Dimension dimension, std::string_view meaning) {
+  const double value = quantity_of(section, node, key, dimension);
+  if (!(value >= 0)) {
+    section.fail(node, key, fmt::format("'{}' is negative: {}, expected a {} >= 0", node.as_string()->get(), meaning,
+                                        units::dimension_name(dimension)));
+  }
+  return value;
+}
+
+// ---- [needle] -----------------------------------------------------------------------------------------------------
+
+struct NeedleRead {
+  geometry::TriangleMesh mesh;
+  std::optional<needle::NeedleGeometry> geometry;
+  double tip_height = 0;
+};
+
+NeedleRead read_needle(const Section& section, const toml::table& root, const std::filesystem::path& base) {
+  NeedleRead result;
+  if (const toml::node* node = section.optional("tip_height")) {
+    result.tip_height = quantity_at_least_zero(section, *node, "tip_height", Dimension::Length,
+                                               "the needle would start inside the tissue");
+  }
+  if (const toml::node* mesh_node = section.optional("mesh")) {
+    for (std::string_view key : {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "segments",
+                                 "axial_segments"}) {
+      if (const toml::node* other = section.optional(key)) {
+        section.fail(*other, key, "given together with mesh, expected either a needle mesh or a parametric needle");
+      }
+    }
+    const std::string file = text_of(section, *mesh_node, "mesh", "an STL file name");
+    const toml::node& unit_node = section.required("mesh_unit", "the length unit of the STL coordinates, e.g. \"um\"");
+    const std::string unit_text = text_of(section, unit_node, "mesh_unit", "a length unit, e.g. \"um\"");
+    const double unit =
+        section.at(unit_node, [&] { return units::unit_factor(unit_text, Dimension::Length, section.what("mesh_unit")); });
+    const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base / file;
+    result.mesh = geometry::read_stl(path, unit);
+    const geometry::MeshTopologyReport topology = geometry::topology_report(result.mesh);
+    if (result.mesh.triangles.empty() || !topology.closed || !topology.consistently_oriented) {
+      section.fail(*mesh_node, "mesh",
+                   fmt::format("'{}' is not a closed, consistently oriented surface ({} triangles, {} boundary "
+                               "edges), expected a closed needle surface",
+                               path.string(), result.mesh.triangles.size(), topology.boundary_edges));
+    }
+    if (geometry::signed_volume(result.mesh) < 0) {  // inward normals: flip to outward
+      for (auto& triangle : result.mesh.triangles) std::swap(triangle[1], triangle[2]);
+    }
+    return result;
+  }
+  needle::NeedleGeometry geometry = needle_of(section);
+  validate_at_keys(root, section.file(), section.table(), [&] { needle::validate(geometry, "needle"); });
+  needle::NeedleMeshOptions mesh_options;
+  if (const toml::node* node = section.optional("segments")) {
+    mesh_options.circumferential_segments = integer_at_least(section, *node, "segments", 8);
+  }
+  if (const toml::node* node = section.optional("axial_segments")) {
+    mesh_options.axial_segments = integer_at_least(section, *node, "axial_segments", 1);
+  }
+  result.mesh = needle::needle_surface_mesh(geometry, mesh_options);
+  result.geometry = geometry;
+  return result;
+}
+
+std::vector<insertion::NeedleSite> read_sites(const Section& top, double default_tip_height) {
+  const toml::node* node = top.optional("needles");
+  if (!node) return {insertion::NeedleSite{Eigen::Vector2d::Zero(), default_tip_height}};
+  if (!node->is_array_of_tables() || node->as_array()->empty()) {
+    top.fail(*node, "needles", fmt::format("{} is not an array of tables, expected [[needles]] entries with x, y",
+                                           describe(*node)));
+  }
+  std::vector<insertion::NeedleSite> sites;
+  const toml::array& array = *node->as_array();
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const Section entry = top.subsection(*array.get(i), fmt::format("needles[{}]", i), {"x", "y", "tip_height"});
+    insertion::NeedleSite site;
+    site.tip_height = default_tip_height;
+    if (const toml::node* x = entry.optional("x")) site.position.x() = quantity_of(entry, *x, "x", Dimension::Length);
+    if (const toml::node* y = entry.optional("y")) site.position.y() = quantity_of(entry, *y, "y", Dimension::Length);
+    if (const toml::node* h = entry.optional("tip_height")) {
+      site.tip_height = quantity_at_least_zero(entry, *h, "tip_height", Dimension::Length,
+                                               "the needle would start inside the tissue");
+    }
+    sites.push_back(site);
+  }
+  return sites;
+}
+
+// ---- [tissue] -----------------------------------------------------------------------------------------------------
+
+mesh::TissueLayer read_layer(const Section& tissue, const toml::node& node, std::size_t index, bool last,
+                             bool& rest) {
+  const Section layer = tissue.subsection(node, fmt::format("layers[{}]", index),
+                                          {"name", "thickness", "youngs_modulus", "poisson_ratio"});
+  mesh::TissueLayer result;
+  result.name = text_of(layer, layer.required("name", "a layer name"), "name", "a layer name");
+  const toml::node& thickness = layer.required("thickness", "a length, e.g. \"20 um\", or \"rest\"");
+  rest = thickness.is_string() && thickness.as_string()->get() == "rest";
+  if (rest && !last) {
+    layer.fail(thickness, "thickness", "\"rest\" for a layer that is not the last, expected a length");
+  }
+  if (!rest) result.thickness = positive_quantity_of(layer, thickness, "thickness", Dimension::Length);
+  result.youngs_modulus = positive_quantity(layer, "youngs_modulus", Dimension::Pressure);
+  const toml::node& nu = layer.required("poisson_ratio", "a number in (-1, 0.5), e.g. 0.4");
+  if (!nu.is_number()) {
+    layer.fail(nu, "poisson_ratio", fmt::format("{} is not a number, expected a number in (-1, 0.5)", describe(nu)));
+  }
+  result.poisson_ratio = *nu.value<double>();
+  if (!(result.poisson_ratio > -1 && result.poisson_ratio < 0.5)) {
+    layer.fail(nu, "poisson_ratio",
+               fmt::format("{} is out of range (0.5 is incompressible, which a displacement FE model cannot "
+                           "represent), expected a number in (-1, 0.5)",
+                           describe(nu)));
+  }
+  return result;
+}
+
+void read_tissue(const Section& tissue, mesh::LayeredBlockOptions& block) {
+  if (const toml::node* node = tissue.optional("width")) block.width = positive_quantity_of(tissue, *node, "width", Dimension::Length);
+  if (const toml::node* node = tissue.optional("length")) block.length = positive_quantity_of(tissue, *node, "length", Dimension::Length);
+  std::optional<double> height = optional_positive_quantity(tissue, "height", Dimension::Length);
+  const toml::node* preset_node = tissue.optional("preset");
+  const toml::node* layers_node = tissue.optional("layers");
+  double preset_height = kDefaultHeight;
+  if (preset_node) {
+    const std::string name = text_of(tissue, *preset_node, "preset", "a tissue preset name");
+    const materials::TissuePreset preset =
+        tissue.at(*preset_node, [&] { return materials::tissue_preset(name, tissue.what("preset")); });
+    block.layers = preset.layers;
+    preset_height = preset.height;
+  } else if (!layers_node) {
+    tissue.fail(tissue.table(), "layers",
+                "missing, expected [[tissue.layers]] entries or a preset (e.g. preset = \"skin\")");
+  }
+  bool rest = false;
+  if (layers_node) {
+    if (!layers_node->is_array_of_tables() || layers_node->as_array()->empty()) {
+      tissue.fail(*layers_node, "layers",
+                  fmt::format("{} is not an array of tables, expected [[tissue.layers]] entries", describe(*layers_node)));
+    }
+    const toml::array& array = *layers_node->as_array();
+    block.layers.clear();
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      block.layers.push_back(read_layer(tissue, *array.get(i), i, i + 1 == array.size(), rest));
+    }
+  } else if (preset_node && height) {
+    rest = true;  // a preset's last layer fills the requested height
+  }
+  double above = 0;
+  for (std::size_t i = 0; i + (rest ? 1 : 0) < block.layers.size(); ++i) above += block.layers[i].thickness;
+  if (rest) {
+    const double total = height.value_or(preset_node ? preset_height : kDefaultHeight);
+    if (!(total > above)) {
+      const toml::node& at = height ? *tissue.optional("height") : tissue.table();
+      tissue.fail(at, "height",
+                  fmt::format("{} leaves no room for the last layer below {} of layers, expected a height > {}",
+                              units::format(total, "um"), units::format(above, "um"), units::format(above, "um")));
+    }
+    block.layers.back().thickness = total - above;
+  } else if (height && std::abs(*height - above) > 1e-9 * above) {
+    tissue.fail(*tissue.optional("height"), "height",
+                fmt::format("{} differs from the sum of the layer thicknesses {}, expected the same height or a last "
+                            "layer of thickness \"rest\"",
+                            units::format(*height, "um"), units::format(above, "um")));
+  }
+}
+
+// ---- the rest -----------------------------------------------------------------------------------------------------
+
+void read_mesh(const Section& section, mesh::LayeredBlockOptions& block) {
+  if (auto size = optional_positive_quantity(section, "size_at_tip", Dimension::Length)) block.size_at_site = *size;
+  if (auto size = optional_positive_quantity(section, "size_far", Dimension::Length)) block.size_far = *size;
+  if (auto radius = optional_positive_quantity(section, "refinement_radius", Dimension::Length)) {
+    block.refinement_radius = *radius;
+  }
+  if (const toml::node* node = section.optional("threads")) block.threads = integer_at_least(section, *node, "threads", 0);
+  if (block.size_far < block.size_at_site) {
+    const toml::node& at = section.optional("size_far") ? *section.optional("size_far") : section.table();
+    section.fail(at, "size_far",
+                 fmt::format("{} is smaller than size_at_tip {}, expected size_far >= size_at_tip",
+                             units::format(block.size_far, "um"), units::format(block.size_at_site, "um")));
+  }
+}
+
+void read_model(const Section& section, fem::SolverOptions& solver) {
+  if (const toml::node* node = section.optional("law")) {
+    solver.law = choice_of<fem::MaterialLaw>(section, *node, "law",
+                                             {{"svk", fem::MaterialLaw::StVenantKirchhoff},
+                                              {"st-venant-kirchhoff", fem::MaterialLaw::StVenantKirchhoff},
+                                              {"neo-hookean", fem::MaterialLaw::NeoHookean}});
+  }
+  if (const toml::node* node = section.optional("contact")) {
+    solver.contact = choice_of<fem::ContactModel>(
+        section, *node, "contact", {{"tip-nodes", fem::ContactModel::TipNodes}, {"surface", fem::ContactModel::Surface}});
+  }
+  if (const toml::node* node = section.optional("element")) {
+    solver.order = choice_of<fem::ElementOrder>(
+        section, *node, "element", {{"linear", fem::ElementOrder::Linear}, {"quadratic", fem::ElementOrder::Quadratic}});
+  }
+  if (const toml::node* node = section.optional("boundary")) {
+    solver.boundary = choice_of<fem::BoundaryCondition>(
+        section, *node, "boundary",
+        {{"sides-and-bottom-fixed", fem::BoundaryCondition::SidesAndBottomFixed},
+         {"bottom-fixed", fem::BoundaryCondition::BottomFixed},
+         {"bottom-fixed-sides-roller", fem::BoundaryCondition::BottomFixedSidesRoller}});
+  }
+}
+
+}  // namespace
+
+insertion::IndentationCase parse_indentation_case_toml(std::string_view text, std::string_view source_name,
+                                                       const std::filesystem::path& base_directory) {
+  const std::string file(source_name);
+  const toml::table root = parse_toml(text, file);
+  const Section top(root, "", file, {"name", "needle", "needles", "tissue", "mesh", "loading", "model", "puncture"});
+
+  insertion::IndentationCase result;
+  result.name = std::filesystem::path(file).stem().string();
+  if (const toml::node* node = top.optional("name")) result.name = text_of(top, *node, "name", "a case name");
+  result.solver.law = fem::MaterialLaw::NeoHookean;
+  result.solver.contact = fem::ContactModel::Surface;
+
+  const Section needle = top.required_subsection(
+      "needle", {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "material", "mesh", "mesh_unit",
+                 "tip_height", "segments", "axial_segments"});
+  NeedleRead needle_read = read_needle(needle, root, base_directory);
+  result.needle = std::move(needle_read.mesh);
+  result.geometry = needle_read.geometry;
+  result.needles = read_sites(top, needle_read.tip_height);
+
+  read_tissue(top.required_subsection("tissue", {"width", "length", "height", "preset", "layers"}), result.block);
+  for (std::size_t i = 0; i < result.needles.size(); ++i) {
+    const Eigen::Vector2d p = result.needles[i].position;
+    if (!(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
+      const toml::node& at = top.optional("needles") ? *top.optional("needles")->as_array()->get(i) : root;
+      throw InvalidInput(fmt::format("{} key 'needles[{}]': ({}, {}) is outside the {} x {} block, expected "
+                                     "|x| < width/2 and |y| < length/2",
+                                     location(file, at.source()), i, units::format(p.x(), "um"),
+                                     units::format(p.y(), "um"), units::format(result.block.width, "um"),
+                                     units::format(result.block.length, "um")));
+    }
+  }
+  if (const auto mesh = top.optional_subsection("mesh", {"size_at_tip", "size_far", "refinement_radius", "threads"})) {
+    read_mesh(*mesh, result.block);
+  }
+
+  const Section loading = top.required_subsection("loading", {"depth", "steps", "continue_after_puncture"});
+  result.depth = positive_quantity(loading, "depth", Dimension::Length);
+  if (const toml::node* node = loading.optional("steps")) result.steps = integer_at_least(loading, *node, "steps", 1);
+  if (const toml::node* node = loading.optional("continue_after_puncture")) {
+    result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
+  }
+  if (const auto model = top.optional_subsection("model", {"law", "contact", "element", "boundary"})) {
+    read_model(*model, result.solver);
+  }
+  if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness"})) {
+    result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);
+    result.puncture.toughness = optional_positive_quantity(*puncture, "toughness", Dimension::Stiffness);
+  }
+  validate_at_keys(root, file, root, [&] { insertion::validate(result); });
+  return result;
+}
+
+insertion::IndentationCase read_indentation_case(const std::filesystem::path& path) {
+  return parse_indentation_case_toml(read_text(path), path.string(), path.parent_path());
+}
+
+}  // namespace needlekit::io

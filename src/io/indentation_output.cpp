@@ -1,0 +1,213 @@
+#include "needlekit/io/indentation_output.hpp"
+
+#include <fmt/format.h>
+
+#include <sstream>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/io/result_writers.hpp"
+
+namespace needlekit::io {
+namespace {
+
+nlohmann::json number_or_null(const std::optional<double>& value, double scale) {
+  return value ? nlohmann::json(*value * scale) : nlohmann::json(nullptr);
+}
+
+std::string to_name(fem::MaterialLaw law) { return law == fem::MaterialLaw::NeoHookean ? "neo-hookean" : "svk"; }
+
+}  // namespace
+
+VtuGrid indentation_grid(const fem::QuasiStaticSolver& solver, const mesh::TetMesh& tissue) {
+  VtuGrid grid;
+  grid.points = solver.nodes();
+  const auto& elements = solver.elements();
+  if (elements.size() != tissue.tets.size()) {
+    throw InvalidInput(fmt::format("indentation grid: the solver has {} elements but the tissue mesh {} tetrahedra, "
+                                   "expected the mesh the solver was built from",
+                                   elements.size(), tissue.tets.size()));
+  }
+  grid.cells = elements;
+  grid.cell_types.reserve(elements.size());
+  for (const auto& element : elements) {
+    grid.cell_types.push_back(element.size() == 10 ? VtkCellType::QuadraticTetra : VtkCellType::Tetra);
+  }
+
+  VtuField displacement{"displacement_m", 3, {}};
+  displacement.values.reserve(3 * grid.points.size());
+  for (const Eigen::Vector3d& u : solver.displacement()) displacement.values.insert(displacement.values.end(), {u.x(), u.y(), u.z()});
+  VtuField flag{"contact_flag", 1, {}};
+  for (int f : solver.contact_flag()) flag.values.push_back(f);
+  VtuField pressure{"contact_pressure_Pa", 1, solver.contact_pressure()};
+  grid.point_fields = {std::move(displacement), std::move(flag), std::move(pressure)};
+
+  const fem::ElementFields fields = solver.element_fields();
+  VtuField cauchy{"cauchy_stress_Pa", 9, {}};
+  cauchy.values.reserve(9 * fields.cauchy_stress.size());
+  for (const Eigen::Matrix3d& s : fields.cauchy_stress) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) cauchy.values.push_back(s(i, j));
+    }
+  }
+  VtuField layer{"layer_id", 1, {}}, modulus{"youngs_modulus_Pa", 1, {}}, ratio{"poisson_ratio", 1, {}};
+  for (int id : tissue.tet_layer) {
+    layer.values.push_back(id);
+    modulus.values.push_back(tissue.layers[id].youngs_modulus);
+    ratio.values.push_back(tissue.layers[id].poisson_ratio);
+  }
+  grid.cell_fields = {std::move(cauchy),
+                      {"von_mises_stress_Pa", 1, fields.von_mises_stress},
+                      {"strain_energy_density_J_per_m3", 1, fields.strain_energy_density},
+                      std::move(layer),
+                      std::move(modulus),
+                      std::move(ratio)};
+  return grid;
+}
+
+VtuGrid needle_grid(const insertion::IndentationCase& indentation_case, double indenter_displacement) {
+  VtuGrid grid;
+  VtuField needle{"needle_id", 1, {}};
+  int id = 0;
+  for (const fem::Indenter& indenter : insertion::placed_indenters(indentation_case)) {
+    const int offset = static_cast<int>(grid.points.size());
+    const Eigen::Vector3d shift = indenter_displacement * indenter.direction.normalized();
+    for (const Eigen::Vector3d& v : indenter.surface.vertices) grid.points.push_back(v + shift);
+    for (const auto& t : indenter.surface.triangles) {
+      grid.cells.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+      grid.cell_types.push_back(VtkCellType::Triangle);
+      needle.values.push_back(id);
+    }
+    ++id;
+  }
+  grid.cell_fields.push_back(std::move(needle));
+  return grid;
+}
+
+std::string force_depth_csv(const insertion::IndentationResult& result) {
+  std::ostringstream out;
+  out << "depth_um,force_N,contact_area_um2,contact_pressure_MPa,max_contact_pressure_MPa,contact_nodes,"
+         "strain_energy_J,external_work_J\n";
+  out << "0,0,0,0,0,0,0,0\n";
+  for (const insertion::IndentationStep& s : result.steps) {
+    out << fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g},{:.9g}\n", s.depth * 1e6, s.force,
+                       s.contact_area * 1e12, s.contact_pressure * 1e-6, s.max_contact_pressure * 1e-6,
+                       s.contact_nodes, s.strain_energy, s.external_work);
+  }
+  return out.str();
+}
+
+std::string solver_statistics_csv(const insertion::IndentationResult& result) {
+  std::ostringstream out;
+  out << "step,depth_um,newton_iterations,cutbacks,first_residual_N,final_residual_N,assembly_s,solve_s,step_s\n";
+  for (std::size_t k = 0; k < result.steps.size(); ++k) {
+    const insertion::IndentationStep& s = result.steps[k];
+    out << fmt::format("{},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", k + 1, s.depth * 1e6,
+                       s.newton_iterations, s.cutbacks, s.max_residual, s.final_residual, s.assembly_seconds,
+                       s.solve_seconds, s.step_seconds);
+  }
+  return out.str();
+}
+
+nlohmann::json puncture_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
+  nlohmann::json json;
+  json["puncture_depth_um"] = result.puncture ? nlohmann::json(result.puncture->depth * 1e6) : nlohmann::json(nullptr);
+  json["puncture_force_N"] = result.puncture ? nlohmann::json(result.puncture->force) : nlohmann::json(nullptr);
+  json["criterion"] = insertion::to_string(result.puncture ? result.puncture->criterion : insertion::PunctureCriterion::None);
+  json["critical_pressure_MPa"] = number_or_null(c.puncture.critical_pressure, 1e-6);
+  json["toughness_J_per_m2"] = number_or_null(c.puncture.toughness, 1.0);
+  return json;
+}
+
+nlohmann::json indentation_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
+  nlohmann::json json;
+  json["name"] = c.name;
+  json["status"] = insertion::to_string(result.status);
+  json["reason"] = result.reason;
+  json.update(puncture_json(c, result));
+  std::vector<double> depth, force, pressure, energy, work;
+  std::vector<int> iterations;
+  for (const insertion::IndentationStep& s : result.steps) {
+    depth.push_back(s.depth * 1e6);
+    force.push_back(s.force);
+    pressure.push_back(s.contact_pressure * 1e-6);
+    energy.push_back(s.strain_energy);
+    work.push_back(s.external_work);
+    iterations.push_back(s.newton_iterations);
+  }
+  json["depth_um"] = depth;
+  json["force_N"] = force;
+  json["contact_pressure_MPa"] = pressure;
+  json["strain_energy_J"] = energy;
+  json["external_work_J"] = work;
+  json["newton_iterations"] = iterations;
+  json["elements"] = result.elements;
+  json["nodes"] = result.nodes;
+  json["dofs"] = result.dofs;
+  json["law"] = to_name(c.solver.law);
+  json["element"] = c.solver.order == fem::ElementOrder::Quadratic ? "quadratic" : "linear";
+  json["contact"] = c.solver.contact == fem::ContactModel::Surface ? "surface" : "tip-nodes";
+  nlohmann::json needles = nlohmann::json::array();
+  for (const insertion::NeedleSite& site : c.needles) {
+    needles.push_back({{"x_um", site.position.x() * 1e6}, {"y_um", site.position.y() * 1e6},
+                       {"tip_height_um", site.tip_height * 1e6}});
+  }
+  json["needles"] = needles;
+  nlohmann::json layers = nlohmann::json::array();
+  for (const mesh::TissueLayer& layer : c.block.layers) {
+    layers.push_back({{"name", layer.name}, {"thickness_um", layer.thickness * 1e6},
+                      {"youngs_modulus_MPa", layer.youngs_modulus * 1e-6}, {"poisson_ratio", layer.poisson_ratio}});
+  }
+  json["layers"] = layers;
+  nlohmann::json quality = nlohmann::json::array();
+  for (const mesh::LayerQuality& q : result.quality) {
+    quality.push_back({{"layer", q.name}, {"tets", q.tets}, {"min_quality", q.min_quality},
+                       {"mean_quality", q.mean_quality}});
+  }
+  json["mesh_quality"] = quality;
+  json["mesh_seconds"] = result.mesh_seconds;
+  json["setup_seconds"] = result.setup_seconds;
+  json["total_seconds"] = result.total_seconds;
+  return json;
+}
+
+IndentationWriter::IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& c)
+    : directory_(std::move(directory)), case_(c) {
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error) throw IoError(fmt::format("{}: cannot create the output directory: {}", directory_.string(), error.message()));
+}
+
+void IndentationWriter::set_mesh(const mesh::TetMesh& tissue) { tissue_ = tissue; }
+
+void IndentationWriter::remember(const std::filesystem::path& path) {
+  if (std::find(files_.begin(), files_.end(), path) == files_.end()) files_.push_back(path);
+}
+
+void IndentationWriter::write_step(const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
+  const int k = static_cast<int>(tissue_series_.size()) + 1;
+  const std::string tissue_name = fmt::format("{}_step_{:03d}.vtu", case_.name, k);
+  const std::string needle_name = fmt::format("{}_needles_step_{:03d}.vtu", case_.name, k);
+  write_vtu(indentation_grid(solver, tissue_), directory_ / tissue_name);
+  write_vtu(needle_grid(case_, solver.indenter_displacement()), directory_ / needle_name);
+  tissue_series_.push_back({step.depth * 1e6, tissue_name});
+  needle_series_.push_back({step.depth * 1e6, needle_name});
+  write_pvd(tissue_series_, directory_ / (case_.name + ".pvd"));
+  write_pvd(needle_series_, directory_ / (case_.name + "_needles.pvd"));
+  for (const std::string& name : {tissue_name, needle_name, case_.name + ".pvd", case_.name + "_needles.pvd"}) {
+    remember(directory_ / name);
+  }
+}
+
+void IndentationWriter::finish(const insertion::IndentationResult& result) {
+  const auto write = [&](const std::string& suffix, const std::string& content) {
+    const std::filesystem::path path = directory_ / (case_.name + suffix);
+    write_text_file_atomically(path, content);
+    remember(path);
+  };
+  write("_force_depth.csv", force_depth_csv(result));
+  write("_solver_steps.csv", solver_statistics_csv(result));
+  write("_puncture.json", puncture_json(case_, result).dump(2) + "\n");
+  write("_result.json", indentation_json(case_, result).dump(2) + "\n");
+}
+
+}  // namespace needlekit::io

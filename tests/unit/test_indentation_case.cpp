@@ -1,0 +1,231 @@
+// Indentation case files: a full case parses to SI values, presets and "rest" layers fill the block, several needles
+// are placed tip-down, and every bad input is an InvalidInput naming FILE:LINE and the key.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/needle/needle_surface_mesh.hpp"
+#include "../support/test_text.hpp"
+
+using namespace needlekit;
+using testing::HasSubstr;
+
+namespace {
+
+// Line numbers matter: the error cases below name them.
+constexpr std::string_view kCase = R"(name = "punch"
+[needle]
+shape = "cylinder"
+tip_diameter = "230 um"
+length = "1000 um"
+
+[tissue]
+width = "3000 um"
+length = "3000 um"
+[[tissue.layers]]
+name = "stratum corneum"
+thickness = "20 um"
+youngs_modulus = "100 MPa"
+poisson_ratio = 0.4
+[[tissue.layers]]
+name = "rest"
+thickness = "rest"
+youngs_modulus = "0.08 MPa"
+poisson_ratio = 0.4
+
+[mesh]
+size_at_tip = "20 um"
+size_far = "250 um"
+
+[loading]
+depth = "200 um"
+steps = 20
+
+[model]
+law = "svk"
+contact = "tip-nodes"
+element = "quadratic"
+
+[puncture]
+critical_pressure = "0.663 MPa"
+toughness = "100 J/m2"
+)";
+
+using test::replaced;
+
+insertion::IndentationCase parse(std::string_view text) { return io::parse_indentation_case_toml(text, "case.toml"); }
+
+// The message of the InvalidInput that parsing `text` throws.
+std::string error_of(std::string_view text) {
+  try {
+    parse(text);
+  } catch (const InvalidInput& error) {
+    return error.what();
+  } catch (const IoError& error) {
+    return std::string("IoError: ") + error.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return "";
+}
+
+TEST(IndentationCase, ParsesEverySection) {
+  const insertion::IndentationCase c = parse(kCase);
+  EXPECT_EQ(c.name, "punch");
+  ASSERT_TRUE(c.geometry.has_value());
+  EXPECT_DOUBLE_EQ(c.geometry->tip_diameter, 230e-6);
+  EXPECT_DOUBLE_EQ(c.geometry->base_diameter, 230e-6);
+  EXPECT_FALSE(c.needle.triangles.empty());
+  ASSERT_EQ(c.needles.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.needles[0].tip_height, 0.0);
+  ASSERT_EQ(c.block.layers.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.block.layers[0].thickness, 20e-6);
+  EXPECT_NEAR(c.block.layers[1].thickness, 1130e-6, 1e-15);  // "rest" of the default 1150 um block
+  EXPECT_DOUBLE_EQ(c.block.layers[1].youngs_modulus, 0.08e6);
+  EXPECT_DOUBLE_EQ(c.block.size_at_site, 20e-6);
+  EXPECT_DOUBLE_EQ(c.depth, 200e-6);
+  EXPECT_EQ(c.steps, 20);
+  EXPECT_EQ(c.solver.law, fem::MaterialLaw::StVenantKirchhoff);
+  EXPECT_EQ(c.solver.contact, fem::ContactModel::TipNodes);
+  EXPECT_EQ(c.solver.order, fem::ElementOrder::Quadratic);
+  EXPECT_DOUBLE_EQ(*c.puncture.critical_pressure, 0.663e6);
+  EXPECT_DOUBLE_EQ(*c.puncture.toughness, 100.0);
+  EXPECT_TRUE(c.stop_at_puncture);
+}
+
+TEST(IndentationCase, PresetsHeightsAndArrays) {
+  // The skin preset in a taller block, and two needles.
+  const std::string text = R"([needle]
+shape = "cone"
+tip_diameter = "30 um"
+base_diameter = "230 um"
+length = "1000 um"
+[[needles]]
+x = "-800 um"
+y = "-800 um"
+[[needles]]
+x = "800 um"
+y = "-800 um"
+tip_height = "10 um"
+[tissue]
+preset = "skin"
+height = "2000 um"
+[loading]
+depth = "200 um"
+)";
+  const insertion::IndentationCase c = parse(text);
+  EXPECT_EQ(c.name, "case");
+  ASSERT_EQ(c.block.layers.size(), 3u);
+  double total = 0;
+  for (const auto& layer : c.block.layers) total += layer.thickness;
+  EXPECT_NEAR(total, 2000e-6, 1e-12);
+  EXPECT_DOUBLE_EQ(c.block.layers[0].thickness, 20e-6);
+  ASSERT_EQ(c.needles.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.needles[1].position.x(), 800e-6);
+  EXPECT_DOUBLE_EQ(c.needles[1].tip_height, 10e-6);
+  // Defaults: neo-Hookean, surface contact, linear elements.
+  EXPECT_EQ(c.solver.law, fem::MaterialLaw::NeoHookean);
+  EXPECT_EQ(c.solver.contact, fem::ContactModel::Surface);
+
+  // Placed tip-down: the lowest vertex of each needle is its tip, at the tip height, above the site.
+  const auto indenters = insertion::placed_indenters(c);
+  ASSERT_EQ(indenters.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    double lowest = 1, highest = -1;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const auto& v : indenters[i].surface.vertices) {
+      lowest = std::min(lowest, v.z());
+      highest = std::max(highest, v.z());
+      centre += v.head<2>();
+    }
+    centre /= static_cast<double>(indenters[i].surface.vertices.size());
+    EXPECT_NEAR(lowest, c.needles[i].tip_height, 1e-15);
+    EXPECT_NEAR(highest, c.needles[i].tip_height + 1000e-6, 1e-12);
+    EXPECT_NEAR((centre - c.needles[i].position).norm(), 0, 1e-6);
+    EXPECT_GT(geometry::signed_volume(indenters[i].surface), 0);  // still outward-oriented
+  }
+}
+
+TEST(IndentationCase, NeedleFromStl) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "needlekit-case-stl";
+  std::filesystem::create_directories(dir);
+  const needle::NeedleGeometry cone{needle::Shape::Cone, 30e-6, 230e-6, 0, 1000e-6};
+  geometry::write_stl(needle::needle_surface_mesh(cone), dir / "cone.stl", 1e6);  // in um
+  const std::string text = replaced(kCase, "shape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1000 um\"",
+                                    "mesh = \"cone.stl\"\nmesh_unit = \"um\"");
+  std::ofstream(dir / "case.toml") << text;
+  const insertion::IndentationCase c = io::read_indentation_case(dir / "case.toml");
+  EXPECT_FALSE(c.geometry.has_value());
+  EXPECT_NEAR(geometry::signed_volume(c.needle), needle::volume(cone), 2e-3 * needle::volume(cone));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(IndentationCase, ErrorsNameFileLineAndKey) {
+  // Zero and negative layer thickness.
+  EXPECT_THAT(error_of(replaced(kCase, "thickness = \"20 um\"", "thickness = \"0 um\"")),
+              HasSubstr("case.toml:12: key 'tissue.layers[0].thickness': '0 um' is not positive"));
+  EXPECT_THAT(error_of(replaced(kCase, "thickness = \"20 um\"", "thickness = \"-5 um\"")),
+              HasSubstr("case.toml:12: key 'tissue.layers[0].thickness'"));
+  // nu >= 0.5.
+  EXPECT_THAT(error_of(replaced(kCase, "poisson_ratio = 0.4", "poisson_ratio = 0.5")),
+              HasSubstr("case.toml:14: key 'tissue.layers[0].poisson_ratio': 0.5 is out of range"));
+  // A needle that starts inside the tissue.
+  EXPECT_THAT(error_of(replaced(kCase, "length = \"1000 um\"", "length = \"1000 um\"\ntip_height = \"-10 um\"")),
+              HasSubstr("case.toml:6: key 'needle.tip_height': '-10 um' is negative: the needle would start inside "
+                        "the tissue"));
+  // Unknown law and contact.
+  EXPECT_THAT(error_of(replaced(kCase, "law = \"svk\"", "law = \"mooney\"")),
+              HasSubstr("case.toml:30: key 'model.law': unknown value 'mooney', expected one of: svk"));
+  EXPECT_THAT(error_of(replaced(kCase, "contact = \"tip-nodes\"", "contact = \"node\"")),
+              HasSubstr("case.toml:31: key 'model.contact': unknown value 'node'"));
+  // Bare numbers for dimensional values.
+  EXPECT_THAT(error_of(replaced(kCase, "depth = \"200 um\"", "depth = 200")),
+              HasSubstr("case.toml:26: key 'loading.depth': 200 is a bare number without a unit"));
+  EXPECT_THAT(error_of(replaced(kCase, "youngs_modulus = \"100 MPa\"", "youngs_modulus = 100e6")),
+              HasSubstr("case.toml:13: key 'tissue.layers[0].youngs_modulus': 100000000 is a bare number"));
+  EXPECT_THAT(error_of(replaced(kCase, "critical_pressure = \"0.663 MPa\"", "critical_pressure = 0.663")),
+              HasSubstr("key 'puncture.critical_pressure': 0.663 is a bare number"));
+  // "rest" not last; unknown key; missing depth; a needle outside the block; steps < 1.
+  EXPECT_THAT(error_of(replaced(kCase, "thickness = \"20 um\"", "thickness = \"rest\"")),
+              HasSubstr("key 'tissue.layers[0].thickness': \"rest\" for a layer that is not the last"));
+  EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "stepz = 20")), HasSubstr("unknown key 'loading.stepz'"));
+  EXPECT_THAT(error_of(replaced(kCase, "depth = \"200 um\"\n", "")), HasSubstr("key 'loading.depth': missing"));
+  EXPECT_THAT(error_of(replaced(kCase, "[tissue]", "[[needles]]\nx = \"2000 um\"\n[tissue]")),
+              HasSubstr("key 'needles[0]': (2000 um, 0 um) is outside the 3000 um x 3000 um block"));
+  EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 0")),
+              HasSubstr("key 'loading.steps': 0 is out of range, expected an integer >= 1"));
+  EXPECT_THAT(error_of(replaced(kCase, "size_far = \"250 um\"", "size_far = \"10 um\"")),
+              HasSubstr("key 'mesh.size_far': 10 um is smaller than size_at_tip 20 um"));
+  EXPECT_THAT(error_of(replaced(kCase, "width = \"3000 um\"", "width = \"3000 um\"\npreset = \"liver\"")),
+              HasSubstr("key 'tissue.preset': unknown tissue preset 'liver'"));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(IndentationCase, EveryIndentExampleParses) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(NEEDLEKIT_SOURCE_DIR) / "examples")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("indent_", 0) != 0) continue;
+    SCOPED_TRACE(name);
+    const insertion::IndentationCase c = io::read_indentation_case(entry.path());
+    EXPECT_GT(c.depth, 0);
+    EXPECT_FALSE(c.block.layers.empty());
+    ++count;
+  }
+  EXPECT_GE(count, 7);
+  const insertion::IndentationCase four =
+      io::read_indentation_case(std::filesystem::path(NEEDLEKIT_SOURCE_DIR) / "examples/indent_fig_6_3_four_needles.toml");
+  ASSERT_EQ(four.needles.size(), 4u);
+  EXPECT_NEAR((four.needles[1].position - four.needles[0].position).norm(), 1600e-6, 1e-12);  // Fig 6.3
+  EXPECT_DOUBLE_EQ(four.block.layers[0].youngs_modulus, 1e9);
+}
+
+}  // namespace

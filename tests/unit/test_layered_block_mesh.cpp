@@ -1,0 +1,146 @@
+// The Gmsh layered block: layer volumes are exact (conforming planar interfaces), elements are right-handed and well
+// shaped in the thin stratum corneum, the mesh is refined at the insertion sites, and bad options are rejected by
+// name.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/mesh/mesh_validation.hpp"
+
+using namespace needlekit;
+using testing::HasSubstr;
+
+namespace {
+
+// A small skin block (600 x 500 um, default §3.3.2 layers but 400 um tall) that meshes in well under a second.
+mesh::LayeredBlockOptions small_skin_block() {
+  mesh::LayeredBlockOptions o;
+  o.width = 600e-6;
+  o.length = 500e-6;
+  o.layers = materials::skin_layers();
+  o.layers[2].thickness = 240e-6;
+  o.size_at_site = 30e-6;
+  o.refinement_radius = 80e-6;
+  o.size_far = 120e-6;
+  o.threads = 1;
+  return o;
+}
+
+}  // namespace
+
+TEST(LayeredBlockMesh, LayerVolumesAreWidthTimesLengthTimesThickness) {
+  const mesh::LayeredBlockOptions o = small_skin_block();
+  const mesh::LayeredBlockResult r = mesh::layered_block_mesh(o);
+  ASSERT_EQ(r.mesh.layers.size(), 3u);
+  ASSERT_EQ(r.quality.size(), 3u);
+  std::vector<double> volume(3, 0.0);
+  const auto& m = r.mesh;
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    const auto& t = m.tets[e];
+    const double v = mesh::signed_volume(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]);
+    EXPECT_GT(v, 0) << "tet " << e << " is not right-handed";
+    volume[m.tet_layer[e]] += v;
+  }
+  double total = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double expected = o.width * o.length * o.layers[i].thickness;
+    EXPECT_NEAR(volume[i], expected, 1e-9 * expected) << o.layers[i].name;
+    EXPECT_EQ(r.quality[i].name, o.layers[i].name);
+    EXPECT_GT(r.quality[i].tets, 0);
+    total += volume[i];
+  }
+  EXPECT_NEAR(total, o.width * o.length * 400e-6, 1e-9 * total);
+  // Every node lies in the block; each layer's elements lie between its interfaces.
+  const double top[] = {0, -20e-6, -160e-6}, bottom[] = {-20e-6, -160e-6, -400e-6};
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    for (int k : m.tets[e]) {
+      const double z = m.nodes[k].z();
+      ASSERT_LE(z, top[m.tet_layer[e]] + 1e-12);
+      ASSERT_GE(z, bottom[m.tet_layer[e]] - 1e-12);
+    }
+  }
+  // The insertion site is a mesh node.
+  bool site = false;
+  for (const auto& p : m.nodes) site = site || p.norm() < 1e-12;
+  EXPECT_TRUE(site);
+}
+
+TEST(LayeredBlockMesh, ThinStratumCorneumIsWellShaped) {
+  const mesh::LayeredBlockResult r = mesh::layered_block_mesh(small_skin_block());
+  for (const mesh::LayerQuality& q : r.quality) {
+    EXPECT_GT(q.min_quality, 0.1) << q.name;
+    EXPECT_GT(q.mean_quality, 0.6) << q.name;
+  }
+  EXPECT_TRUE(mesh::tet_mesh_check(r.mesh).valid());
+}
+
+TEST(LayeredBlockMesh, RefinesAtEachInsertionSite) {
+  mesh::LayeredBlockOptions o = small_skin_block();
+  o.layers = {{"phantom", 300e-6, 0.2e6, 0.49}};
+  o.insertion_sites = {{-150e-6, 0}, {150e-6, 0}};
+  o.size_at_site = 20e-6;
+  o.refinement_radius = 40e-6;
+  o.size_far = 150e-6;
+  const mesh::LayeredBlockResult r = mesh::layered_block_mesh(o);
+  // Mean edge length of the elements touching each site vs the elements far from both (x ~ 0 is between them and
+  // 150 um away, the corners are farther).
+  auto mean_edge = [&](auto&& select) {
+    double sum = 0;
+    int n = 0;
+    for (const auto& t : r.mesh.tets) {
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (int k : t) c += r.mesh.nodes[k] / 4;
+      if (!select(c)) continue;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) sum += (r.mesh.nodes[t[a]] - r.mesh.nodes[t[b]]).norm(), ++n;
+    }
+    return n ? sum / n : 0.0;
+  };
+  for (double x : {-150e-6, 150e-6}) {
+    const double near = mean_edge([&](const Eigen::Vector3d& c) { return (c - Eigen::Vector3d(x, 0, 0)).norm() < 30e-6; });
+    EXPECT_GT(near, 0);
+    EXPECT_LT(near, 1.5 * o.size_at_site) << "site x = " << x;
+  }
+  const double far = mean_edge([](const Eigen::Vector3d& c) { return c.z() < -200e-6 && std::abs(c.y()) > 150e-6; });
+  EXPECT_GT(far, 3 * o.size_at_site);
+}
+
+TEST(LayeredBlockMesh, RejectsBadOptionsByName) {
+  mesh::LayeredBlockOptions o = small_skin_block();
+  o.layers[1].thickness = 0;
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("layers[1] (\"epidermis\").thickness: 0 um")));
+  o = small_skin_block();
+  o.layers[0].thickness = -5e-6;
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("thickness: -5 um; expected a positive thickness")));
+  o = small_skin_block();
+  o.size_far = 10e-6;
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); }, testing::ThrowsMessage<InvalidInput>(HasSubstr("size_far")));
+  o = small_skin_block();
+  o.insertion_sites = {{400e-6, 0}};
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("insertion site 0 at (400, 0) um")));
+  o = small_skin_block();
+  o.layers[2].poisson_ratio = 0.5;
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); }, testing::ThrowsMessage<InvalidInput>(HasSubstr("poisson_ratio")));
+}
+
+TEST(LayeredBlockMesh, DefaultsAreTheDissertationSkin) {
+  const mesh::LayeredBlockOptions o;
+  EXPECT_DOUBLE_EQ(o.width, 3000e-6);
+  EXPECT_DOUBLE_EQ(o.length, 3000e-6);
+  const auto skin = materials::skin_layers();
+  ASSERT_EQ(skin.size(), 3u);
+  EXPECT_DOUBLE_EQ(skin[0].thickness, 20e-6);
+  EXPECT_DOUBLE_EQ(skin[0].thickness + skin[1].thickness, 160e-6);
+  EXPECT_NEAR(skin[0].thickness + skin[1].thickness + skin[2].thickness, 1150e-6, 1e-18);
+  EXPECT_DOUBLE_EQ(skin[0].youngs_modulus, 100e6);
+  EXPECT_DOUBLE_EQ(skin[1].youngs_modulus, 0.134e6);
+  EXPECT_DOUBLE_EQ(skin[2].youngs_modulus, 0.08e6);
+  for (const auto& l : skin) EXPECT_DOUBLE_EQ(l.poisson_ratio, 0.4);
+}

@@ -1,0 +1,188 @@
+// The indentation runner (§3.4-3.5) end to end on coarse Gmsh blocks: a flat punch follows Sneddon's half-space
+// solution, the needles' work is stored as strain energy, the run stops at the step where the critical pressure is
+// crossed, a solver failure keeps the completed steps, and the ParaView files read back with meshio.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/insertion/indentation.hpp"
+#include "needlekit/io/indentation_output.hpp"
+#include "needlekit/needle/needle_surface_mesh.hpp"
+#include "../support/test_text.hpp"
+
+using namespace needlekit;
+using testing::HasSubstr;
+
+namespace {
+
+constexpr double kE = 0.2e6, kNu = 0.49, kRadius = 115e-6;  // §6.2 silicone rubber, 230 um punch
+
+// A 230 um flat cylinder into a homogeneous block (silicone rubber unless told), coarse enough for a test.
+insertion::IndentationCase flat_punch_case(double height, double depth, int steps, double nu = kNu) {
+  insertion::IndentationCase c;
+  c.name = "punch";
+  needle::NeedleGeometry cylinder{needle::Shape::Cylinder, 2 * kRadius, 2 * kRadius, 0, 1000e-6};
+  c.geometry = cylinder;
+  c.needle = needle::needle_surface_mesh(cylinder, {32, 4});
+  c.block.width = 3000e-6;
+  c.block.length = 3000e-6;
+  c.block.layers = {{"silicone rubber", height, kE, nu}};
+  c.block.size_at_site = 40e-6;
+  c.block.refinement_radius = 250e-6;
+  c.block.size_far = 500e-6;
+  c.block.threads = 1;
+  c.depth = depth;
+  c.steps = steps;
+  c.solver.law = fem::MaterialLaw::NeoHookean;
+  c.solver.contact = fem::ContactModel::TipNodes;
+  c.solver.order = fem::ElementOrder::Linear;
+  return c;
+}
+
+double sneddon_force(double depth, double nu = kNu) { return 2 * kRadius * kE * depth / (1 - nu * nu); }  // Sneddon
+
+// Linear tetrahedra at nu = 0.3 (no locking) keep this test fast; the nu = 0.49 quadratic case is the flat-punch
+// example's test (tests/example/test_indent_cli.cpp).
+TEST(Indentation, FlatPunchFollowsSneddonAndStoresTheWork) {
+  constexpr double nu = 0.3;
+  const insertion::IndentationCase c = flat_punch_case(3000e-6, 10e-6, 2, nu);
+  int progress_calls = 0;
+  insertion::IndentationOptions options;
+  options.progress = [&](const insertion::IndentationProgress& p) {
+    EXPECT_GE(p.fraction, 0.0);
+    EXPECT_LE(p.fraction, 1.0);
+    ++progress_calls;
+  };
+  const insertion::IndentationResult result = insertion::run_indentation(c, options);
+  ASSERT_EQ(result.status, insertion::IndentationStatus::ReachedDepth) << result.reason;
+  ASSERT_EQ(result.steps.size(), 2u);
+  EXPECT_GT(progress_calls, 2);
+  EXPECT_GT(result.elements, 1000);
+  for (const insertion::IndentationStep& step : result.steps) {
+    // Finite block (26 a deep, 13 a to the fixed sides) and a coarse mesh: within 12 % of the half-space.
+    EXPECT_NEAR(step.force / sneddon_force(step.depth, nu), 1.0, 0.12) << "depth " << step.depth;
+    // Quasi-static, conservative: the work of the needle is stored (trapezoidal work, 2 steps: ~1e-3).
+    EXPECT_NEAR(step.external_work / step.strain_energy, 1.0, 0.02);
+    // The contact area is the punch face (tributary areas of the nodes under it).
+    EXPECT_NEAR(step.contact_area / (M_PI * kRadius * kRadius), 1.0, 0.35);
+  }
+  EXPECT_NEAR(result.steps[1].force / result.steps[0].force, 2.0, 0.02);  // linear at small depth
+  const insertion::PrePunctureCurve curve = insertion::pre_puncture_curve(result);
+  ASSERT_EQ(curve.curve.depth.size(), 3u);
+  EXPECT_EQ(curve.curve.depth[0], 0.0);
+  EXPECT_FALSE(curve.puncture.has_value());
+}
+
+TEST(Indentation, StopsAtTheStepThatCrossesTheCriticalPressure) {
+  insertion::IndentationCase c = flat_punch_case(1150e-6, 40e-6, 8);
+  // P = F/A grows about linearly; pick P_c at 60 % of the Sneddon pressure at full depth.
+  c.puncture.critical_pressure = 0.6 * sneddon_force(c.depth) / (M_PI * kRadius * kRadius);
+  const insertion::IndentationResult result = insertion::run_indentation(c);
+  ASSERT_EQ(result.status, insertion::IndentationStatus::Punctured) << result.reason;
+  ASSERT_TRUE(result.puncture.has_value());
+  EXPECT_EQ(result.puncture->criterion, insertion::PunctureCriterion::CriticalPressure);
+  ASSERT_GE(result.steps.size(), 2u);
+  EXPECT_LT(result.steps.size(), 8u);  // stopped before the final depth
+  const auto& last = result.steps.back();
+  const auto& before = result.steps[result.steps.size() - 2];
+  EXPECT_GE(last.contact_pressure, *c.puncture.critical_pressure);
+  EXPECT_LT(before.contact_pressure, *c.puncture.critical_pressure);
+  EXPECT_GT(result.puncture->depth, before.depth);
+  EXPECT_LE(result.puncture->depth, last.depth);
+  EXPECT_GT(result.puncture->force, before.force);
+  EXPECT_LE(result.puncture->force, last.force);
+  EXPECT_THAT(result.reason, HasSubstr("critical-pressure"));
+}
+
+TEST(Indentation, SolverFailureKeepsTheCompletedSteps) {
+  insertion::IndentationCase c = flat_punch_case(1150e-6, 20e-6, 4);
+  c.solver.max_iterations = 1;  // Newton cannot converge in one iteration of a nonlinear step
+  c.solver.max_cutbacks = 0;
+  const insertion::IndentationResult result = insertion::run_indentation(c);
+  ASSERT_EQ(result.status, insertion::IndentationStatus::SolverFailed);
+  EXPECT_THAT(result.reason, HasSubstr("load step "));
+  EXPECT_THAT(result.reason, HasSubstr("did not converge"));
+  EXPECT_LT(result.steps.size(), 4u);
+  EXPECT_GT(result.elements, 0);
+}
+
+TEST(Indentation, RejectsANeedleInsideTheTissue) {
+  insertion::IndentationCase c = flat_punch_case(1150e-6, 20e-6, 4);
+  c.needles[0].tip_height = -5e-6;
+  EXPECT_THAT([&] { insertion::run_indentation(c); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("needles[0].tip_height")));
+}
+
+// meshio's view of a .vtu: field names with their shapes and value ranges, and the cell types.
+nlohmann::json summary_with_meshio(const std::filesystem::path& file) {
+  const auto script = file.parent_path() / "summary.py";
+  std::ofstream(script) << R"(import json, sys, meshio
+m = meshio.read(sys.argv[1])
+def s(v): return {"shape": list(v.shape), "min": float(v.min()), "max": float(v.max())}
+print(json.dumps({
+  "points": len(m.points),
+  "cells": {b.type: len(b.data) for b in m.cells},
+  "point_data": {k: s(v) for k, v in m.point_data.items()},
+  "cell_data": {k: s(v[0]) for k, v in m.cell_data.items()},
+  "contact_uz": s(m.point_data["displacement_m"][m.point_data["contact_flag"].ravel() > 0, 2])
+      if "contact_flag" in m.point_data else None,
+}))
+)";
+  return nlohmann::json::parse(test::command_output("/usr/bin/python3 " + script.string() + " " + file.string()));
+}
+
+TEST(Indentation, ParaViewSeriesReadsBackWithMeshio) {
+  insertion::IndentationCase c = flat_punch_case(1150e-6, 10e-6, 2);
+  c.block.layers = {{"stiff top", 100e-6, 1e6, 0.4}, {"soft", 1050e-6, kE, kNu}};
+  const auto dir = std::filesystem::temp_directory_path() / ("needlekit-indent-vtu-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  io::IndentationWriter writer(dir, c);
+  insertion::IndentationOptions options;
+  options.on_mesh = [&](const mesh::TetMesh& tissue) { writer.set_mesh(tissue); };
+  options.on_step = [&](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
+    writer.write_step(step, solver);
+  };
+  const insertion::IndentationResult result = insertion::run_indentation(c, options);
+  writer.finish(result);
+  ASSERT_EQ(result.steps.size(), 2u) << result.reason;
+  ASSERT_TRUE(std::filesystem::exists(dir / "punch.pvd"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "punch_force_depth.csv"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "punch_puncture.json"));
+
+  const nlohmann::json vtu = summary_with_meshio(dir / "punch_step_002.vtu");
+  EXPECT_EQ(vtu["points"].get<int>(), result.nodes);
+  EXPECT_EQ(vtu["cells"]["tetra"].get<int>(), result.elements);
+  // The nodes under the punch moved down with it by the full depth.
+  EXPECT_NEAR(vtu["contact_uz"]["min"].get<double>(), -10e-6, 1e-12);
+  EXPECT_NEAR(vtu["contact_uz"]["max"].get<double>(), -10e-6, 1e-12);
+  EXPECT_EQ(vtu["point_data"]["displacement_m"]["shape"][1].get<int>(), 3);
+  EXPECT_EQ(vtu["point_data"]["contact_flag"]["max"].get<double>(), 1.0);
+  EXPECT_GT(vtu["point_data"]["contact_pressure_Pa"]["max"].get<double>(), 0.0);
+  EXPECT_EQ(vtu["cell_data"]["cauchy_stress_Pa"]["shape"][1].get<int>(), 9);
+  EXPECT_GT(vtu["cell_data"]["von_mises_stress_Pa"]["max"].get<double>(), 0.0);
+  EXPECT_GT(vtu["cell_data"]["strain_energy_density_J_per_m3"]["max"].get<double>(), 0.0);
+  EXPECT_EQ(vtu["cell_data"]["layer_id"]["min"].get<double>(), 0.0);
+  EXPECT_EQ(vtu["cell_data"]["layer_id"]["max"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(vtu["cell_data"]["youngs_modulus_Pa"]["max"].get<double>(), 1e6);
+  EXPECT_DOUBLE_EQ(vtu["cell_data"]["youngs_modulus_Pa"]["min"].get<double>(), kE);
+  EXPECT_DOUBLE_EQ(vtu["cell_data"]["poisson_ratio"]["max"].get<double>(), kNu);
+
+  const nlohmann::json needles = summary_with_meshio(dir / "punch_needles_step_002.vtu");
+  EXPECT_GT(needles["cells"]["triangle"].get<int>(), 0);
+
+  std::ifstream csv(dir / "punch_force_depth.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_THAT(header, HasSubstr("depth_um,force_N,"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
