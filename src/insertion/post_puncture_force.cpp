@@ -45,10 +45,72 @@ double clipped_load(const LoadedTriangle& t, double h) {
   return full_load(t) - t.weight * t.area * u0 * u1 * (3 * f2 + u0 * (f0 - f2) + u1 * (f1 - f2)) / 3.0;
 }
 
-// Algorithm 3.1 for one β-triangle: the loads δ/R at its vertices (before the cap) and its Fig 3.9 case.
-struct BetaLoad {
-  std::array<double, 3> delta{};
-  BetaCase beta_case = BetaCase::NoVertexOnTip;
+// The support function of the tip's footprint (the tip vertices projected on the plane normal to d, relative to the
+// axis): x_open(e) = max_j r_j·e, by a binary search over the edge normals of the footprint's convex hull (the tip of
+// a fine needle mesh has hundreds of vertices and every β-triangle asks).
+class TipFootprint {
+public:
+  TipFootprint(const std::vector<Eigen::Vector3d>& radial, const Eigen::Vector3d& d) {
+    u1_ = any_perpendicular(d);
+    u2_ = d.cross(u1_);
+    std::vector<Eigen::Vector2d> points;
+    points.reserve(radial.size());
+    for (const auto& r : radial) points.emplace_back(r.dot(u1_), r.dot(u2_));
+    std::sort(points.begin(), points.end(),
+              [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+    };
+    // Andrew's monotone chain: counter-clockwise hull without collinear points.
+    std::vector<Eigen::Vector2d> hull(2 * points.size() + 1);
+    std::size_t k = 0;
+    for (const auto& p : points) {
+      while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0) --k;
+      hull[k++] = p;
+    }
+    for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+      while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+      hull[k++] = points[i];
+    }
+    hull.resize(points.size() > 1 ? k - 1 : points.size());
+    hull_ = hull;
+    if (hull_.size() < 8) return;  // small: brute force
+    const std::size_t m = hull_.size();
+    std::vector<std::pair<double, std::size_t>> normals(m);  // outward normal angle of edge i -> i+1
+    for (std::size_t i = 0; i < m; ++i) {
+      const Eigen::Vector2d edge = hull_[(i + 1) % m] - hull_[i];
+      normals[i] = {std::atan2(-edge.x(), edge.y()), i};
+    }
+    std::sort(normals.begin(), normals.end());
+    angles_.reserve(m);
+    edges_.reserve(m);
+    for (const auto& [angle, edge] : normals) {
+      angles_.push_back(angle);
+      edges_.push_back(edge);
+    }
+  }
+
+  double operator()(const Eigen::Vector3d& e) const {
+    const Eigen::Vector2d direction(e.dot(u1_), e.dot(u2_));
+    double best = 0;  // x_open >= 0: the axis itself is always open
+    if (angles_.empty()) {
+      for (const auto& p : hull_) best = std::max(best, p.dot(direction));
+      return best;
+    }
+    // The extreme vertex for a direction between the normals of edges i−1 and i is the start of edge i.
+    const double phi = std::atan2(direction.y(), direction.x());
+    std::size_t i = static_cast<std::size_t>(std::lower_bound(angles_.begin(), angles_.end(), phi) - angles_.begin());
+    if (i == angles_.size()) i = 0;
+    const std::size_t m = hull_.size(), v = edges_[i];
+    for (std::size_t j : {(v + m - 1) % m, v, (v + 1) % m}) best = std::max(best, hull_[j].dot(direction));
+    return best;
+  }
+
+private:
+  Eigen::Vector3d u1_, u2_;
+  std::vector<Eigen::Vector2d> hull_;
+  std::vector<double> angles_;       // ascending
+  std::vector<std::size_t> edges_;   // hull edge of each angle
 };
 
 }  // namespace
@@ -70,6 +132,9 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
   if (!(options.tip_tolerance >= 0 && options.tip_tolerance <= 1e-2))
     throw InvalidInput(fmt::format("tip_tolerance: {}, expected a relative tolerance in [0, 0.01]",
                                    options.tip_tolerance));
+  if (!(options.max_edge_fraction >= 0 && options.max_edge_fraction <= 1))
+    throw InvalidInput(fmt::format("max_edge_fraction: {}, expected a fraction of the needle length in [0, 1]",
+                                   options.max_edge_fraction));
   if (!(options.reference_radius >= 0) || !std::isfinite(options.reference_radius))
     throw InvalidInput(fmt::format("reference_radius: {} m, expected a finite length >= 0 (0: automatic)",
                                    options.reference_radius));
@@ -108,6 +173,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
   std::vector<Eigen::Vector3d> tip_radial;
   tip_radial.reserve(tip_vertices.size());
   for (int i : tip_vertices) tip_radial.push_back(radial_of(vertex(needle, i)));
+  const TipFootprint x_open_of(tip_radial, d);
 
   double radius = options.reference_radius;
   if (radius == 0)
@@ -118,33 +184,27 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
 
   const auto& classes = loads.classification;
   loads.triangles.reserve(classes.alpha.size() + classes.beta.size());
-  auto triangle_geometry = [&](int t, LoadedTriangle& loaded) {
-    const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
-    const Eigen::Vector3d normal_area =
-        (vertex(needle, tri[1]) - vertex(needle, tri[0])).cross(vertex(needle, tri[2]) - vertex(needle, tri[0]));
-    loaded.triangle = t;
-    loaded.area = 0.5 * normal_area.norm();
-    loaded.weight = options.axial_component ? normal_area.normalized().dot(d) : 1.0;
-    for (int k = 0; k < 3; ++k) loaded.depth[k] = depth[static_cast<std::size_t>(tri[k])];
-    return Eigen::Vector3d(normal_area.normalized());
-  };
-
-  for (int t : classes.alpha) {  // Eq 3.18: uniform pressure K·S
-    LoadedTriangle loaded;
-    loaded.alpha = true;
-    triangle_geometry(t, loaded);
-    loaded.load = {1.0, 1.0, 1.0};
-    loads.alpha_area += loaded.area;
-    loads.triangles.push_back(loaded);
-  }
-
   const double degenerate_axial = 1e-9 * loads.needle_length;
-  for (int t : classes.beta) {  // Algorithm 3.1
+  using Corners = std::array<Eigen::Vector3d, 3>;
+
+  // One loaded (sub-)triangle with corners p of mesh triangle `parent`.
+  auto add_triangle = [&](int parent, const Corners& p, bool alpha) {
     LoadedTriangle loaded;
-    const Eigen::Vector3d n = triangle_geometry(t, loaded);
-    const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
-    // Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
-    const Eigen::Vector3d centroid = (vertex(needle, tri[0]) + vertex(needle, tri[1]) + vertex(needle, tri[2])) / 3.0;
+    const Eigen::Vector3d normal_area = (p[1] - p[0]).cross(p[2] - p[0]);
+    const Eigen::Vector3d n = normal_area.normalized();
+    loaded.triangle = parent;
+    loaded.alpha = alpha;
+    loaded.area = 0.5 * normal_area.norm();
+    loaded.weight = options.axial_component ? n.dot(d) : 1.0;
+    for (int k = 0; k < 3; ++k) loaded.depth[k] = top - p[static_cast<std::size_t>(k)].dot(d);
+    if (alpha) {  // Eq 3.18: uniform pressure K·S
+      loaded.load = {1.0, 1.0, 1.0};
+      loads.alpha_area += loaded.area;
+      loads.triangles.push_back(loaded);
+      return;
+    }
+    // Algorithm 3.1. Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
+    const Eigen::Vector3d centroid = (p[0] + p[1] + p[2]) / 3.0;
     Eigen::Vector3d e = radial_of(centroid);
     if (e.norm() <= 1e-12 * radius) e = n - n.dot(d) * d;  // centroid on the axis: the normal's radial part
     e = e.norm() > 0 ? Eigen::Vector3d(e.normalized()) : any_perpendicular(d);
@@ -154,7 +214,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     int tip_count = 0;
     for (int k = 0; k < 3; ++k) {
       a[k] = loaded.depth[k];
-      x[k] = radial_of(vertex(needle, tri[k])).dot(e);
+      x[k] = radial_of(p[static_cast<std::size_t>(k)]).dot(e);
       on_tip[k] = a[k] <= tip_band;
       tip_count += on_tip[k] ? 1 : 0;
     }
@@ -166,9 +226,7 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     for (int k = 1; k < 3; ++k)
       if (a[k] < a[q1] || (a[k] == a[q1] && x[k] < x[q1])) q1 = k;
     // The opening line: the edge of the tip in this plane.
-    double x_open = 0;
-    for (const auto& r : tip_radial) x_open = std::max(x_open, r.dot(e));
-    const double b = std::max(0.0, x[q1] - x_open);
+    const double b = std::max(0.0, x[q1] - x_open_of(e));
     // The meridian slope of the triangle itself (for edges across the meridian, where an edge angle means nothing):
     // tan θ_T = (n·d)/(n·e).
     const double theta_triangle = std::atan2(std::max(n.dot(d), 0.0), std::abs(n.dot(e)));
@@ -196,28 +254,46 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     }
     ++loads.case_counts[static_cast<int>(loaded.beta_case)];
     loads.triangles.push_back(loaded);
-  }
+  };
 
-  // Tables for evaluation at many depths.
+  // Long triangles (a bevel face triangulated edge to edge) are bisected at the midpoint of their longest edge until
+  // no edge exceeds max_edge, so that Algorithm 3.1 sees triangles small against the load's variation.
+  const double max_edge = options.max_edge_fraction * loads.needle_length;
+  auto add_subdivided = [&](auto&& self, int parent, const Corners& p, bool alpha, int level) -> void {
+    const std::array<double, 3> edge{(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()};
+    const int k = static_cast<int>(std::max_element(edge.begin(), edge.end()) - edge.begin());
+    if (max_edge <= 0 || edge[static_cast<std::size_t>(k)] <= max_edge || level >= 48)
+      return add_triangle(parent, p, alpha);
+    // Split edge k (corners k, k+1) at its midpoint m: (k, m, k+2) and (m, k+1, k+2), orientation kept.
+    const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % 3),
+               l = static_cast<std::size_t>((k + 2) % 3);
+    const Eigen::Vector3d m = 0.5 * (p[i] + p[j]);
+    self(self, parent, Corners{p[i], m, p[l]}, alpha, level + 1);
+    self(self, parent, Corners{m, p[j], p[l]}, alpha, level + 1);
+  };
+  for (bool alpha : {true, false})
+    for (int t : alpha ? classes.alpha : classes.beta) {
+      const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
+      add_subdivided(add_subdivided, t, Corners{vertex(needle, tri[0]), vertex(needle, tri[1]), vertex(needle, tri[2])},
+                     alpha, 0);
+    }
+
+  // Tables for evaluation at many depths: triangles by their first and by their last depth.
   const std::size_t n = loads.triangles.size();
+  std::vector<std::pair<double, int>> first(n), last(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    first[i] = {first_depth(loads.triangles[i]), static_cast<int>(i)};
+    last[i] = {last_depth(loads.triangles[i]), static_cast<int>(i)};
+  }
+  std::sort(first.begin(), first.end());
+  std::sort(last.begin(), last.end());
   loads.by_first_depth.resize(n);
-  std::iota(loads.by_first_depth.begin(), loads.by_first_depth.end(), 0);
-  std::sort(loads.by_first_depth.begin(), loads.by_first_depth.end(), [&](int i, int j) {
-    return first_depth(loads.triangles[static_cast<std::size_t>(i)]) <
-           first_depth(loads.triangles[static_cast<std::size_t>(j)]);
-  });
-  std::vector<int> by_last(n);
-  std::iota(by_last.begin(), by_last.end(), 0);
-  std::sort(by_last.begin(), by_last.end(), [&](int i, int j) {
-    return last_depth(loads.triangles[static_cast<std::size_t>(i)]) <
-           last_depth(loads.triangles[static_cast<std::size_t>(j)]);
-  });
   loads.last_depth_sorted.resize(n);
   loads.full_prefix.assign(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const LoadedTriangle& t = loads.triangles[static_cast<std::size_t>(by_last[i])];
-    loads.last_depth_sorted[i] = last_depth(t);
-    loads.full_prefix[i + 1] = loads.full_prefix[i] + full_load(t);
+    loads.by_first_depth[i] = first[i].second;
+    loads.last_depth_sorted[i] = last[i].first;
+    loads.full_prefix[i + 1] = loads.full_prefix[i] + full_load(loads.triangles[static_cast<std::size_t>(last[i].second)]);
   }
   return loads;
 }

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "needlekit/core/errors.hpp"
+#include "../support/expect_invalid.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/insertion/insertion_curve.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
@@ -17,6 +18,7 @@
 using namespace needlekit;
 using namespace needlekit::insertion;
 using testing::HasSubstr;
+using needlekit::test::expect_invalid;
 
 namespace {
 
@@ -26,16 +28,6 @@ constexpr double um = 1e-6;
 geometry::TriangleMesh needle_mesh(needle::Shape shape, double d1, double d2, double d3, double length, int n = 64,
                                    int axial = 16) {
   return needle::needle_surface_mesh({shape, d1, d2, d3, length}, {n, axial});
-}
-
-template <typename F>
-void expect_invalid(F&& f, const std::string& fragment) {
-  try {
-    f();
-    FAIL() << "expected InvalidInput containing '" << fragment << "'";
-  } catch (const InvalidInput& error) {
-    EXPECT_THAT(error.what(), HasSubstr(fragment));
-  }
 }
 
 TEST(TriangleClassification, FlatCylinderHasOnlyAlphaTrianglesOnItsTip) {

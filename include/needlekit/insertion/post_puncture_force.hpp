@@ -58,6 +58,11 @@ struct PostPunctureOptions {
   bool cap_at_cutting_pressure = true;
   // false (default, Eq 3.20): sum the load volumes; true: sum their components along d (times n·d).
   bool axial_component = false;
+  // Relative to the needle's extent along d, [0, 1]: loaded triangles with an edge longer than this are bisected at
+  // their longest edge (recursively) before Algorithm 3.1, whose vertex loads are first-order accurate in the
+  // triangle size. 0: use the mesh as it is. Default 0.025 (25 um on a 1 mm needle; a bevel face is otherwise a fan
+  // of slivers spanning its whole length).
+  double max_edge_fraction = 0.025;
 };
 
 // The β load of one triangle by Algorithm 3.1, Fig 3.9's case (A: one vertex on the tip, B: two, C: none) and the
@@ -67,7 +72,7 @@ enum class BetaCase { OneVertexOnTip, TwoVerticesOnTip, NoVertexOnTip };
 // One loaded triangle, ready for any insertion depth: its vertices' axial distances behind the tip and the pressure
 // factors p/(K·S) at them (1 on α-triangles).
 struct LoadedTriangle {
-  int triangle = -1;
+  int triangle = -1;                             // the mesh triangle it is (or is a part of)
   bool alpha = false;
   BetaCase beta_case = BetaCase::NoVertexOnTip;  // β only
   std::array<double, 3> depth{};                 // m, a(P_k): axial distance of each vertex behind the tip plane

@@ -1,0 +1,51 @@
+// Insertion case files (TOML) for `needlekit insert`: an indentation case file (io/indentation_case.hpp: [needle],
+// [[needles]], [tissue], [mesh], [loading], [model], [puncture]) plus
+//
+//   [post_puncture]                     the cutting phase (insertion/post_puncture_force.hpp)
+//   stiffness = "0.84 N/mm2"           K, required: a pressure (N/mm2 = MPa, kPa, Pa), > 0
+//   scale = 0.168                       S, required: a number > 0
+//   final_depth = "1000 um"             required: the displacement at the end of the curve, > 0
+//   samples = 200                       cutting samples from the puncture to final_depth, >= 1
+//   reference_radius = "115 um"         R of the β load (default: the needle's largest distance from the axis)
+//   max_edge_fraction = 0.025           [0, 1]: bisect loaded triangles longer than this fraction of the needle
+//   cap_at_cutting_pressure = true      axial_component = false
+//   side_tolerance = "1 deg"            alpha_tolerance = "1 deg"      occlusion_test = false
+//   measured = "curve.csv"              optional: a measured post-puncture curve (depth_<unit>, force_<unit>; depth =
+//                                       inserted depth of the tip) to fit S to (least squares) and compare with
+//
+//   [pre_puncture]                      optional: use this pre-puncture curve instead of running the FE
+//   curve = "pre.csv"                   depth_<unit>, force_<unit> from first contact; relative to the case file
+//   punctured = true                    the last sample is the puncture point (false: no puncture within it)
+//
+// Errors name FILE:LINE and the key, as the other readers.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "needlekit/insertion/force_curve.hpp"
+#include "needlekit/insertion/post_puncture_force.hpp"
+#include "needlekit/insertion/triangle_classification.hpp"
+
+namespace needlekit::io {
+
+struct InsertionSettings {
+  double stiffness = 0;                       // N/m², K
+  double scale = 0;                           // S
+  double final_depth = 0;                     // m
+  int cutting_samples = 200;
+  insertion::PostPunctureOptions post_puncture;
+  insertion::TriangleClassificationOptions classification;
+  std::optional<std::filesystem::path> measured;          // resolved against the case file's directory
+  std::optional<insertion::PrePunctureCurve> pre_puncture;  // from [pre_puncture]
+  // The case file with [post_puncture] and [pre_puncture] blanked out (line numbers kept), for the indentation
+  // case reader.
+  std::string indentation_text;
+};
+
+// Throws IoError (TOML syntax, unreadable CSV) or InvalidInput (a missing, unknown or invalid key; a bad CSV).
+InsertionSettings parse_insertion_settings(std::string_view text, std::string_view source_name,
+                                           const std::filesystem::path& base_directory = ".");
+
+}  // namespace needlekit::io

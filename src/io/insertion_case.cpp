@@ -1,0 +1,121 @@
+#include "needlekit/io/insertion_case.hpp"
+
+#include <sstream>
+
+#include "needlekit/io/force_curve_csv.hpp"
+#include "toml_config.hpp"
+
+namespace needlekit::io {
+namespace {
+
+using config::Section;
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool is_header_of(std::string_view line, std::string_view table) {
+  const std::size_t start = line.find_first_not_of(" \t");
+  if (start == std::string_view::npos || line[start] != '[' || line.substr(start, 2) == "[[") return false;
+  std::string_view name = line.substr(start + 1);
+  name = name.substr(0, name.find(']'));
+  while (!name.empty() && (name.front() == ' ' || name.front() == '\t')) name.remove_prefix(1);
+  while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.remove_suffix(1);
+  return name == table || name.substr(0, table.size() + 1) == std::string(table) + ".";
+}
+
+// The text with the given tables' lines blanked (each table runs to the next table header).
+std::string without_tables(std::string_view text, std::initializer_list<std::string_view> tables) {
+  std::istringstream in{std::string(text)};
+  std::string out, line;
+  bool skipping = false;
+  while (std::getline(in, line)) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start != std::string::npos && line[start] == '[') {
+      skipping = false;
+      for (std::string_view table : tables) skipping = skipping || is_header_of(line, table);
+    }
+    out += skipping ? std::string() : line;
+    out += '\n';
+  }
+  return out;
+}
+
+double angle_of(const Section& section, std::string_view key, double fallback) {
+  const toml::node* node = section.optional(key);
+  if (!node) return fallback;
+  const double value = config::quantity_of(section, *node, key, units::Dimension::Angle);
+  if (!(value >= 0 && value <= kPi / 4))
+    section.fail(*node, key, fmt::format("{} rad is out of range, expected an angle in [0, 45] deg", value));
+  return value;
+}
+
+}  // namespace
+
+InsertionSettings parse_insertion_settings(std::string_view text, std::string_view source_name,
+                                           const std::filesystem::path& base_directory) {
+  const toml::table root = config::parse_toml(text, source_name);
+  const toml::node* post_node = root.get("post_puncture");
+  if (!post_node)
+    throw InvalidInput(fmt::format("{}:1: missing table [post_puncture] (required), expected stiffness, scale and "
+                                   "final_depth of the cutting phase",
+                                   source_name));
+  if (!post_node->is_table())
+    throw InvalidInput(fmt::format("{} key 'post_puncture': expected a table [post_puncture]",
+                                   config::location(source_name, post_node->source())));
+  const Section post(*post_node->as_table(), "post_puncture", source_name,
+                     {"stiffness", "scale", "final_depth", "samples", "reference_radius", "max_edge_fraction",
+                      "cap_at_cutting_pressure", "axial_component", "side_tolerance", "alpha_tolerance",
+                      "occlusion_test", "measured"});
+  InsertionSettings settings;
+  settings.stiffness = config::positive_quantity(post, "stiffness", units::Dimension::Pressure);
+  {
+    const toml::node& node = post.required("scale", "a number > 0, e.g. 0.168");
+    settings.scale = config::number_at_least(post, node, "scale", 0);
+    if (!(settings.scale > 0)) post.fail(node, "scale", "0 is out of range, expected a number > 0");
+  }
+  settings.final_depth = config::positive_quantity(post, "final_depth", units::Dimension::Length);
+  if (const toml::node* node = post.optional("samples"))
+    settings.cutting_samples = config::integer_at_least(post, *node, "samples", 1);
+  if (auto radius = config::optional_positive_quantity(post, "reference_radius", units::Dimension::Length))
+    settings.post_puncture.reference_radius = *radius;
+  if (const toml::node* node = post.optional("max_edge_fraction")) {
+    const double value = config::number_at_least(post, *node, "max_edge_fraction", 0);
+    if (value > 1) post.fail(*node, "max_edge_fraction", fmt::format("{} is out of range, expected [0, 1]", value));
+    settings.post_puncture.max_edge_fraction = value;
+  }
+  if (const toml::node* node = post.optional("cap_at_cutting_pressure"))
+    settings.post_puncture.cap_at_cutting_pressure = config::boolean_of(post, *node, "cap_at_cutting_pressure");
+  if (const toml::node* node = post.optional("axial_component"))
+    settings.post_puncture.axial_component = config::boolean_of(post, *node, "axial_component");
+  settings.classification.side_tolerance = angle_of(post, "side_tolerance", settings.classification.side_tolerance);
+  settings.classification.alpha_tolerance = angle_of(post, "alpha_tolerance", settings.classification.alpha_tolerance);
+  if (const toml::node* node = post.optional("occlusion_test"))
+    settings.classification.occlusion_test = config::boolean_of(post, *node, "occlusion_test");
+  if (const toml::node* node = post.optional("measured"))
+    settings.measured = base_directory / config::text_of(post, *node, "measured", "a CSV file name");
+
+  if (const toml::node* pre_node = root.get("pre_puncture")) {
+    if (!pre_node->is_table())
+      throw InvalidInput(fmt::format("{} key 'pre_puncture': expected a table [pre_puncture]",
+                                     config::location(source_name, pre_node->source())));
+    const Section pre(*pre_node->as_table(), "pre_puncture", source_name, {"curve", "punctured"});
+    const toml::node& curve_node = pre.required("curve", "a CSV file with depth_<unit> and force_<unit> columns");
+    const std::filesystem::path path = base_directory / config::text_of(pre, curve_node, "curve", "a CSV file name");
+    insertion::PrePunctureCurve curve;
+    curve.curve = read_force_curve_csv(path);
+    if (curve.curve.depth.front() < 0)
+      pre.fail(curve_node, "curve", fmt::format("{}: the first depth is negative, expected depths >= 0", path.string()));
+    bool punctured = true;
+    if (const toml::node* node = pre.optional("punctured")) punctured = config::boolean_of(pre, *node, "punctured");
+    if (punctured) {
+      if (!(curve.curve.depth.back() > 0))
+        pre.fail(curve_node, "curve", fmt::format("{}: the puncture depth (last sample) is 0", path.string()));
+      curve.puncture = insertion::PuncturePoint{curve.curve.depth.back(), curve.curve.force.back(),
+                                                insertion::PunctureCriterion::None};
+    }
+    settings.pre_puncture = std::move(curve);
+  }
+  settings.indentation_text = without_tables(text, {"post_puncture", "pre_puncture"});
+  return settings;
+}
+
+}  // namespace needlekit::io
