@@ -12,5 +12,6 @@ void add_materials_command(CLI::App& app);  // command_materials.cpp
 void add_mesh_command(CLI::App& app);       // command_mesh.cpp
 void add_reproduce_command(CLI::App& app);  // command_reproduce.cpp
 void add_indent_command(CLI::App& app);     // command_indent.cpp
+void add_patch_command(CLI::App& app);      // command_patch.cpp
 
 }  // namespace needlekit::cli

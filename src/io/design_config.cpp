@@ -2,6 +2,9 @@
 
 #include "toml_config.hpp"
 
+#include <algorithm>
+#include <initializer_list>
+
 namespace needlekit::io {
 namespace {
 
@@ -124,23 +127,24 @@ void read_ranges(const Section& ranges, analysis::DesignSpace& space) {
 
 }  // namespace
 
-DesignFile parse_design_toml(std::string_view text, std::string_view source_name) {
-  const std::string file(source_name);
-  const toml::table root = parse_toml(text, file);
-  const Section top(root, "", file, {"needle", "array", "tissue", "insertion"});
+namespace {
 
+// [needle], [tissue] and [insertion] (and [array] when `with_array`), shared by design files and patch case files.
+DesignFile read_needle_tables(const toml::table& root, const Section& top, const std::string& file, bool with_array) {
   DesignFile result;
   const Section needle =
       top.required_subsection("needle", {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "material"});
   result.design.needle = needle_of(needle);
   result.design.material = material_of(needle, "material");
 
-  const Section array = top.required_subsection("array", {"needles_per_row", "width", "spacing_factor"});
-  result.design.needles_per_row =
-      integer_at_least(array, array.required("needles_per_row", "an integer >= 1"), "needles_per_row", 1);
-  result.design.width = positive_quantity(array, "width", Dimension::Length);
-  if (const toml::node* node = array.optional("spacing_factor")) {
-    result.options.spacing_factor = number_at_least(array, *node, "spacing_factor", 0.0);
+  if (with_array) {
+    const Section array = top.required_subsection("array", {"needles_per_row", "width", "spacing_factor"});
+    result.design.needles_per_row =
+        integer_at_least(array, array.required("needles_per_row", "an integer >= 1"), "needles_per_row", 1);
+    result.design.width = positive_quantity(array, "width", Dimension::Length);
+    if (const toml::node* node = array.optional("spacing_factor")) {
+      result.options.spacing_factor = number_at_least(array, *node, "spacing_factor", 0.0);
+    }
   }
 
   if (const auto tissue = top.optional_subsection("tissue", {"model"})) {
@@ -158,6 +162,35 @@ DesignFile parse_design_toml(std::string_view text, std::string_view source_name
     analysis::validate(result.conditions.tissue, "tissue.model");
   });
   return result;
+}
+
+}  // namespace
+
+DesignFile parse_design_toml(std::string_view text, std::string_view source_name) {
+  const std::string file(source_name);
+  const toml::table root = parse_toml(text, file);
+  const Section top(root, "", file, {"needle", "array", "tissue", "insertion"});
+  return read_needle_tables(root, top, file, true);
+}
+
+DesignFile parse_needle_tables(std::string_view text, std::string_view source_name,
+                               std::initializer_list<std::string_view> other_tables) {
+  const std::string file(source_name);
+  const toml::table root = parse_toml(text, file);
+  std::vector<std::string_view> allowed{"needle", "tissue", "insertion"};
+  allowed.insert(allowed.end(), other_tables.begin(), other_tables.end());
+  for (auto&& [key, node] : root) {
+    if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end()) {
+      throw InvalidInput(fmt::format("{} unknown table '{}', expected one of: {}", location(file, key.source()),
+                                     key.str(), fmt::join(allowed, ", ")));
+    }
+  }
+  toml::table own;
+  for (std::string_view name : {"needle", "tissue", "insertion"}) {
+    if (const toml::node* node = root.get(name)) own.insert(name, *node);
+  }
+  const Section top(own, "", file, {"needle", "tissue", "insertion"});
+  return read_needle_tables(root, top, file, false);
 }
 
 DesignFile read_design_file(const std::filesystem::path& path) {

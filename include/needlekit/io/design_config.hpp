@@ -22,6 +22,7 @@
 // bore_diameter (required iff hollow), width, length (strings with units).
 #pragma once
 #include <filesystem>
+#include <initializer_list>
 #include <string_view>
 
 #include "needlekit/analysis/design_space.hpp"
@@ -39,6 +40,12 @@ struct DesignFile {
 DesignFile read_design_file(const std::filesystem::path& path);
 // The same from text; `source_name` stands for the file name in messages.
 DesignFile parse_design_toml(std::string_view text, std::string_view source_name);
+
+// The [needle], [tissue] and [insertion] tables of another needlekit file (a patch case file), with the same keys,
+// defaults and messages as a design file. `other_tables` lists the file's remaining top-level tables, which the
+// caller reads; any other table is an error. design.needles_per_row and design.width keep their defaults.
+DesignFile parse_needle_tables(std::string_view text, std::string_view source_name,
+                               std::initializer_list<std::string_view> other_tables);
 
 struct SpaceFile {
   analysis::DesignSpace space;

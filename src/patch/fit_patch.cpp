@@ -1,0 +1,36 @@
+#include "needlekit/patch/fit_patch.hpp"
+
+#include <fmt/format.h>
+
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::patch {
+
+std::string_view to_string(PatchKind kind) {
+  switch (kind) {
+    case PatchKind::Rigid: return "rigid";
+    case PatchKind::Flexible: return "flexible";
+    case PatchKind::Equilibrium: return "equilibrium";
+  }
+  return "?";
+}
+
+PatchKind patch_kind_from_string(std::string_view text, std::string_view what) {
+  for (const PatchKind kind : {PatchKind::Rigid, PatchKind::Flexible, PatchKind::Equilibrium}) {
+    if (text == to_string(kind)) return kind;
+  }
+  throw InvalidInput(fmt::format("{}: unknown patch kind '{}', expected \"rigid\", \"flexible\" or \"equilibrium\"",
+                                 what, text));
+}
+
+FittedPatch fit_patch(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,
+                      const FitOptions& options) {
+  switch (options.kind) {
+    case PatchKind::Rigid: return rigid_fit(surface, design, frame);
+    case PatchKind::Flexible: return flexible_fit(surface, design, frame, options.flexible);
+    case PatchKind::Equilibrium: return equilibrium_fit(surface, design, frame, options.equilibrium);
+  }
+  return rigid_fit(surface, design, frame);
+}
+
+}  // namespace needlekit::patch
