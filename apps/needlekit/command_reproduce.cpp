@@ -188,20 +188,15 @@ void run_reproduce(const ReproduceArguments& arguments) {
   RunContext context;
   context.quick = arguments.quick;
   context.resources = resources;
-  // The meshes of §6.4: --meshes, else data/meshes of the needlekit tree when it is there (without it, the patch
-  // examples are reported as not available).
-  context.meshes = !arguments.meshes_dir.empty()                  ? fs::path(arguments.meshes_dir)
-                   : fs::is_directory(resources / "data" / "meshes") ? resources / "data" / "meshes"
-                                                                     : fs::path();
+  // The meshes of §6.4: those the patch examples name, or the files of the same names in --meshes.
+  context.meshes = arguments.meshes_dir;
   context.published = &published;
   context.interrupted = &g_interrupted;
-  if (!context.meshes.empty()) {
-    for (const fs::path& mesh : reproduce::section_6_4_mesh_files(context)) {
-      if (!fs::is_regular_file(mesh)) {
-        throw IoError(fmt::format("mesh file not found: {} (needed by §6.4; pass --meshes DIR, the folder with the "
-                                  "body surface meshes)",
-                                  mesh.string()));
-      }
+  for (const fs::path& mesh : reproduce::section_6_4_mesh_files(context)) {
+    if (!fs::is_regular_file(mesh)) {
+      throw IoError(fmt::format("mesh file not found: {} (needed by §6.4; pass --meshes DIR, the folder with the "
+                                "body surface meshes)",
+                                mesh.string()));
     }
   }
   context.staging = create_staging(out);
@@ -293,7 +288,7 @@ void add_reproduce_command(CLI::App& app) {
       ->type_name("DIR")
       ->capture_default_str();
   command->add_option("--meshes", arguments->meshes_dir,
-                      "folder with the body surface meshes of §6.4 (default: data/meshes of the needlekit tree)")
+                      "folder with the body surface meshes of §6.4 (default: the files named by examples/patch_*.toml)")
       ->type_name("DIR");
   command->add_option("--python", arguments->python,
                       "Python 3 with matplotlib that draws the figures (default: /usr/bin/python3)")

@@ -54,7 +54,7 @@ struct RunContext {
   bool quick = false;
   std::filesystem::path staging;    // every file of the run is written under this directory first
   std::filesystem::path resources;  // the needlekit tree: docs/published, examples, scripts
-  std::filesystem::path meshes;     // the body surface meshes of §6.4 (empty: not available)
+  std::filesystem::path meshes;     // --meshes: folder of the §6.4 body surface meshes (empty: as the examples say)
   const PublishedValues* published = nullptr;
   const std::atomic<bool>* interrupted = nullptr;
 

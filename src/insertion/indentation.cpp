@@ -90,15 +90,31 @@ void validate(const IndentationCase& c) {
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
-  double tip = -std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& v : c.needle.vertices) tip = std::max(tip, v.z());
+  double tip = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& v : c.needle.vertices) {
+    tip = std::max(tip, v.z());
+    bottom = std::min(bottom, v.z());
+  }
+  // The tip's (x, y): the centroid of the vertices on the tip (the axis for cylinders and cones, the tip face's
+  // centre for bevels).
+  Eigen::Vector2d tip_centre = Eigen::Vector2d::Zero();
+  int on_tip = 0;
+  for (const Eigen::Vector3d& v : c.needle.vertices) {
+    if (v.z() >= tip - 1e-9 * (tip - bottom)) {
+      tip_centre += v.head<2>();
+      ++on_tip;
+    }
+  }
+  tip_centre /= std::max(on_tip, 1);
   std::vector<fem::Indenter> indenters;
   for (const NeedleSite& site : c.needles) {
     fem::Indenter indenter;
     indenter.surface = c.needle;
-    // Half-turn about x (a proper rotation: the outward orientation is kept), tip down at z = tip_height.
+    // Half-turn about x (a proper rotation: the outward orientation is kept), tip down at z = tip_height, the tip's
+    // centre over the site.
     for (Eigen::Vector3d& v : indenter.surface.vertices) {
-      v = Eigen::Vector3d(v.x() + site.position.x(), -v.y() + site.position.y(), tip - v.z() + site.tip_height);
+      v = Eigen::Vector3d(v.x() - tip_centre.x() + site.position.x(), -(v.y() - tip_centre.y()) + site.position.y(),
+                          tip - v.z() + site.tip_height);
     }
     indenters.push_back(std::move(indenter));
   }

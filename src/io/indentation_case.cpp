@@ -1,6 +1,7 @@
 #include "needlekit/io/indentation_case.hpp"
 
 #include "needlekit/geometry/triangle_mesh.hpp"
+#include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 #include "toml_config.hpp"
@@ -220,6 +221,34 @@ void read_model(const Section& section, fem::SolverOptions& solver) {
   }
 }
 
+// toughness_from = { first = "a.csv", second = "b.csv", crack_area = "6661 um2", min_depth?, max_depth? }: J of
+// Eq 3.16 from two insertions at the same spot; the crack area defaults to the parametric needle's tip area.
+double two_insertion_toughness_of(const Section& puncture, const toml::node& node,
+                                  const std::optional<needle::NeedleGeometry>& geometry,
+                                  const std::filesystem::path& base) {
+  const Section table =
+      puncture.subsection(node, "toughness_from", {"first", "second", "crack_area", "min_depth", "max_depth"});
+  const auto curve = [&](std::string_view key) {
+    const toml::node& file_node = table.required(key, "a CSV file with columns depth_um,force_N");
+    const std::filesystem::path file = text_of(table, file_node, key, "a CSV file name");
+    return table.at(file_node, [&] { return read_force_curve_csv(file.is_absolute() ? file : base / file); });
+  };
+  const insertion::ForceDepthCurve first = curve("first"), second = curve("second");
+  insertion::ToughnessOptions options;
+  if (auto area = optional_positive_quantity(table, "crack_area", Dimension::Area)) {
+    options.crack_area = *area;
+  } else if (geometry) {
+    options.crack_area = needle::tip_area(*geometry);
+  } else {
+    table.fail(node, "crack_area", "missing for a needle given as a mesh, expected an area, e.g. \"6661 um2\"");
+  }
+  if (const toml::node* min = table.optional("min_depth")) {
+    options.min_depth = quantity_at_least_zero(table, *min, "min_depth", Dimension::Length, "before the surface");
+  }
+  options.max_depth = optional_positive_quantity(table, "max_depth", Dimension::Length);
+  return table.at(node, [&] { return insertion::two_insertion_toughness(first, second, options).toughness; });
+}
+
 }  // namespace
 
 insertion::IndentationCase parse_indentation_case_toml(std::string_view text, std::string_view source_name,
@@ -267,9 +296,15 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   if (const auto model = top.optional_subsection("model", {"law", "contact", "element", "boundary"})) {
     read_model(*model, result.solver);
   }
-  if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness"})) {
+  if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
     result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);
     result.puncture.toughness = optional_positive_quantity(*puncture, "toughness", Dimension::Stiffness);
+    if (const toml::node* node = puncture->optional("toughness_from")) {
+      if (result.puncture.toughness) {
+        puncture->fail(*node, "toughness_from", "given together with toughness, expected one of them");
+      }
+      result.puncture.toughness = two_insertion_toughness_of(*puncture, *node, result.geometry, base_directory);
+    }
   }
   validate_at_keys(root, file, root, [&] { insertion::validate(result); });
   return result;

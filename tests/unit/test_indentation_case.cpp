@@ -229,3 +229,34 @@ TEST(IndentationCase, EveryIndentExampleParses) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(IndentationCase, ToughnessFromTwoInsertions) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "needlekit-case-toughness";
+  std::filesystem::create_directories(dir);
+  // First insertion F = 2x, second F' = x (x in mm, F in N) over 1 mm: ∫(F - F') dx = 0.5 N·mm = 5e-4 J.
+  std::ofstream(dir / "first.csv") << "depth_mm,force_N,comment\n0,0,a\n0.5,1,b\n1,2,c\n";
+  std::ofstream(dir / "second.csv") << "depth_um,force_mN\n0,0\n1000,1000\n";
+  const std::string text = test::replaced(kCase, "toughness = \"100 J/m2\"",
+                                          "toughness_from = { first = \"first.csv\", second = \"second.csv\" }");
+  std::ofstream(dir / "case.toml") << text;
+  const insertion::IndentationCase c = io::read_indentation_case(dir / "case.toml");
+  const double tip_area = M_PI / 4 * 230e-6 * 230e-6;  // the default crack area: the cylinder's tip
+  ASSERT_TRUE(c.puncture.toughness.has_value());
+  EXPECT_NEAR(*c.puncture.toughness, 5e-4 / tip_area, 1e-9 * 5e-4 / tip_area);
+
+  std::ofstream(dir / "second.csv") << "depth,force_mN\n0,0\n1000,1000\n";
+  try {
+    io::read_indentation_case(dir / "case.toml");
+    ADD_FAILURE() << "no error for a header without a unit";
+  } catch (const InvalidInput& error) {
+    EXPECT_THAT(error.what(), HasSubstr("second.csv:1: column 'depth' is not a depth with its unit"));
+    EXPECT_THAT(error.what(), HasSubstr("case.toml:36:"));
+  }
+  std::ofstream(dir / "second.csv") << "depth_um,force_mN\n0,0\n0,1000\n";
+  EXPECT_THROW(io::read_indentation_case(dir / "case.toml"), InvalidInput);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

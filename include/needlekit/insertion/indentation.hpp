@@ -5,8 +5,9 @@
 //
 // Frames. A needle's surface mesh is given in the needle frame of needle_geometry.hpp (axis z, base at z = 0, tip
 // at the largest z, pointing +z). It is turned tip-down by the half-turn about the x axis, (x, y, z) -> (x, −y,
-// z_tip − z), and translated so that its axis passes through (site.x, site.y) and its tip is at z = tip_height in the
-// tissue frame of tet_mesh.hpp (top surface z = 0, tissue below, needles moving in −z). Depth = needle displacement − the smallest tip height.
+// z_tip − z), and translated so that the centre of its tip (the axis of a cylinder or cone, the centre of a bevel's tip
+// face) is over (site.x, site.y) at z = tip_height in the tissue frame of tet_mesh.hpp (top surface z = 0, tissue
+// below, needles moving in −z). The block is refined around each site, i.e. under each tip. Depth = needle displacement − the smallest tip height.
 //
 // Stable API (used by the post-puncture model and the `insert` command): IndentationCase, IndentationOptions,
 // IndentationResult, run_indentation, pre_puncture_curve.
@@ -28,7 +29,7 @@ namespace needlekit::insertion {
 
 // Where one needle of the case starts.
 struct NeedleSite {
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // m, (x, y) of the needle axis on the top surface
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // m, (x, y) of the tip's centre over the top surface
   double tip_height = 0;  // m, >= 0: height of the tip above the undeformed surface at the start (0: touching)
 };
 

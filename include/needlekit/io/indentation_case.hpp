@@ -20,6 +20,10 @@
 //              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =
 //              "sides-and-bottom-fixed" (default) | "bottom-fixed" | "bottom-fixed-sides-roller"
 //   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
+//              or toughness_from = { first = "first.csv", second = "second.csv", crack_area = "6661 um2",
+//              min_depth, max_depth }: J by the two-insertion method (Eq 3.16) from two force curves (CSV with
+//              depth_um,force_N; io/force_curve_csv.hpp) measured at the same spot; crack_area defaults to the
+//              parametric needle's tip area
 #pragma once
 #include <filesystem>
 #include <string_view>
