@@ -90,7 +90,7 @@ def main():
     ax.set_ylabel("force (N)")
     ax.set_title(args.title)
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="upper left", fontsize=8)
+    ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
     tmp = args.png + f".tmp-{os.getpid()}.png"
     try:

@@ -13,5 +13,6 @@ void add_mesh_command(CLI::App& app);       // command_mesh.cpp
 void add_reproduce_command(CLI::App& app);  // command_reproduce.cpp
 void add_indent_command(CLI::App& app);     // command_indent.cpp
 void add_patch_command(CLI::App& app);      // command_patch.cpp
+void add_insert_command(CLI::App& app);     // command_insert.cpp
 
 }  // namespace needlekit::cli

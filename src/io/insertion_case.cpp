@@ -114,6 +114,9 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
     }
     settings.pre_puncture = std::move(curve);
   }
+  if (const toml::node* needle = root.get("needle"); needle && needle->is_table())
+    if (const toml::node* mesh = needle->as_table()->get("mesh"); mesh && mesh->is_string())
+      settings.needle_mesh = base_directory / mesh->as_string()->get();
   settings.indentation_text = without_tables(text, {"post_puncture", "pre_puncture"});
   return settings;
 }

@@ -39,6 +39,9 @@ struct InsertionSettings {
   insertion::TriangleClassificationOptions classification;
   std::optional<std::filesystem::path> measured;          // resolved against the case file's directory
   std::optional<insertion::PrePunctureCurve> pre_puncture;  // from [pre_puncture]
+  // [needle] mesh, resolved against the case file's directory, when the needle is a mesh file (the indentation
+  // reader turns an inward-oriented mesh outward silently; `insert` reports it instead).
+  std::optional<std::filesystem::path> needle_mesh;
   // The case file with [post_puncture] and [pre_puncture] blanked out (line numbers kept), for the indentation
   // case reader.
   std::string indentation_text;
