@@ -1,15 +1,9 @@
-<<<<<<< HEAD
 // Force-depth curves as CSV: reading a measured (or previously computed) curve, for fitting the post-puncture scale
 // S (insertion/post_puncture_force.hpp) or as the pre-puncture part of an insertion.
 //
 // Format: a header line naming a depth column `depth_<unit>` (unit nm, um, mm, cm or m) and a force column
 // `force_<unit>` (uN, mN or N), in any order among other columns (ignored); then one row per sample, depths
 // strictly increasing. Blank lines and lines starting with '#' are skipped.
-=======
-// Force-depth curves as CSV: the first column is the depth, the second the force, each header naming its unit
-// (depth_um | depth_mm | depth_m, force_N | force_mN | force_uN); further columns are ignored. This is the format
-// that `needlekit indent --out` writes (NAME_force_depth.csv), so measured and simulated curves read alike.
->>>>>>> insertion
 #pragma once
 #include <filesystem>
 #include <string_view>
@@ -18,13 +12,8 @@
 
 namespace needlekit::io {
 
-<<<<<<< HEAD
 // Throws IoError when the file cannot be read, InvalidInput naming FILE:LINE and the column for a missing column,
 // a non-numeric value, a non-monotonic depth or an empty curve. Returns SI (m, N).
-=======
-// Throws IoError (unreadable file) or InvalidInput naming FILE:LINE (a header without a known unit, a value that is
-// not a number, depths that do not increase strictly, fewer than two rows).
->>>>>>> insertion
 insertion::ForceDepthCurve read_force_curve_csv(const std::filesystem::path& path);
 insertion::ForceDepthCurve parse_force_curve_csv(std::string_view text, std::string_view source_name);
 
