@@ -161,6 +161,7 @@ void phantom_needles(const RunContext& context, SectionReport& report, const Sec
   nlohmann::json complete_series = nlohmann::json::array(), pre_series = nlohmann::json::array();
   nlohmann::json markers = nlohmann::json::array(), pre_markers = nlohmann::json::array();
   nlohmann::json summary = nlohmann::json::array();
+  int earlier_than_experiment = 0;
   for (std::size_t i = 0; i < needles.size(); ++i) {
     const PhantomNeedle& n = needles[i];
     const double lo = 0.5 * i / needles.size(), hi = 0.5 * (i + 1) / needles.size();
@@ -206,6 +207,7 @@ void phantom_needles(const RunContext& context, SectionReport& report, const Sec
       markers.push_back({{"x", depth.value}, {"y", force.value}, {"label", fmt::format("experiment, {}", n.label)},
                          {"style", "o"}});
       if (p) {
+        earlier_than_experiment += p->depth * 1e3 < depth.value;
         report.compare(depth, p->depth * 1e3, fmt::format("{}: puncture depth vs experiment", n.label),
                        fmt::format("FE, {} criterion", insertion::to_string(p->criterion)));
         report.compare(force, p->force, fmt::format("{}: puncture force vs experiment", n.label));
@@ -256,11 +258,17 @@ void phantom_needles(const RunContext& context, SectionReport& report, const Sec
                 "the tip reaches the critical pressure 0.663 MPa.",
                 {{"kind", "lines"}, {"series", pre_series}, {"markers", pre_markers}, {"xlabel", "depth (um)"},
                  {"ylabel", "force (N)"}});
-  report.deviation("The experiments' puncture depths (0.23 mm sharp, 1.226 mm blunt) are larger than the FE's "
-                   "critical-pressure puncture: the phantom's pressure-based criterion fires as soon as the mean "
-                   "pressure under the small tip reaches 0.663 MPa, while the experiment's needle travels further "
-                   "before the tissue cracks (the dissertation's own simulation also punctures earlier than its "
-                   "experiment: < 20 um and > 250 um).");
+  if (earlier_than_experiment > 0) {
+    report.deviation(fmt::format(
+        "{} of the two bevels puncture(s) earlier in the FE than in the experiment: the critical-pressure criterion "
+        "fires as soon as the mean pressure under the tip reaches P_c, while the phantom in the experiment deforms "
+        "further before it cracks; the dissertation's own simulation also punctures earlier than its experiment "
+        "(its bounds are compared above).",
+        earlier_than_experiment));
+  }
+  report.deviation("K of the post-puncture load is not given by the dissertation: the insert_*.toml examples take the "
+                   "phantom's Young's modulus, and S = 0.168 (fitted by the dissertation to the sharp bevel) for every "
+                   "needle.");
 }
 
 // Fig 6.3: four needles 1600 um apart in layered skin, pushed to 200 um.

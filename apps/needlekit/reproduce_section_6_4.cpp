@@ -49,9 +49,18 @@ std::string attribution_of(const std::filesystem::path& mesh) {
   std::ifstream in(mesh.parent_path() / "README.md");
   std::string line, text;
   bool inside = false;
+  bool bullet = false;  // inside a matching bullet (its continuation lines are indented)
   while (std::getline(in, line)) {
     if (line.rfind("## ", 0) == 0) inside = line.find("ttribution") != std::string::npos;
-    if (inside && line.rfind("- `" + family, 0) == 0) text += (text.empty() ? "" : " ") + line.substr(2);
+    if (!inside) continue;
+    if (line.rfind("- ", 0) == 0) {
+      bullet = line.rfind("- `" + family, 0) == 0;
+      if (bullet) text += (text.empty() ? "" : " ") + line.substr(2);
+    } else if (bullet && line.rfind("  ", 0) == 0) {
+      text += " " + line.substr(line.find_first_not_of(' '));
+    } else {
+      bullet = false;
+    }
   }
   return text.empty() ? fmt::format("Mesh: {}", name) : "Mesh attribution: " + text;
 }
