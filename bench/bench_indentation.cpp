@@ -1,18 +1,15 @@
 // Benchmarks of the FE indentation (issue 3): the default skin block (3000 x 3000 x 1150 um, SC 20 um / EP to
 // 160 um / DM, 100 MPa / 0.134 MPa / 0.08 MPa, nu = 0.4) indented by a 230 um flat cylinder, 20 load steps to
 // 200 um, linear tetrahedra, neo-Hookean, the dissertation's tip-node contact. The argument is the target number of
-// tetrahedra in thousands (100, 300, 1000): the element sizes are scaled from a measured 100k-tet setting.
-// Run one size: build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentation/100'
-// Counters: tets, mesh_s, setup_s, assembly_s_per_iteration, solve_s_per_iteration, newton_iterations, total_s,
-// peak_rss_GB (of the whole process so far).
+// tetrahedra in thousands (100, 300, 1000).
+// Run one size per process (peak RSS): build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentation/100/'
+// Meshing alone is BM_SkinBlockMesh (bench_tissue_mesh.cpp). Counters: tets, dofs, steps_done, mesh_s, setup_s,
+// newton_iterations, assembly_s_per_iteration, solve_s_per_iteration, total_s, peak_rss_GB.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
-#include <cmath>
-
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
-#include "needlekit/mesh/layered_block_mesh.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 
 using namespace needlekit;
@@ -25,31 +22,20 @@ double peak_rss_gigabytes() {
   return static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss is in KiB on Linux
 }
 
-// Element sizes for about `thousands` x 1000 tetrahedra: 20 um at the tip and 250 um far, times a factor measured
-// on this block (the thin stratum corneum caps the element size across the whole top, so the count does not grow
-// like size^-3; 1.0 gives 126k, 0.6 266k, 0.274 1.67M tetrahedra); see BENCHMARKS.md.
+// Element sizes for about `thousands` x 1000 tetrahedra, as measured by the mesh benchmarks (BENCHMARKS.md,
+// "Tissue block meshing": 100k, 296k and 1.05M tetrahedra).
 mesh::LayeredBlockOptions skin_block(double thousands) {
   mesh::LayeredBlockOptions block;
   block.layers = materials::skin_layers();
-  const double scale = thousands <= 100 ? 1.05 : thousands <= 300 ? 0.57 : 0.33;
-  block.size_at_site = 20e-6 * scale;
-  block.size_far = 250e-6 * scale;
-  block.refinement_radius = 300e-6;
+  if (thousands <= 100) {
+    block.size_at_site = 25e-6, block.size_far = 250e-6, block.refinement_radius = 250e-6;
+  } else if (thousands <= 300) {
+    block.size_at_site = 11e-6, block.size_far = 180e-6, block.refinement_radius = 300e-6;
+  } else {
+    block.size_at_site = 8.5e-6, block.size_far = 125e-6, block.refinement_radius = 400e-6;
+  }
   return block;
 }
-
-void BM_SkinBlockMesh(benchmark::State& state) {
-  const mesh::LayeredBlockOptions block = skin_block(static_cast<double>(state.range(0)));
-  std::size_t tets = 0;
-  for (auto _ : state) {
-    const mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
-    tets = meshed.mesh.tets.size();
-    benchmark::DoNotOptimize(meshed);
-  }
-  state.counters["tets"] = static_cast<double>(tets);
-  state.counters["peak_rss_GB"] = peak_rss_gigabytes();
-}
-BENCHMARK(BM_SkinBlockMesh)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_SkinIndentation(benchmark::State& state) {
   insertion::IndentationCase c;

@@ -22,13 +22,15 @@ constexpr const char* kCaseFileHelp = R"(CASE file (TOML; every dimensional valu
                tip_height = "0 um"       >= 0, the tip's height above the surface at the start
   [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
   [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = "skin" |
-               "silicone-0.2mpa" | ... and/or [[tissue.layers]] name, thickness (the last may be "rest"),
+               "silicone-0.2mpa" | ... or [[tissue.layers]] name, thickness (the last may be "rest"),
                youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
-  [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", threads = 0
+  [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
+               (one needle per site without [[needles]]), or file = "tissue.msh" + unit (layers = physical groups)
   [loading]    depth = "200 um" (required), steps = 20, continue_after_puncture = false
   [model]      law = "neo-hookean" | "svk", contact = "surface" | "tip-nodes", element = "linear" | "quadratic",
                boundary = "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller"
-  [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2")";
+  [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = { first = "a.csv",
+               second = "b.csv", crack_area = "6661 um2" } (Eq 3.16 from two insertions; CSV depth_um,force_N))";
 
 struct IndentArguments {
   std::string case_path;

@@ -1,4 +1,4 @@
-// `needlekit materials`: the needle-material presets with their properties and sources.
+// `needlekit materials`: the needle-material presets and the tissue presets with their properties and sources.
 #include <fmt/format.h>
 
 #include <optional>
@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "needlekit/materials/needle_material.hpp"
+#include "needlekit/materials/tissue_presets.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -22,13 +23,24 @@ void run_materials() {
                mpa(material.yield_strength), mpa(material.allowable_stress));
     fmt::print("    source: {}\n", material.source);
   }
+  fmt::print("\ntissue preset (case files: [tissue] preset = ...), layers top to bottom: thickness, E, nu\n");
+  for (const std::string& name : materials::tissue_preset_names()) {
+    const materials::TissuePreset preset = materials::tissue_preset(name);
+    fmt::print("{}\n", name);
+    for (const mesh::TissueLayer& l : preset.layers) {
+      fmt::print("    {:<17} {:>10} {:>14} {:>6}\n", l.name, fmt::format("{:g} um", l.thickness * 1e6),
+                 fmt::format("{:.4g} MPa", l.youngs_modulus * 1e-6), fmt::format("{:g}", l.poisson_ratio));
+    }
+    fmt::print("    source: {}\n", preset.source);
+  }
 }
 
 }  // namespace
 
 void add_materials_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
-      "materials", "List the needle-material presets: Young's modulus, strength, allowable stress and sources");
+      "materials", "List the needle-material presets (Young's modulus, strength, allowable stress) and the tissue "
+                   "presets (layers, E, nu), with sources");
   command->callback(run_materials);
 }
 

@@ -29,6 +29,9 @@ StressResponse stress_response(MaterialLaw law, const LameConstants& lame, const
   const double lambda = lame.lambda, mu = lame.mu;
   if (law == MaterialLaw::StVenantKirchhoff) {
     // S = D E (Eqs 3.4, 3.5): S = λ tr(E) I + 2μ E; W = λ/2 tr(E)^2 + μ E:E.
+    // SVK's energy stays finite for inverted elements (J <= 0), where its solutions are spurious (the law "fails
+    // under large compression"): flag them so that the solver rejects the state.
+    r.valid = f.determinant() > 0;
     const Eigen::Matrix3d e = green_lagrange_strain(f);
     const double tr = e.trace();
     r.second_piola_kirchhoff = lambda * tr * Eigen::Matrix3d::Identity() + 2 * mu * e;

@@ -32,6 +32,7 @@ std::string to_string(BoundaryCondition c) {
     case BoundaryCondition::BottomFixed: return "bottom-fixed";
     case BoundaryCondition::BottomFixedSidesRoller: return "bottom-fixed-sides-roller";
     case BoundaryCondition::SymmetryPlanes: return "symmetry-planes";
+    case BoundaryCondition::QuarterSymmetry: return "quarter-symmetry";
     default: return "sides-and-bottom-fixed";
   }
 }
@@ -60,8 +61,10 @@ BoundaryCondition boundary_condition_from_string(const std::string& t, const std
   if (t == "bottom-fixed") return BoundaryCondition::BottomFixed;
   if (t == "bottom-fixed-sides-roller") return BoundaryCondition::BottomFixedSidesRoller;
   if (t == "symmetry-planes") return BoundaryCondition::SymmetryPlanes;
+  if (t == "quarter-symmetry") return BoundaryCondition::QuarterSymmetry;
   bad_choice(what, t,
-             "\"sides-and-bottom-fixed\", \"bottom-fixed\", \"bottom-fixed-sides-roller\" or \"symmetry-planes\"");
+             "\"sides-and-bottom-fixed\", \"bottom-fixed\", \"bottom-fixed-sides-roller\", \"symmetry-planes\" or "
+             "\"quarter-symmetry\"");
 }
 
 namespace {
@@ -218,7 +221,7 @@ struct QuasiStaticSolver::Impl {
         nd.force_now[t] = 0;
         nd.gap_now[t] = std::numeric_limits<double>::infinity();
         if ((q.array() < lo.array()).any() || (q.array() > hi.array()).any()) continue;
-        const auto sd = nd.distance->signed_distance(q, std::max(margin, 1e-300));
+        const auto sd = nd.distance->signed_distance(q, (nd.distance->box_max() - nd.distance->box_min()).norm());
         nd.gap_now[t] = sd.distance;
         const double p = nd.lambda[t] - k * sd.distance;
         if (p <= 0) continue;
@@ -261,8 +264,78 @@ struct QuasiStaticSolver::Impl {
 
   double tip_value(const NeedleState& nd, double disp) const { return -std::max(0.0, disp - nd.gap); }
 
-  // Factorize values (with a diagonal shift if not positive definite) and solve K du = rhs.
-  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du) {
+  // y = K x for the upper-triangular CSC values.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    y.setZero(x.size());
+    const int64_t nc = static_cast<int64_t>(colptr.size()) - 1;
+    for (int64_t c = 0; c < nc; ++c) {
+      double acc = 0;
+      const double xc = x[c];
+      for (int64_t k = colptr[c]; k < colptr[c + 1]; ++k) {
+        const int64_t r = rowidx[k];
+        const double v = values[static_cast<size_t>(k)];
+        if (r == c) {
+          acc += v * xc;
+        } else {
+          acc += v * x[r];
+          y[r] += v * xc;
+        }
+      }
+      y[c] += acc;
+    }
+  }
+
+  bool have_factor = false;
+
+  Eigen::VectorXd apply_factor(const Eigen::VectorXd& r) {
+    const std::vector<double> b(r.data(), r.data() + r.size());
+    const auto x = cholesky->solve(b);
+    return Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+  }
+
+  // Preconditioned CG on the current values with the last factorization; false if it does not converge in time.
+  bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance) {
+    const double bnorm = rhs.norm();
+    x = Eigen::VectorXd::Zero(rhs.size());
+    if (bnorm == 0) return true;
+    Eigen::VectorXd r = rhs, z = apply_factor(r), p = z, q;
+    double rz = r.dot(z);
+    for (iterations = 1; iterations <= opt.max_reuse_iterations; ++iterations) {
+      multiply(p, q);
+      const double pq = p.dot(q);
+      if (!(pq > 0)) return false;  // not positive definite along p
+      const double alpha = rz / pq;
+      x += alpha * p;
+      r -= alpha * q;
+      if (r.norm() <= tolerance * bnorm) return x.allFinite();
+      z = apply_factor(r);
+      const double rz_new = r.dot(z);
+      p = z + (rz_new / rz) * p;
+      rz = rz_new;
+    }
+    return false;
+  }
+
+  // Solve K du = rhs: CG preconditioned by the last factorization when allowed, else (or on failure) a fresh
+  // factorization (with a diagonal shift if K is not positive definite).
+  // `target` (N): the residual the Newton step should leave; CG stops at relative residual
+  // clamp(0.01 * target / |rhs|, linear_tolerance, 1e-2) (inexact Newton: loose early, tight near convergence).
+  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord* rec = nullptr,
+                        double target = 0) {
+    if (opt.reuse_factorization && have_factor) {
+      int its = 0;
+      const double bnorm = rhs.norm();
+      const double tol = bnorm > 0 ? std::clamp(0.01 * target / bnorm, opt.linear_tolerance, 1e-2) : 1.0;
+      if (reuse_solve(rhs, du, its, tol)) {
+        if (rec) rec->linear_iterations = its;
+        return true;
+      }
+    }
+    if (rec) {
+      rec->factorized = true;
+      rec->linear_iterations = 0;
+    }
+    have_factor = false;
     if (!cholesky->factorize(values)) {
       bool ok = false;
       std::vector<double> shifted = values;
@@ -278,9 +351,8 @@ struct QuasiStaticSolver::Impl {
       }
       if (!ok) return false;
     }
-    const std::vector<double> b(rhs.data(), rhs.data() + rhs.size());
-    const auto x = cholesky->solve(b);
-    du = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+    have_factor = true;
+    du = apply_factor(rhs);
     return du.allFinite();
   }
 
@@ -322,11 +394,12 @@ struct QuasiStaticSolver::Impl {
       }
       t0 = Clock::now();
       Eigen::VectorXd du;
-      if (!factor_and_solve(-r, du)) {
+      if (!factor_and_solve(-r, du, &rec, opt.residual_tolerance * ref)) {
         why = "the tangent matrix could not be factorized";
         return false;
       }
       rec.solve_seconds = seconds_since(t0);
+      if (rec.factorized) res.factorizations++;
       const double slope = r.dot(du);
       rec.increment_norm = du.norm();
       rec.energy_norm = std::abs(slope);
@@ -341,8 +414,11 @@ struct QuasiStaticSolver::Impl {
           const Eval et = evaluate(trial, disp, false, false);
           if (et.valid && et.potential() <= pi0 + 1e-4 * alpha * slope + 1e-10 * std::abs(pi0)) break;
           if (ls >= 12) {
-            why = "the line search found no decrease of the potential energy";
-            return false;
+            // No sufficient decrease (a kink of the contact energy or round-off): take the full Newton step and let
+            // the convergence test and the iteration limit decide.
+            alpha = 1;
+            rec.line_search_failed = true;
+            break;
           }
           alpha *= 0.5;
         }
@@ -392,11 +468,12 @@ struct QuasiStaticSolver::Impl {
         rec.residual_norm = r.norm();
         t0 = Clock::now();
         Eigen::VectorXd du;
-        if (!factor_and_solve(-(r + kdup), du)) {
+        if (!factor_and_solve(-(r + kdup), du, &rec)) {
           why = "the tangent matrix could not be factorized";
           return false;
         }
         rec.solve_seconds = seconds_since(t0);
+        if (rec.factorized) res.factorizations++;
         rec.increment_norm = du.norm();
         add_free(u, du, 1.0);
         res.iterations.push_back(rec);
@@ -486,6 +563,10 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
         "solver penetration_tolerance = " + str(o.penetration_tolerance) + ": expected (0, 1)");
   check(o.max_augmentations >= 0, "solver max_augmentations = " + str(o.max_augmentations) + ": expected >= 0");
   check(o.boundary_tolerance >= 0, "solver boundary_tolerance = " + str(o.boundary_tolerance) + ": expected >= 0");
+  check(o.max_reuse_iterations >= 1,
+        "solver max_reuse_iterations = " + str(o.max_reuse_iterations) + ": expected >= 1");
+  check(o.linear_tolerance > 0 && o.linear_tolerance < 1,
+        "solver linear_tolerance = " + str(o.linear_tolerance) + ": expected (0, 1)");
   check(o.threads >= 0, "solver threads = " + str(o.threads) + ": expected >= 0");
   m.arena.initialize(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
 
@@ -756,6 +837,11 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
         if (p.y() < lo.y() + tol) fixed[3 * n + 1] = 1;
         if (bottom) fixed[3 * n + 2] = 1;
         break;
+      case BoundaryCondition::QuarterSymmetry:
+        if (p.x() < lo.x() + tol) fixed[3 * n] = 1;
+        if (p.y() < lo.y() + tol) fixed[3 * n + 1] = 1;
+        if (bottom || p.x() > hi.x() - tol || p.y() > hi.y() - tol) fixed[3 * n] = fixed[3 * n + 1] = fixed[3 * n + 2] = 1;
+        break;
     }
   }
   if (o.contact == ContactModel::TipNodes)
@@ -834,12 +920,13 @@ StepResult QuasiStaticSolver::advance_to(double target) {
     for (const auto& nd : m.needles) lambda_saved.push_back(nd.lambda);
     std::string why;
     if (m.substep(next, res, why, res.cutbacks)) {
+      const double previous = m.d;
+      m.d = next;
       StepResult probe;
       m.measure(probe);
       for (size_t k = 0; k < m.needles.size(); ++k)
-        m.external_work += 0.5 * (m.last_force[k] + probe.indenter_force[k]) * (next - m.d);  // trapezoid
+        m.external_work += 0.5 * (m.last_force[k] + probe.indenter_force[k]) * (next - previous);  // trapezoid
       m.last_force = probe.indenter_force;
-      m.d = next;
       res.substeps++;
       if (++streak >= 2 && std::abs(step) < std::abs(target - m.d)) step *= 2, streak = 0;  // recover after cut-back
       if (std::abs(step) > std::abs(target - m.d) && m.d != target) step = target - m.d;

@@ -2,6 +2,8 @@
 
 #include <cholmod.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -24,7 +26,7 @@ SparseCholesky::SparseCholesky(int64_t n, const std::vector<int64_t>& colptr, co
   c.supernodal = CHOLMOD_AUTO;
   // Nested dissection (METIS) gives far less fill than AMD on 3D meshes; AMD for small systems.
   c.nmethods = 1;
-  c.method[0].ordering = n > 20000 ? CHOLMOD_METIS : CHOLMOD_AMD;
+  c.method[0].ordering = n > 2000 ? CHOLMOD_METIS : CHOLMOD_AMD;
   c.postorder = 1;
   impl_->n = n;
   const auto nnz = static_cast<size_t>(colptr.back());
@@ -34,11 +36,12 @@ SparseCholesky::SparseCholesky(int64_t n, const std::vector<int64_t>& colptr, co
   std::memcpy(impl_->a->i, rows.data(), nnz * sizeof(int64_t));
   std::memset(impl_->a->x, 0, nnz * sizeof(double));
   impl_->factor = cholmod_l_analyze(impl_->a, &c);
-  if (!impl_->factor && n > 20000) {  // METIS unavailable: fall back to AMD
+  if (!impl_->factor && n > 2000) {  // METIS unavailable: fall back to AMD
     c.method[0].ordering = CHOLMOD_AMD;
     impl_->factor = cholmod_l_analyze(impl_->a, &c);
   }
   if (!impl_->factor) throw std::runtime_error("CHOLMOD: symbolic analysis failed");
+  if (getenv("NK_DEBUG")) fprintf(stderr, "cholmod n=%ld nnzA=%ld lnz=%g fl=%g ordering=%d super=%d\n", (long)n, (long)nnz, c.lnz, c.fl, c.selected, c.supernodal);
 }
 
 SparseCholesky::~SparseCholesky() {

@@ -2,6 +2,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 
 #include "needlekit/fem/hyperelastic_law.hpp"
 
@@ -55,11 +56,8 @@ bool tet_kernel(const Grad<N>* gradients, const double* weights, int points, Mat
     const double w = weights[q];
     const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + u * g.transpose();  // F_iJ = δ_iJ + u_ia N_a,J
     const StressResponse r = stress_response(law, lame, f, tangent != nullptr);
-    if (!r.valid) {
-      valid = false;
-      energy = std::numeric_limits<double>::infinity();
-      continue;
-    }
+    if (!r.valid) valid = false;  // inverted: the caller rejects the state
+    if (!std::isfinite(r.energy_density)) continue;
     const Eigen::Matrix3d& s = r.second_piola_kirchhoff;
     energy += w * r.energy_density;
     force.noalias() += w * (f * s) * g;  // Eq 3.8: f_a = ∫ F S ∇N_a dV  (= K u + g(u) u)

@@ -179,8 +179,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     if (!solved.converged) {
       failed = true;
       result.status = IndentationStatus::SolverFailed;
-      result.reason = fmt::format("load step {} of {} (to depth {}) did not converge: {}; the {} completed step{} "
-                                  "are kept",
+      result.reason = fmt::format("load step {} of {} (to depth {}) did not converge: {}; {} completed step{} kept",
                                   k, c.steps, um(depth), solved.reason, result.steps.size(),
                                   result.steps.size() == 1 ? "" : "s");
       break;

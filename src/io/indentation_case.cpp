@@ -2,16 +2,14 @@
 
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
-#include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
+#include "tissue_config_toml.hpp"
 #include "toml_config.hpp"
 
 namespace needlekit::io {
 namespace {
 
 using namespace config;  // the TOML reading helpers of toml_config.hpp
-
-constexpr double kDefaultHeight = 1150e-6;  // m, the dissertation's block (§3.3.2, §6.2)
 
 double quantity_at_least_zero(const Section& section, const toml::node& node, std::string_view key,
                               Dimension dimension, std::string_view meaning) {
@@ -77,9 +75,14 @@ NeedleRead read_needle(const Section& section, const toml::table& root, const st
   return result;
 }
 
-std::vector<insertion::NeedleSite> read_sites(const Section& top, double default_tip_height) {
+std::vector<insertion::NeedleSite> read_sites(const Section& top, double default_tip_height,
+                                             const std::vector<Eigen::Vector2d>& mesh_sites) {
   const toml::node* node = top.optional("needles");
-  if (!node) return {insertion::NeedleSite{Eigen::Vector2d::Zero(), default_tip_height}};
+  if (!node) {  // one needle at each [mesh] site (default: one at the centre)
+    std::vector<insertion::NeedleSite> sites;
+    for (const Eigen::Vector2d& p : mesh_sites) sites.push_back({p, default_tip_height});
+    return sites;
+  }
   if (!node->is_array_of_tables() || node->as_array()->empty()) {
     top.fail(*node, "needles", fmt::format("{} is not an array of tables, expected [[needles]] entries with x, y",
                                            describe(*node)));
@@ -101,101 +104,7 @@ std::vector<insertion::NeedleSite> read_sites(const Section& top, double default
   return sites;
 }
 
-// ---- [tissue] -----------------------------------------------------------------------------------------------------
-
-mesh::TissueLayer read_layer(const Section& tissue, const toml::node& node, std::size_t index, bool last,
-                             bool& rest) {
-  const Section layer = tissue.subsection(node, fmt::format("layers[{}]", index),
-                                          {"name", "thickness", "youngs_modulus", "poisson_ratio"});
-  mesh::TissueLayer result;
-  result.name = text_of(layer, layer.required("name", "a layer name"), "name", "a layer name");
-  const toml::node& thickness = layer.required("thickness", "a length, e.g. \"20 um\", or \"rest\"");
-  rest = thickness.is_string() && thickness.as_string()->get() == "rest";
-  if (rest && !last) {
-    layer.fail(thickness, "thickness", "\"rest\" for a layer that is not the last, expected a length");
-  }
-  if (!rest) result.thickness = positive_quantity_of(layer, thickness, "thickness", Dimension::Length);
-  result.youngs_modulus = positive_quantity(layer, "youngs_modulus", Dimension::Pressure);
-  const toml::node& nu = layer.required("poisson_ratio", "a number in (-1, 0.5), e.g. 0.4");
-  if (!nu.is_number()) {
-    layer.fail(nu, "poisson_ratio", fmt::format("{} is not a number, expected a number in (-1, 0.5)", describe(nu)));
-  }
-  result.poisson_ratio = *nu.value<double>();
-  if (!(result.poisson_ratio > -1 && result.poisson_ratio < 0.5)) {
-    layer.fail(nu, "poisson_ratio",
-               fmt::format("{} is out of range (0.5 is incompressible, which a displacement FE model cannot "
-                           "represent), expected a number in (-1, 0.5)",
-                           describe(nu)));
-  }
-  return result;
-}
-
-void read_tissue(const Section& tissue, mesh::LayeredBlockOptions& block) {
-  if (const toml::node* node = tissue.optional("width")) block.width = positive_quantity_of(tissue, *node, "width", Dimension::Length);
-  if (const toml::node* node = tissue.optional("length")) block.length = positive_quantity_of(tissue, *node, "length", Dimension::Length);
-  std::optional<double> height = optional_positive_quantity(tissue, "height", Dimension::Length);
-  const toml::node* preset_node = tissue.optional("preset");
-  const toml::node* layers_node = tissue.optional("layers");
-  double preset_height = kDefaultHeight;
-  if (preset_node) {
-    const std::string name = text_of(tissue, *preset_node, "preset", "a tissue preset name");
-    const materials::TissuePreset preset =
-        tissue.at(*preset_node, [&] { return materials::tissue_preset(name, tissue.what("preset")); });
-    block.layers = preset.layers;
-    preset_height = preset.height;
-  } else if (!layers_node) {
-    tissue.fail(tissue.table(), "layers",
-                "missing, expected [[tissue.layers]] entries or a preset (e.g. preset = \"skin\")");
-  }
-  bool rest = false;
-  if (layers_node) {
-    if (!layers_node->is_array_of_tables() || layers_node->as_array()->empty()) {
-      tissue.fail(*layers_node, "layers",
-                  fmt::format("{} is not an array of tables, expected [[tissue.layers]] entries", describe(*layers_node)));
-    }
-    const toml::array& array = *layers_node->as_array();
-    block.layers.clear();
-    for (std::size_t i = 0; i < array.size(); ++i) {
-      block.layers.push_back(read_layer(tissue, *array.get(i), i, i + 1 == array.size(), rest));
-    }
-  } else if (preset_node && height) {
-    rest = true;  // a preset's last layer fills the requested height
-  }
-  double above = 0;
-  for (std::size_t i = 0; i + (rest ? 1 : 0) < block.layers.size(); ++i) above += block.layers[i].thickness;
-  if (rest) {
-    const double total = height.value_or(preset_node ? preset_height : kDefaultHeight);
-    if (!(total > above)) {
-      const toml::node& at = height ? *tissue.optional("height") : tissue.table();
-      tissue.fail(at, "height",
-                  fmt::format("{} leaves no room for the last layer below {} of layers, expected a height > {}",
-                              units::format(total, "um"), units::format(above, "um"), units::format(above, "um")));
-    }
-    block.layers.back().thickness = total - above;
-  } else if (height && std::abs(*height - above) > 1e-9 * above) {
-    tissue.fail(*tissue.optional("height"), "height",
-                fmt::format("{} differs from the sum of the layer thicknesses {}, expected the same height or a last "
-                            "layer of thickness \"rest\"",
-                            units::format(*height, "um"), units::format(above, "um")));
-  }
-}
-
 // ---- the rest -----------------------------------------------------------------------------------------------------
-
-void read_mesh(const Section& section, mesh::LayeredBlockOptions& block) {
-  if (auto size = optional_positive_quantity(section, "size_at_tip", Dimension::Length)) block.size_at_site = *size;
-  if (auto size = optional_positive_quantity(section, "size_far", Dimension::Length)) block.size_far = *size;
-  if (auto radius = optional_positive_quantity(section, "refinement_radius", Dimension::Length)) {
-    block.refinement_radius = *radius;
-  }
-  if (const toml::node* node = section.optional("threads")) block.threads = integer_at_least(section, *node, "threads", 0);
-  if (block.size_far < block.size_at_site) {
-    const toml::node& at = section.optional("size_far") ? *section.optional("size_far") : section.table();
-    section.fail(at, "size_far",
-                 fmt::format("{} is smaller than size_at_tip {}, expected size_far >= size_at_tip",
-                             units::format(block.size_far, "um"), units::format(block.size_at_site, "um")));
-  }
-}
 
 void read_model(const Section& section, fem::SolverOptions& solver) {
   if (const toml::node* node = section.optional("law")) {
@@ -269,12 +178,20 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   NeedleRead needle_read = read_needle(needle, root, base_directory);
   result.needle = std::move(needle_read.mesh);
   result.geometry = needle_read.geometry;
-  result.needles = read_sites(top, needle_read.tip_height);
-
-  read_tissue(top.required_subsection("tissue", {"width", "length", "height", "preset", "layers"}), result.block);
+  // [tissue] and [mesh]: the reader shared with `needlekit tissue-mesh` (tissue_config.hpp).
+  top.required("tissue", "a table [tissue] with a preset or [[tissue.layers]]");
+  const TissueCase tissue = tissue_case_of(root, file, base_directory);
+  result.block = tissue.block;
+  if (!tissue.msh_file.empty()) result.tissue_mesh = tissue_mesh(tissue).mesh;
+  if (top.optional("needles") && top.optional("mesh") && top.optional("mesh")->as_table() &&
+      top.optional("mesh")->as_table()->get("sites")) {
+    top.fail(*top.optional("mesh")->as_table()->get("sites"), "mesh.sites",
+             "given together with [[needles]], expected the sites in one of them");
+  }
+  result.needles = read_sites(top, needle_read.tip_height, tissue.block.insertion_sites);
   for (std::size_t i = 0; i < result.needles.size(); ++i) {
     const Eigen::Vector2d p = result.needles[i].position;
-    if (!(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
+    if (!result.tissue_mesh && !(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
       const toml::node& at = top.optional("needles") ? *top.optional("needles")->as_array()->get(i) : root;
       throw InvalidInput(fmt::format("{} key 'needles[{}]': ({}, {}) is outside the {} x {} block, expected "
                                      "|x| < width/2 and |y| < length/2",
@@ -282,9 +199,6 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
                                      units::format(p.y(), "um"), units::format(result.block.width, "um"),
                                      units::format(result.block.length, "um")));
     }
-  }
-  if (const auto mesh = top.optional_subsection("mesh", {"size_at_tip", "size_far", "refinement_radius", "threads"})) {
-    read_mesh(*mesh, result.block);
   }
 
   const Section loading = top.required_subsection("loading", {"depth", "steps", "continue_after_puncture"});

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <sstream>
+#include <utility>
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/result_writers.hpp"
@@ -196,6 +198,18 @@ void IndentationWriter::write_step(const insertion::IndentationStep& step, const
   for (const std::string& name : {tissue_name, needle_name, case_.name + ".pvd", case_.name + "_needles.pvd"}) {
     remember(directory_ / name);
   }
+  // The curves so far, so that an interrupted run keeps them too.
+  partial_.steps.push_back(step);
+  write_curves(partial_);
+}
+
+void IndentationWriter::write_curves(const insertion::IndentationResult& result) {
+  for (const auto& [suffix, content] : {std::pair{std::string("_force_depth.csv"), force_depth_csv(result)},
+                                        std::pair{std::string("_solver_steps.csv"), solver_statistics_csv(result)}}) {
+    const std::filesystem::path path = directory_ / (case_.name + suffix);
+    write_text_file_atomically(path, content);
+    remember(path);
+  }
 }
 
 void IndentationWriter::finish(const insertion::IndentationResult& result) {
@@ -204,8 +218,7 @@ void IndentationWriter::finish(const insertion::IndentationResult& result) {
     write_text_file_atomically(path, content);
     remember(path);
   };
-  write("_force_depth.csv", force_depth_csv(result));
-  write("_solver_steps.csv", solver_statistics_csv(result));
+  write_curves(result);
   write("_puncture.json", puncture_json(case_, result).dump(2) + "\n");
   write("_result.json", indentation_json(case_, result).dump(2) + "\n");
 }

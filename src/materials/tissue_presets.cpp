@@ -14,9 +14,9 @@ constexpr double kStratumCorneum = 20e-6;   // §3.3.2: SC within 20 um of the s
 constexpr double kEpidermisBottom = 160e-6; // §3.3.2: DM below 160 um
 
 constexpr std::string_view kDissertationSkin =
-    "dissertation §3.3.2: SC 20 um (E from Wu et al., J. Biomed. Mater. Res. A 76, 2006: 1 GPa at the surface, under "
-    "100 MPa at 10 um depth), EP to 160 um depth E = 0.134 MPa and DM E = 0.08 MPa (L'Etang et al., 2006), nu = 0.4 "
-    "for every layer; block height 1150 um";
+    "dissertation §3.3.2: SC 20 um (Wu, Van Osdol & Dauskardt, Biomaterials 27, 785-795, 2006: about 1 GPa at the "
+    "surface, under 100 MPa at 10 um depth), EP to 160 um depth E = 0.134 MPa and DM E = 0.08 MPa (L'Etang & "
+    "Huang, Ultrasonics 44, 1243-1247, 2006), nu = 0.4 for every layer; block height 1150 um";
 
 std::vector<mesh::TissueLayer> phantom(double modulus) {
   // §6.2: silicone rubber, nu = 0.49 (the issue allows 0.48-0.49), one homogeneous layer.
@@ -49,7 +49,7 @@ const std::vector<Entry>& presets() {
         kSkinHeight,
         "SC and viable epidermis E = 1.5 MPa, the middle of the 1-2 MPa that Geerligs et al. (J. Biomech. 44, "
         "1176-1181, 2011) measured for both by in vitro micro-indentation perpendicular to the skin; dermis "
-        "0.08 MPa (L'Etang 2006, as the dissertation); thicknesses and nu = 0.4 as dissertation §3.3.2"}},
+        "0.08 MPa (L'Etang & Huang 2006, as the dissertation); thicknesses and nu = 0.4 as dissertation §3.3.2"}},
   };
   return table;
 }

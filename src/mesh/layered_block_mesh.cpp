@@ -1,7 +1,8 @@
 // The layered block with the Gmsh C++ API: one OpenCASCADE box per layer, fragmented so that the layer interfaces
-// are conforming; a physical volume named after each layer; the insertion sites embedded in the top surface; size
-// fields: Distance from the sites -> Threshold (size_at_site within refinement_radius, growing by size_gradient up
-// to size_far), a Box field capping the size in each thin layer, and their Min as background mesh; HXT 3D.
+// are conforming; a physical volume named after each layer; the insertion sites (and optionally a circle around
+// each) embedded in the top surface; size fields: Distance from the sites -> Threshold (size_at_site within
+// refinement_radius, growing by size_gradient up to size_far), a Box field capping the size in each thin layer, and
+// their Min as background mesh; HXT 3D.
 // The geometry is built in micrometres (OpenCASCADE's absolute tolerance is 1e-7 model units) and converted to m.
 #include "needlekit/mesh/layered_block_mesh.hpp"
 
@@ -35,7 +36,7 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
   check_positive(o.size_far, "size_far");
   check_positive(o.size_gradient, "size_gradient", 1, "");
   if (o.size_far < o.size_at_site) {
-    throw InvalidInput(fmt::format("layered block: size_far = {} um is smaller than size_at_site = {} um; expected "
+    throw InvalidInput(fmt::format("layered block: size_far = {:g} um is smaller than size_at_site = {:g} um; expected "
                                    "size_far >= size_at_site",
                                    o.size_far * 1e6, o.size_at_site * 1e6));
   }
@@ -43,13 +44,35 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
     throw InvalidInput(fmt::format("layered block: thin_layer_size_factor = {}; expected a value >= 0 (0 = no cap)",
                                    o.thin_layer_size_factor));
   }
+  if (!std::isfinite(o.site_circle_radius) || o.site_circle_radius < 0) {
+    throw InvalidInput(fmt::format("layered block: site_circle_radius = {:g} um; expected >= 0 (0 = none)",
+                                   o.site_circle_radius * 1e6));
+  }
+  if (o.site_circle_radius > 0) {
+    for (std::size_t s = 0; s < o.insertion_sites.size(); ++s) {
+      const Eigen::Vector2d& p = o.insertion_sites[s];
+      const double r = o.site_circle_radius;
+      if (!(std::abs(p.x()) + r < 0.5 * o.width && std::abs(p.y()) + r < 0.5 * o.length)) {
+        throw InvalidInput(fmt::format("layered block: the {:g} um circle of site {} at ({:g}, {:g}) um leaves the top "
+                                       "surface; expected it inside",
+                                       r * 1e6, s, p.x() * 1e6, p.y() * 1e6));
+      }
+      for (std::size_t t = 0; t < s; ++t) {
+        if ((o.insertion_sites[t] - p).norm() <= 2 * r) {
+          throw InvalidInput(fmt::format("layered block: the {:g} um circles of sites {} and {} overlap; expected "
+                                         "sites more than {:g} um apart",
+                                         r * 1e6, t, s, 2 * r * 1e6));
+        }
+      }
+    }
+  }
   if (o.threads < 0) throw InvalidInput(fmt::format("layered block: threads = {}; expected >= 0", o.threads));
   materials::validate(layers, "layered block: layers");
   for (std::size_t s = 0; s < o.insertion_sites.size(); ++s) {
     const Eigen::Vector2d& p = o.insertion_sites[s];
     if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
-      throw InvalidInput(fmt::format("layered block: insertion site {} at ({}, {}) um is not inside the top surface "
-                                     "(|x| < {} um, |y| < {} um)",
+      throw InvalidInput(fmt::format("layered block: insertion site {} at ({:g}, {:g}) um is not inside the top surface "
+                                     "(|x| < {:g} um, |y| < {:g} um)",
                                      s, p.x() * 1e6, p.y() * 1e6, 0.5 * o.width * 1e6, 0.5 * o.length * 1e6));
     }
   }
@@ -114,9 +137,12 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
     } else {
       volume_of_layer[0] = boxes[0].second;
     }
-    std::vector<int> site_points;
+    std::vector<int> site_points, site_circles;
     for (const Eigen::Vector2d& s : options.insertion_sites) {
       site_points.push_back(gmsh::model::occ::addPoint(s.x() * u, s.y() * u, 0));
+      if (options.site_circle_radius > 0) {
+        site_circles.push_back(gmsh::model::occ::addCircle(s.x() * u, s.y() * u, 0, options.site_circle_radius * u));
+      }
     }
     gmsh::model::occ::synchronize();
 
@@ -127,6 +153,7 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
                                           top, 2);
     if (top.size() != 1) throw std::logic_error(fmt::format("{} top surfaces", top.size()));
     if (!site_points.empty()) gmsh::model::mesh::embed(0, site_points, 2, top[0].second);
+    if (!site_circles.empty()) gmsh::model::mesh::embed(1, site_circles, 2, top[0].second);
 
     for (std::size_t i = 0; i < layers.size(); ++i) {
       const int group = gmsh::model::addPhysicalGroup(3, {volume_of_layer[i]});
@@ -174,6 +201,7 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
     detail::GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
     detail::GmshSession::set_option({"Mesh.Algorithm3D"}, 10);  // HXT
     detail::GmshSession::set_option({"General.NumThreads"}, options.threads);
+    detail::GmshSession::set_option({"Mesh.MaxNumThreads3D"}, options.threads);
     detail::GmshSession::set_option({"Mesh.Optimize"}, 1);
     gmsh::model::mesh::generate(3);
 

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "needlekit/core/errors.hpp"
@@ -12,8 +13,11 @@ namespace needlekit::mesh {
 namespace {
 
 void require(bool ok, const std::string& field, double value, const std::string& expected) {
-  if (!ok)
-    throw InvalidInput("structured block: " + field + " = " + std::to_string(value) + ", expected " + expected);
+  if (!ok) {
+    std::ostringstream s;
+    s << "structured block: " << field << " = " << value << ", expected " << expected;
+    throw InvalidInput(s.str());
+  }
 }
 
 // Coordinates of one side of the focus: m cells over `length`, spacing growing geometrically from the focus so that
@@ -31,6 +35,44 @@ std::vector<double> graded_offsets(int m, double length, double grading) {
     out.push_back(k + 1 == m ? length : x);
   }
   return out;
+}
+
+// Offsets from the focus: `core` equal cells over `half`, then m cells growing geometrically from that spacing to
+// `length`.
+std::vector<double> cored_offsets(int core, double half, int m, double length) {
+  std::vector<double> out;
+  const double h = half / core;
+  for (int k = 1; k <= core; ++k) out.push_back(k * h);
+  const double rest = length - half;
+  auto total = [&](double q) { return std::abs(q - 1) < 1e-12 ? m * h : h * q * (std::pow(q, m) - 1) / (q - 1); };
+  double qa = 1e-3, qb = 100;
+  for (int it = 0; it < 200; ++it) {
+    const double qm = 0.5 * (qa + qb);
+    (total(qm) < rest ? qa : qb) = qm;
+  }
+  const double q = 0.5 * (qa + qb);
+  double x = half, step = h;
+  for (int k = 0; k < m; ++k) {
+    step *= q;
+    x += step;
+    out.push_back(k + 1 == m ? length : x);
+  }
+  return out;
+}
+
+std::vector<double> cored_axis(double lo, double hi, double focus, int cells, int core, double half) {
+  const double span = hi - lo;
+  const bool at_lo = focus - lo <= 1e-12 * span;  // focus on the low face: one-sided (symmetry models)
+  int left = at_lo ? 0 : static_cast<int>(std::lround(cells * (focus - lo) / span));
+  if (!at_lo) left = std::clamp(left, core + 1, cells - core - 1);
+  std::vector<double> c;
+  if (!at_lo) {
+    const auto lo_side = cored_offsets(core, half, left - core, focus - lo);
+    for (auto it = lo_side.rbegin(); it != lo_side.rend(); ++it) c.push_back(focus - *it);
+  }
+  c.push_back(at_lo ? lo : focus);
+  for (double o : cored_offsets(core, half, cells - left - core, hi - focus)) c.push_back(focus + o);
+  return c;
 }
 
 std::vector<double> axis(double lo, double hi, double focus, int cells, double grading) {
@@ -63,12 +105,26 @@ TetMesh structured_block_mesh(const StructuredBlockOptions& o) {
   require(std::abs(o.focus.x()) <= o.width / 2, "focus x", o.focus.x(), "inside the top face");
   require(std::abs(o.focus.y()) <= o.length / 2, "focus y", o.focus.y(), "inside the top face");
 
-  const auto xs = axis(-o.width / 2, o.width / 2, o.focus.x(), o.nx, o.grading);
-  const auto ys = axis(-o.length / 2, o.length / 2, o.focus.y(), o.ny, o.grading);
+  const bool cored = o.core_cells > 0;
+  if (cored) {
+    require(o.core_half_width > 0, "core_half_width", o.core_half_width, "> 0 m");
+    const bool corner_x = o.focus.x() <= -o.width / 2 * (1 - 1e-12), corner_y = o.focus.y() <= -o.length / 2 * (1 - 1e-12);
+    require(o.nx > (corner_x ? 1 : 2) * o.core_cells && o.ny > (corner_y ? 1 : 2) * o.core_cells, "core_cells",
+            o.core_cells, "< nx / 2 and < ny / 2 (< nx, ny for a focus on the low face)");
+    require(o.nz > o.core_cells, "core_cells", o.core_cells, "< nz");
+    require(o.focus.x() + o.core_half_width < o.width / 2 && o.focus.y() + o.core_half_width < o.length / 2 &&
+                o.core_half_width < o.height,
+            "core_half_width", o.core_half_width, "a core inside the block");
+  }
+  const auto xs = cored ? cored_axis(-o.width / 2, o.width / 2, o.focus.x(), o.nx, o.core_cells, o.core_half_width)
+                        : axis(-o.width / 2, o.width / 2, o.focus.x(), o.nx, o.grading);
+  const auto ys = cored ? cored_axis(-o.length / 2, o.length / 2, o.focus.y(), o.ny, o.core_cells, o.core_half_width)
+                        : axis(-o.length / 2, o.length / 2, o.focus.y(), o.ny, o.grading);
   std::vector<double> zs;  // from the bottom up, finest at the top
-  for (double d : graded_offsets(o.nz, o.height, o.grading)) zs.push_back(-d);
-  zs.push_back(0.0);
-  std::reverse(zs.begin(), zs.end());  // zs[0] = -height ... back = 0
+  const auto depths = cored ? cored_offsets(o.core_cells, o.core_half_width, o.nz - o.core_cells, o.height)
+                            : graded_offsets(o.nz, o.height, o.grading);  // below the top, increasing
+  for (auto it = depths.rbegin(); it != depths.rend(); ++it) zs.push_back(-*it);
+  zs.push_back(0.0);  // zs[0] = -height ... back = 0
 
   const int px = o.nx + 1, py = o.ny + 1, pz = o.nz + 1;
   TetMesh m;
@@ -77,6 +133,20 @@ TetMesh structured_block_mesh(const StructuredBlockOptions& o) {
     for (int j = 0; j < py; ++j)
       for (int i = 0; i < px; ++i) m.nodes.emplace_back(xs[i], ys[j], zs[k]);
   auto id = [&](int i, int j, int k) { return i + px * (j + py * k); };
+  if (cored && o.round_core) {
+    // Elliptical square-to-disc mapping of each square ring |x|, |y| <= m about the focus onto the circle of radius
+    // m, blended linearly back to the identity between m = c and m = 2c (c = core half-width).
+    const double c = o.core_half_width;
+    for (auto& p : m.nodes) {
+      const double x = p.x() - o.focus.x(), y = p.y() - o.focus.y();
+      const double r = std::max(std::abs(x), std::abs(y));
+      if (r <= 0 || r >= 2 * c) continue;
+      const double xd = x * std::sqrt(1 - 0.5 * (y / r) * (y / r)), yd = y * std::sqrt(1 - 0.5 * (x / r) * (x / r));
+      const double w = std::clamp((r - c) / c, 0.0, 1.0);
+      p.x() = o.focus.x() + (1 - w) * xd + w * x;
+      p.y() = o.focus.y() + (1 - w) * yd + w * y;
+    }
+  }
 
   auto add = [&](std::array<int, 4> t) {
     const auto& p = m.nodes;

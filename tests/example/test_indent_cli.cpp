@@ -95,3 +95,28 @@ TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+// The §6.2 examples in a quick mode (a coarse mesh, one 10 um step): each runs, and the mean pressure under the tip
+// orders the needles as their puncture depths (sharp bevel > blunt bevel > flat cylinder).
+TEST_F(IndentCli, Section_6_2_ExamplesRunInQuickMode) {
+  double pressure[3] = {};
+  const char* names[3] = {"sharp_bevel", "blunt_bevel", "flat_cylinder"};
+  for (int i = 0; i < 3; ++i) {
+    SCOPED_TRACE(names[i]);
+    const IndentRun r = run(std::string("indent ") + kExamples + "indent_6_2_" + names[i] +
+                            ".toml --json --size-at-tip '" + (i == 0 ? "8 um" : "30 um") +
+                            "' --size-far '800 um' --steps 1 --depth '10 um'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json["force_N"].size(), 1u) << json["reason"];
+    EXPECT_GT(json["force_N"][0].get<double>(), 0.0);
+    pressure[i] = json["contact_pressure_MPa"][0].get<double>();
+    EXPECT_EQ(json["criterion"], pressure[i] >= 0.663 ? "critical-pressure" : "none");
+  }
+  EXPECT_GT(pressure[0], pressure[1]);
+  EXPECT_GT(pressure[1], pressure[2]);
+}
+
+}  // namespace

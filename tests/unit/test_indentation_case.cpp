@@ -192,7 +192,7 @@ TEST(IndentationCase, ErrorsNameFileLineAndKey) {
               HasSubstr("key 'puncture.critical_pressure': 0.663 is a bare number"));
   // "rest" not last; unknown key; missing depth; a needle outside the block; steps < 1.
   EXPECT_THAT(error_of(replaced(kCase, "thickness = \"20 um\"", "thickness = \"rest\"")),
-              HasSubstr("key 'tissue.layers[0].thickness': \"rest\" for a layer that is not the last"));
+              HasSubstr("key 'tissue.layers[0].thickness': \"rest\" is allowed only for the last layer"));
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "stepz = 20")), HasSubstr("unknown key 'loading.stepz'"));
   EXPECT_THAT(error_of(replaced(kCase, "depth = \"200 um\"\n", "")), HasSubstr("key 'loading.depth': missing"));
   EXPECT_THAT(error_of(replaced(kCase, "[tissue]", "[[needles]]\nx = \"2000 um\"\n[tissue]")),
@@ -200,9 +200,10 @@ TEST(IndentationCase, ErrorsNameFileLineAndKey) {
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 0")),
               HasSubstr("key 'loading.steps': 0 is out of range, expected an integer >= 1"));
   EXPECT_THAT(error_of(replaced(kCase, "size_far = \"250 um\"", "size_far = \"10 um\"")),
-              HasSubstr("key 'mesh.size_far': 10 um is smaller than size_at_tip 20 um"));
-  EXPECT_THAT(error_of(replaced(kCase, "width = \"3000 um\"", "width = \"3000 um\"\npreset = \"liver\"")),
-              HasSubstr("key 'tissue.preset': unknown tissue preset 'liver'"));
+              HasSubstr("key 'mesh.size_far': 10 um is smaller than size_at_tip = 20 um"));
+  const std::string preset_case = std::string(kCase.substr(0, kCase.find("[[tissue.layers]]"))) + "preset = \"liver\"\n[loading]\n"
+                                  "depth = \"200 um\"\n";
+  EXPECT_THAT(error_of(preset_case), HasSubstr("case.toml:10: key 'tissue.preset': unknown tissue preset 'liver'"));
 }
 
 }  // namespace

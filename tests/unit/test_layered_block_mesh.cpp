@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
@@ -143,4 +144,45 @@ TEST(LayeredBlockMesh, DefaultsAreTheDissertationSkin) {
   EXPECT_DOUBLE_EQ(skin[1].youngs_modulus, 0.134e6);
   EXPECT_DOUBLE_EQ(skin[2].youngs_modulus, 0.08e6);
   for (const auto& l : skin) EXPECT_DOUBLE_EQ(l.poisson_ratio, 0.4);
+}
+
+TEST(LayeredBlockMesh, ConcurrentCallsAreSerialisedAndComplete) {
+  // Gmsh is one global state: two threads meshing at once must both get a complete, valid mesh of the block (HXT is
+  // not run-to-run deterministic, so the two meshes differ in detail).
+  const mesh::LayeredBlockOptions o = small_skin_block();
+  mesh::LayeredBlockResult a, b;
+  std::thread first([&] { a = mesh::layered_block_mesh(o); });
+  std::thread second([&] { b = mesh::layered_block_mesh(o); });
+  first.join();
+  second.join();
+  for (const mesh::LayeredBlockResult* r : {&a, &b}) {
+    const mesh::TetMeshCheck check = mesh::tet_mesh_check(r->mesh);
+    EXPECT_TRUE(check.valid());
+    EXPECT_NEAR(check.volume, o.width * o.length * 400e-6, 1e-9 * check.volume);
+    EXPECT_EQ(r->quality.size(), 3u);
+  }
+}
+
+TEST(LayeredBlockMesh, SiteCircleGivesNodesOnAFlatPunchEdge) {
+  mesh::LayeredBlockOptions o = small_skin_block();
+  o.site_circle_radius = 115e-6;  // the Sneddon case's 230 um flat cylinder
+  o.refinement_radius = 150e-6;
+  const mesh::LayeredBlockResult r = mesh::layered_block_mesh(o);
+  // Nodes on the circle: at least 2 pi R / (1.5 size) of them, evenly around (every 30 degree sector has some).
+  std::vector<int> sectors(12, 0);
+  int on_circle = 0;
+  for (const auto& p : r.mesh.nodes) {
+    if (std::abs(p.z()) > 1e-12 || std::abs(std::hypot(p.x(), p.y()) - 115e-6) > 1e-3 * 115e-6) continue;
+    ++on_circle;
+    ++sectors[static_cast<int>((std::atan2(p.y(), p.x()) + M_PI) / (M_PI / 6)) % 12];
+  }
+  EXPECT_GE(on_circle, static_cast<int>(2 * M_PI * 115e-6 / (1.5 * o.size_at_site)));
+  for (int n : sectors) EXPECT_GT(n, 0);
+  EXPECT_TRUE(mesh::tet_mesh_check(r.mesh).valid());
+  o.insertion_sites = {{-100e-6, 0}, {100e-6, 0}};
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("the 115 um circles of sites 0 and 1 overlap")));
+  o.insertion_sites = {{200e-6, 0}};
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("leaves the top surface")));
 }

@@ -20,7 +20,8 @@ struct StressResponse {
   // dS/dE in Voigt form (order xx, yy, zz, xy, yz, zx; tensor shear components, i.e. C_ijkl with the
   // symmetric-E convention: S_v = C * [E11 E22 E33 2E12 2E23 2E31]).
   Eigen::Matrix<double, 6, 6> tangent;
-  bool valid = true;           // false when J <= 0 for neo-Hookean
+  bool valid = true;           // false when J = det F <= 0 (inverted; neo-Hookean: energy infinite, SVK: values
+                               // still computed but the state is not physical)
 };
 
 // Green-Lagrange strain E = (F^T F - I)/2 (Eq 3.3, corrected).

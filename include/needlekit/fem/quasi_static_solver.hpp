@@ -52,6 +52,8 @@ enum class BoundaryCondition {
   BottomFixedSidesRoller, // bottom fixed, sides slide (normal displacement zero)
   SymmetryPlanes,         // u_x = 0 on x = min, u_y = 0 on y = min, u_z = 0 on the bottom; other faces free
                           // (homogeneous uniaxial tests)
+  QuarterSymmetry,        // u_x = 0 on x = min, u_y = 0 on y = min (symmetry planes through the needle axis);
+                          // x = max, y = max and the bottom fixed: a quarter of a centred §3.4 block
 };
 
 std::string to_string(MaterialLaw law);
@@ -59,7 +61,8 @@ std::string to_string(ElementOrder order);
 std::string to_string(ContactModel contact);
 std::string to_string(BoundaryCondition condition);
 // Parse "svk" | "st-venant-kirchhoff", "neo-hookean"; "linear" | "quadratic"; "tip-nodes" | "surface";
-// "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes". Throw InvalidInput naming `what`.
+// "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" |
+// "quarter-symmetry". Throw InvalidInput naming `what`.
 MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
@@ -104,6 +107,14 @@ struct SolverOptions {
                                          // max(indenter displacement, smallest contact element size)
   int max_augmentations = 6;             // augmented-Lagrangian updates per step, >= 0 (0: pure penalty)
 
+  // Linear solves: a fresh CHOLMOD factorization per Newton iteration, or (reuse_factorization) conjugate gradients
+  // on the current tangent preconditioned by the last factorization, refactorizing only when CG needs more than
+  // max_reuse_iterations iterations (the tangent changes little between iterations and load steps).
+  bool reuse_factorization = true;       // see above
+  int max_reuse_iterations = 40;         // >= 1: CG iterations before a fresh factorization is taken
+  double linear_tolerance = 1e-10;       // (0, 1): tightest CG relative residual; each Newton step's CG stops at
+                                         // clamp(0.01 * residual target / |R|, linear_tolerance, 1e-2)
+
   int threads = 0;                       // TBB threads for assembly, 0 = default
   std::function<void(const SolverProgress&)> progress;  // optional
 };
@@ -116,6 +127,9 @@ struct IterationRecord {
   double step_length = 1;        // line-search factor
   double assembly_seconds = 0;   // wall time of residual + tangent assembly
   double solve_seconds = 0;      // wall time of factorization + solve
+  bool factorized = false;       // a fresh numeric factorization was taken
+  bool line_search_failed = false;  // no sufficient decrease found: the full step was taken
+  int linear_iterations = 0;     // preconditioned CG iterations (0: direct solve with a fresh factorization)
 };
 
 struct StepResult {
@@ -135,6 +149,7 @@ struct StepResult {
   double external_work = 0;              // J, sum over needles of the trapezoidal integral of force over displacement
                                          // since the solver was built
   std::vector<IterationRecord> iterations;  // all Newton iterations of this call
+  int factorizations = 0;                // numeric factorizations in this call
   double assembly_seconds = 0;           // totals of this call
   double solve_seconds = 0;
   double total_seconds = 0;

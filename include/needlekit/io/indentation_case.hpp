@@ -10,11 +10,10 @@
 //              (default 64) and axial_segments (default 16) of the parametric needle's surface mesh
 //   [[needles]]  optional, one entry per needle: x, y (default "0 um"), tip_height (default: [needle]'s);
 //              without it, one needle at (0, 0)
-//   [tissue]   width, length (default "3000 um"); height (default: the sum of the layers, or the preset's);
-//              preset = a tissue preset name (materials::tissue_preset_names()) and/or [[tissue.layers]] entries
-//              with name, thickness (the last may be "rest": the rest of `height`), youngs_modulus, poisson_ratio
-//   [mesh]     size_at_tip (default "20 um"), size_far (default "250 um"), refinement_radius (default "300 um"),
-//              threads (default 0 = all)
+//   [tissue], [mesh]  as in tissue_config.hpp (shared with `needlekit tissue-mesh`): width, length, height, preset
+//              or [[tissue.layers]] (name, thickness or "rest", youngs_modulus, poisson_ratio); size_at_tip,
+//              size_far, refinement_radius, size_gradient, thin_layer_size_factor, sites (one needle per site when
+//              there is no [[needles]]), or file = "tissue.msh" + unit for a user's tetrahedral mesh
 //   [loading]  depth (required), steps (default 20), continue_after_puncture (default false)
 //   [model]    law = "svk" | "neo-hookean" (default "neo-hookean"); contact = "tip-nodes" | "surface" (default
 //              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =

@@ -41,9 +41,9 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 nlohmann::json indentation_json(const insertion::IndentationCase& indentation_case,
                                 const insertion::IndentationResult& result);
 
-// Writes DIR/NAME.pvd and DIR/NAME_step_KKK.vtu (tissue) and DIR/NAME_needles_step_KKK.vtu after each step, so that
-// a run that stops keeps every completed step; finish() writes NAME_force_depth.csv, NAME_solver_steps.csv,
-// NAME_puncture.json and NAME_result.json. Every file is written to a temporary name and renamed.
+// Writes DIR/NAME.pvd, DIR/NAME_step_KKK.vtu (tissue), DIR/NAME_needles_step_KKK.vtu, NAME_force_depth.csv and
+// NAME_solver_steps.csv after each step, so that a run that stops keeps every completed step; finish() rewrites the
+// CSV files and writes NAME_puncture.json and NAME_result.json. Every file is written to a temporary name and renamed.
 class IndentationWriter {
 public:
   IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& indentation_case);
@@ -60,7 +60,9 @@ private:
   std::vector<PvdEntry> tissue_series_;
   std::vector<PvdEntry> needle_series_;
   std::vector<std::filesystem::path> files_;
+  insertion::IndentationResult partial_;  // the steps written so far
   void remember(const std::filesystem::path& path);
+  void write_curves(const insertion::IndentationResult& result);
 };
 
 }  // namespace needlekit::io

@@ -16,9 +16,9 @@ struct TissuePreset {
   std::string source;                  // where every value comes from
 };
 
-// Dissertation §3.3.2: stratum corneum 20 um (E = `stratum_corneum_modulus`, 100 MPa by default; [Wu 2006] gives
-// 1 GPa at the extreme surface), epidermis to 160 um depth (0.134 MPa) and dermis for the rest of a 1150 um block
-// (0.08 MPa) [L'Etang 2006], nu = 0.4 for all.
+// Dissertation §3.3.2: stratum corneum 20 um (E = `stratum_corneum_modulus`, 100 MPa by default; [Wu 2006],
+// Biomaterials 27:785, gives 1 GPa at the extreme surface), epidermis to 160 um depth (0.134 MPa) and dermis for the
+// rest of a 1150 um block (0.08 MPa) [L'Etang 2006, Ultrasonics 44:1243], nu = 0.4 for all.
 std::vector<mesh::TissueLayer> skin_layers(double stratum_corneum_modulus = 100e6);
 
 // The preset names in a stable order: skin, skin-stiff-sc, silicone-0.2mpa, silicone-0.5mpa, skin-geerligs-2011.

@@ -22,13 +22,17 @@ struct LayeredBlockOptions {
   double size_gradient = 0.3;           // 1, (0, inf): growth of the element size per unit distance outside the
                                         // refinement radius and outside thin layers (0.3: 30 um per 100 um)
   double thin_layer_size_factor = 2.0;  // 1, [0, inf): the element size inside a layer is capped at this times its
-                                        // thickness so thin layers (stratum corneum) keep well-shaped elements; 0 = no cap
+                                        // thickness so that thin layers (the stratum corneum) keep well-shaped
+                                        // elements; 0 = no cap
+  double site_circle_radius = 0;        // m, >= 0: a circle of this radius around each site is embedded in the top
+                                        // surface, so that mesh nodes lie on a flat punch's edge; 0 = none
 };
 
 struct LayerQuality {
   std::string name;
   int tets = 0;
-  double min_quality = 0;   // Gmsh's gamma (inscribed / circumscribed radius ratio, normalised to 1 for a regular tet)
+  double min_quality = 0;   // gamma = 3 r_in / R_circ (inscribed / circumscribed radius ratio, normalised to 1 for a
+                            // regular tet; mesh::tet_quality)
   double mean_quality = 0;
 };
 
@@ -38,7 +42,9 @@ struct LayeredBlockResult {
   double mesh_seconds = 0;
 };
 
-// Meshes the block. Throws InvalidInput for non-positive sizes or thicknesses (naming the field).
+// Meshes the block. Throws InvalidInput for non-positive sizes or thicknesses (naming the field), a site outside the
+// top surface or invalid layers. Gmsh's HXT mesher is not run-to-run deterministic: two calls give meshes that
+// differ in detail (about 1 % in element count) but always conform to the same layers.
 LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options);
 
 }  // namespace needlekit::mesh

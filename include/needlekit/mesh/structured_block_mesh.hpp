@@ -20,6 +20,14 @@ struct StructuredBlockOptions {
   double grading = 1.0;    // >= 1: ratio of the largest to the smallest spacing along each axis (1 = uniform);
                            // spacing grows geometrically away from the focus in x and y, and downwards in z
   TissueLayer material{"block", 0.0, 1e6, 0.4};  // one layer (thickness set to height)
+  // Uniform core (replaces `grading` when > 0): `core_cells` equal cells over `core_half_width` on each side of the
+  // focus in x and y and below the top in z; outside the core the spacing grows geometrically from the core's
+  // spacing to the block's faces. nx, ny need > 2 * core_cells and nz > core_cells.
+  int core_cells = 0;            // >= 0, 0 = no core
+  double core_half_width = 0;    // m, > 0 when core_cells > 0
+  bool round_core = false;       // map the core's concentric squares (about the focus) onto circles, blending back
+                                 // to the grid by twice the core half-width: nodes then lie on the circle of radius
+                                 // core_half_width (a resolved flat-punch edge)
 };
 
 // Throws InvalidInput naming the field for non-positive sizes, counts < 1, tets_per_hex not 5 or 6, grading < 1, a

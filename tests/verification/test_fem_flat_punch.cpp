@@ -1,0 +1,114 @@
+// Flat cylindrical punch on a thick block vs Sneddon's half-space solution F = 2aE delta / (1 - nu^2) (dissertation
+// §3.4, §6.2's flat needle): convergence under refinement, locking of linear tetrahedra at nu = 0.49 and its removal
+// by quadratic tetrahedra, agreement of the two laws at small strain, the energy balance of quasi-static loading, and
+// the surface-contact model against the dissertation's tip-node rule. Quarter models (symmetry planes through the
+// needle axis) keep each case to a few seconds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fem_test_support.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+
+using namespace needlekit;
+using namespace needlekit::fem;
+using namespace needlekit::fem::test_support;
+
+namespace {
+
+constexpr double kA = 115e-6;    // m, punch radius (the 230 um flat needle of §6.2)
+constexpr double kE = 0.2e6;     // Pa, silicone rubber phantom
+
+struct PunchRun {
+  StepResult result;
+  double sneddon = 0;  // N, full punch
+  double force = 0;    // N, full punch (4 x quarter)
+};
+
+PunchRun punch(double extent_over_a, int core, double nu, double depth, SolverOptions o = {}, int steps = 1,
+               double radius_factor = 1.0) {
+  const double extent = extent_over_a * kA;
+  const auto mesh = quarter_punch_block(kA, extent, core, kE, nu);
+  o.boundary = BoundaryCondition::QuarterSymmetry;
+  const double corner = -extent / 2;
+  QuasiStaticSolver solver(mesh, {{placed_needle(flat_cylinder(radius_factor * kA, 300e-6), corner, corner, 0, 256), {0, 0, -1}}}, o);
+  PunchRun run;
+  for (int s = 1; s <= steps; ++s) run.result = solver.advance_to(depth * s / steps);
+  run.force = 4 * run.result.indenter_force[0];
+  run.sneddon = sneddon_flat_punch_force(kA, kE, nu, depth);
+  return run;
+}
+
+TEST(FlatPunch, ConvergesToSneddonUnderRefinement) {
+  // nu = 0.3, depth 1% of the radius; block 40 a. The error falls at least linearly with the core spacing (the
+  // punch edge is a square-root stress singularity) and is a few percent on the finest mesh.
+  std::vector<double> error;
+  for (int core : {2, 3, 4}) {
+    const auto run = punch(40, core, 0.3, 0.01 * kA);
+    ASSERT_TRUE(run.result.converged) << run.result.reason;
+    error.push_back(run.force / run.sneddon - 1);
+  }
+  EXPECT_GT(error[0], error[1]);
+  EXPECT_GT(error[1], error[2]);
+  EXPECT_GT(error[2], 0.0);  // conforming displacement elements are too stiff
+  const double order = std::log(error[0] / error[2]) / std::log(4.0 / 2.0);
+  EXPECT_GT(order, 1.0) << "observed convergence order " << order;
+  EXPECT_LT(error[2], 0.06) << "F / F_Sneddon - 1 on the finest mesh";
+}
+
+TEST(FlatPunch, QuadraticTetrahedraRemoveLockingAtNu049) {
+  // nu = 0.49 (the §6.2 phantom) on one coarse mesh: linear tetrahedra lock and are far too stiff; quadratic
+  // tetrahedra on the same mesh are close to Sneddon (the rest is the coarse mesh and the finite block).
+  SolverOptions linear, quadratic;
+  quadratic.order = ElementOrder::Quadratic;
+  const auto lin = punch(10, 2, 0.49, 0.01 * kA, linear);
+  const auto quad = punch(10, 2, 0.49, 0.01 * kA, quadratic);
+  ASSERT_TRUE(lin.result.converged && quad.result.converged);
+  const double lin_error = lin.force / lin.sneddon - 1, quad_error = quad.force / quad.sneddon - 1;
+  EXPECT_GT(lin_error, 0.8) << "linear tetrahedra at nu = 0.49";
+  EXPECT_LT(std::abs(quad_error), 0.35) << "quadratic tetrahedra at nu = 0.49";
+  EXPECT_LT(std::abs(quad_error), 0.25 * lin_error);
+  // Same mesh at nu = 0.3: the linear elements' excess stiffness is much smaller there (it is locking, not mesh).
+  const auto lin03 = punch(10, 2, 0.3, 0.01 * kA, linear);
+  EXPECT_LT(lin03.force / lin03.sneddon - 1, 0.5 * lin_error);
+}
+
+TEST(FlatPunch, LawsAgreeAtSmallStrainAndDifferAtLargeStrain) {
+  SolverOptions svk, nh;
+  nh.law = MaterialLaw::NeoHookean;
+  const auto a = punch(10, 2, 0.4, 0.002 * kA, svk), b = punch(10, 2, 0.4, 0.002 * kA, nh);
+  ASSERT_TRUE(a.result.converged && b.result.converged);
+  EXPECT_NEAR(a.force / b.force, 1.0, 2e-3);
+  const auto c = punch(10, 2, 0.4, 0.3 * kA, svk, 6), d = punch(10, 2, 0.4, 0.3 * kA, nh, 6);
+  ASSERT_TRUE(c.result.converged && d.result.converged) << c.result.reason << d.result.reason;
+  EXPECT_GT(std::abs(c.force / d.force - 1), 10 * std::abs(a.force / b.force - 1));
+}
+
+TEST(FlatPunch, ExternalWorkEqualsStoredEnergy) {
+  // Quasi-static, conservative loading to 30% of the radius in 12 steps: the needle's work (trapezoidal rule over
+  // the steps) equals the strain energy stored in the tissue.
+  for (auto law : {MaterialLaw::StVenantKirchhoff, MaterialLaw::NeoHookean}) {
+    SolverOptions o;
+    o.law = law;
+    const auto run = punch(10, 2, 0.4, 0.3 * kA, o, 12);
+    ASSERT_TRUE(run.result.converged) << run.result.reason;
+    EXPECT_NEAR(run.result.external_work / run.result.strain_energy, 1.0, 2e-3) << to_string(law);
+    EXPECT_GT(run.result.strain_energy, 0);
+  }
+}
+
+TEST(FlatPunch, SurfaceContactMatchesTheTipNodeRuleForAFlatTip) {
+  // Frictionless contact against the cylinder's actual surface mesh loads the same nodes as the §3.4 rule. The
+  // punch is 5% wider than the mesh's ring of nodes at r = a so that no node sits exactly on the punch's rim (a node
+  // on the rim can slide around the corner under node-to-surface contact).
+  SolverOptions tip, surface;
+  surface.contact = ContactModel::Surface;
+  const auto a = punch(10, 3, 0.4, 0.01 * kA, tip, 1, 1.05), b = punch(10, 3, 0.4, 0.01 * kA, surface, 1, 1.05);
+  ASSERT_TRUE(a.result.converged && b.result.converged) << b.result.reason;
+  EXPECT_NEAR(b.force / a.force, 1.0, 0.02);
+  EXPECT_EQ(a.result.contact_nodes[0], b.result.contact_nodes[0]);
+  EXPECT_LT(b.result.max_penetration, 1e-2 * 0.01 * kA);
+  EXPECT_NEAR(b.result.mean_contact_pressure[0] / a.result.mean_contact_pressure[0], 1.0, 0.1);
+}
+
+}  // namespace
