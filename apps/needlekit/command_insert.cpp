@@ -37,7 +37,7 @@ namespace {
 
 constexpr const char* kInsertHelp = R"(CASE file (TOML): an indentation case (see `needlekit indent --help`: [needle], [[needles]], [tissue],
 [mesh], [loading] (the FE's depth limit for finding the puncture), [model], [puncture]) plus
-  [post_puncture]  stiffness = "0.84 N/mm2" (K, a pressure), scale = 0.168 (S), final_depth = "1000 um" (required);
+  [post_puncture]  stiffness = "0.2 N/mm2" (K, a pressure), scale = 0.168 (S), final_depth = "1000 um" (required);
                    samples = 200, reference_radius, max_edge_fraction = 0.025, cap_at_cutting_pressure = true,
                    axial_component = false, side_tolerance = "1 deg", alpha_tolerance = "1 deg",
                    occlusion_test = false, measured = "curve.csv" (fit S to a measured post-puncture curve)
@@ -50,7 +50,7 @@ struct InsertArguments {
   std::string case_path;
   std::string out_dir = ".";
   bool json = false;
-  bool plot = true;
+  bool no_plot = false;
   std::string size_at_tip;
   std::string size_far;
   int steps = 0;
@@ -187,11 +187,11 @@ void run_insert(const InsertArguments& arguments) {
   const std::filesystem::path json_path = dir / (indentation_case.name + "_insertion.json");
   const std::filesystem::path png_path = dir / (indentation_case.name + "_insertion.png");
   std::vector<std::string> files{csv_path.string(), json_path.string()};
-  if (arguments.plot) files.push_back(png_path.string());
+  if (!arguments.no_plot) files.push_back(png_path.string());
   json["files"] = files;
   io::write_text_file_atomically(csv_path, io::insertion_curve_csv(curve));
   io::write_text_file_atomically(json_path, json.dump(2) + "\n");
-  if (arguments.plot) {
+  if (!arguments.no_plot) {
     std::vector<std::string> command{"/usr/bin/python3", plot_script(), csv_path.string(), png_path.string(),
                                      "--title", fmt::format("{}: K = {:.4g} N/mm2, S = {:.4g}", indentation_case.name,
                                                             settings.stiffness * 1e-6, settings.scale)};
@@ -243,7 +243,7 @@ void add_insert_command(CLI::App& app) {
   command->add_option("--out", arguments->out_dir, "directory for the CSV, JSON and PNG (default .)")
       ->type_name("DIR");
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
-  command->add_flag("--no-plot{false}", arguments->plot, "do not write the PNG plot");
+  command->add_flag("--no-plot", arguments->no_plot, "do not write the PNG plot");
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--steps", arguments->steps, "override [loading] steps")->check(CLI::Range(1, 100000));

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -62,6 +63,7 @@ Eigen::Vector3d barycentric_of(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 struct SurfaceMesh::Impl {
   TriangleMesh mesh;
   std::vector<std::array<int, 3>> neighbors;
+  std::vector<int> vertex_triangles;  // a triangle using each vertex, or -1
   std::vector<Eigen::Vector3d> face_normals;
   std::vector<Eigen::Vector3d> vertex_normals;
   SurfaceCheck check;
@@ -145,6 +147,7 @@ SurfaceCheck adjacency_check(const TriangleMesh& mesh, std::vector<std::array<in
     }
     i = j;
   }
+  for (const auto& n : neighbors) check.outer_triangles += (n[0] < 0 || n[1] < 0 || n[2] < 0);
   check.edge_manifold = check.non_manifold_edges == 0;
   check.consistently_oriented = check.inconsistent_edges == 0 && check.edge_manifold;
   check.closed = check.boundary_edges == 0 && check.edge_manifold;
@@ -155,6 +158,18 @@ SurfaceCheck adjacency_check(const TriangleMesh& mesh, std::vector<std::array<in
                   "them is flipped)",
                   check.inconsistent_edges, inconsistent_examples);
   if (!check.problems.empty()) check.problems.resize(check.problems.size() - 2);  // the trailing "; "
+  // Vertices sharing a position: sort by coordinates and count repeats.
+  std::vector<int> order(mesh.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  const auto less = [&](int x, int y) {
+    const auto& p = mesh.vertices[x];
+    const auto& q = mesh.vertices[y];
+    return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    check.coincident_vertices += mesh.vertices[order[i]] == mesh.vertices[order[i - 1]];
+  }
   return check;
 }
 
@@ -252,6 +267,10 @@ SurfaceMesh::SurfaceMesh(TriangleMesh mesh) : impl_(std::make_unique<Impl>()) {
                                    impl_->mesh.vertices.size(), impl_->mesh.triangles.size(),
                                    impl_->check.problems));
   }
+  impl_->vertex_triangles.assign(impl_->mesh.vertices.size(), -1);
+  for (int t = static_cast<int>(impl_->mesh.triangles.size()) - 1; t >= 0; --t) {
+    for (int v : impl_->mesh.triangles[t]) impl_->vertex_triangles[v] = t;
+  }
   Normals normals = normals_of(impl_->mesh);
   impl_->face_normals = std::move(normals.face);
   impl_->vertex_normals = std::move(normals.vertex);
@@ -277,6 +296,11 @@ const TriangleMesh& SurfaceMesh::mesh() const { return impl_->mesh; }
 int SurfaceMesh::triangle_count() const { return static_cast<int>(impl_->mesh.triangles.size()); }
 int SurfaceMesh::vertex_count() const { return static_cast<int>(impl_->mesh.vertices.size()); }
 int SurfaceMesh::neighbor(int triangle, int edge) const { return impl_->neighbors.at(triangle).at(edge); }
+int SurfaceMesh::vertex_triangle(int vertex) const { return impl_->vertex_triangles.at(vertex); }
+bool SurfaceMesh::is_inner(int triangle) const {
+  const auto& n = impl_->neighbors.at(triangle);
+  return n[0] >= 0 && n[1] >= 0 && n[2] >= 0;
+}
 const Eigen::Vector3d& SurfaceMesh::face_normal(int triangle) const { return impl_->face_normals.at(triangle); }
 const Eigen::Vector3d& SurfaceMesh::vertex_normal(int vertex) const { return impl_->vertex_normals.at(vertex); }
 const SurfaceCheck& SurfaceMesh::check() const { return impl_->check; }

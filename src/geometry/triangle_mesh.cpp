@@ -337,6 +337,14 @@ void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, doub
   }
 }
 
+TriangleMesh welded_mesh(const TriangleMesh& mesh) {
+  check_indices(mesh);
+  VertexMerger merger;
+  for (const auto& t : mesh.triangles)
+    merger.add_triangle({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
+  return merger.take();
+}
+
 TriangleMesh read_stl(const std::filesystem::path& path, double scale) {
   check_scale(scale, fmt::format("read_stl({})", path.string()));
   std::ifstream in(path, std::ios::binary);

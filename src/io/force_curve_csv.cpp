@@ -69,11 +69,16 @@ insertion::ForceDepthCurve parse_force_curve_csv(std::string_view text, std::str
                                               fmt::format("{}:{}: column '{}'", source_name, line_number, name));
         }
       }
-      for (auto [name, column] : {std::pair{"depth_<unit> (e.g. depth_um)", &depth},
-                                  std::pair{"force_<unit> (e.g. force_N)", &force}})
-        if (column->index < 0)
-          throw InvalidInput(fmt::format("{}:{}: missing column {}; the header is '{}'", source_name, line_number,
-                                         name, header_text));
+      for (auto [quantity, name, column] : {std::tuple{"depth", "depth_<unit> (e.g. depth_um)", &depth},
+                                            std::tuple{"force", "force_<unit> (e.g. force_N)", &force}}) {
+        if (column->index >= 0) continue;
+        for (std::string_view field : fields)  // "depth" or "force" without its unit
+          if (field == quantity)
+            throw InvalidInput(fmt::format("{}:{}: column '{}' is not a {} with its unit, expected {}", source_name,
+                                           line_number, field, quantity, name));
+        throw InvalidInput(fmt::format("{}:{}: missing column {}; the header is '{}'", source_name, line_number, name,
+                                       header_text));
+      }
       continue;
     }
     double values[2] = {0, 0};

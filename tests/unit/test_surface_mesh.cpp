@@ -9,6 +9,8 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "../support/analytic_surfaces.hpp"
 #include "../support/scratch_files.hpp"
@@ -80,6 +82,10 @@ TEST(SurfaceMesh, CubeAdjacencyNormalsAndCheck) {
     const Eigen::Vector3d expected = (cube.mesh().vertices[k] - centre).normalized();
     EXPECT_LT((cube.vertex_normal(k) - expected).norm(), 1e-14) << "vertex " << k;
   }
+  for (int v = 0; v < 8; ++v) {
+    const auto& tri = cube.mesh().triangles[cube.vertex_triangle(v)];
+    EXPECT_TRUE(tri[0] == v || tri[1] == v || tri[2] == v);
+  }
   // The interpolated normal at a corner is the corner normal; in the middle of a face's diagonal it is the blend.
   EXPECT_LT((cube.interpolated_normal(0, {1, 0, 0}) - cube.vertex_normal(0)).norm(), 1e-15);
 }
@@ -123,6 +129,11 @@ TEST(SurfaceMesh, OpenCylinderHasTwoBoundaryLoopsAndRadialNormals) {
   expect_symmetric_adjacency(cylinder);
   EXPECT_EQ(cylinder.check().boundary_edges, 2 * around);
   EXPECT_EQ(boundary_edge_count(cylinder), 2 * around);
+  // Each ring of quads touches the boundary with one triangle per quad (the alternating split).
+  EXPECT_EQ(cylinder.check().outer_triangles, 2 * around);
+  int inner = 0;
+  for (int t = 0; t < cylinder.triangle_count(); ++t) inner += cylinder.is_inner(t);
+  EXPECT_EQ(inner, cylinder.triangle_count() - 2 * around);
   EXPECT_FALSE(cylinder.check().closed);
   EXPECT_TRUE(cylinder.check().consistently_oriented);
   for (int t = 0; t < cylinder.triangle_count(); ++t) {
@@ -249,6 +260,26 @@ TEST(SurfaceMesh, RefusesFlippedAndNonManifoldMeshesSayingWhere) {
               testing::ThrowsMessage<InvalidInput>(HasSubstr("triangle 3 refers to vertex 8")));
 }
 
+TEST(SurfaceMesh, CountsSplitSeamsAndWeldingClosesThem) {
+  // The cube as a triangle soup: every triangle has its own three vertices.
+  const TriangleMesh cube = test::cube_mesh();
+  TriangleMesh soup;
+  for (const auto& t : cube.triangles) {
+    const int base = static_cast<int>(soup.vertices.size());
+    for (int c : t) soup.vertices.push_back(cube.vertices[c]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  const SurfaceMesh split(soup);
+  EXPECT_EQ(split.check().boundary_edges, 36);
+  EXPECT_EQ(split.check().coincident_vertices, 36 - 8);
+  EXPECT_EQ(split.check().outer_triangles, 12);
+  const SurfaceMesh welded(geometry::welded_mesh(soup));
+  EXPECT_EQ(welded.vertex_count(), 8);
+  EXPECT_TRUE(welded.check().closed);
+  EXPECT_EQ(welded.check().coincident_vertices, 0);
+  EXPECT_NEAR(geometry::signed_volume(welded.mesh()), 1.0, 1e-15);
+}
+
 TEST(SurfaceMesh, AcceptsAndCountsDegenerateTriangles) {
   // A flat square split into two triangles plus a sliver with a repeated vertex position on the boundary edge.
   TriangleMesh mesh;
@@ -261,6 +292,21 @@ TEST(SurfaceMesh, AcceptsAndCountsDegenerateTriangles) {
   const SurfaceMesh sliver(mesh);
   EXPECT_EQ(sliver.check().degenerate_triangles, 1);
   EXPECT_NEAR(sliver.face_normal(1).z(), 1.0, 1e-14);  // borrowed from its corners
+}
+
+TEST(SurfaceMesh, ConcurrentQueriesAgreeWithSerialOnes) {
+  const SurfaceMesh sphere(test::icosphere_mesh(1.0, 4));
+  std::vector<Eigen::Vector3d> queries;
+  for (int k = 0; k < 2000; ++k)
+    queries.push_back(1.5 * Eigen::Vector3d(std::sin(k), std::cos(3.0 * k), std::sin(7.0 * k)));
+  std::vector<double> serial, parallel(queries.size());
+  for (const auto& q : queries) serial.push_back(sphere.closest_point(q).distance);
+  std::thread other([&] {
+    for (std::size_t i = 0; i < queries.size(); i += 2) parallel[i] = sphere.closest_point(queries[i]).distance;
+  });
+  for (std::size_t i = 1; i < queries.size(); i += 2) parallel[i] = sphere.closest_point(queries[i]).distance;
+  other.join();
+  EXPECT_EQ(serial, parallel);
 }
 
 TEST(SurfaceMesh, MovesKeepTheTree) {
@@ -360,8 +406,10 @@ TEST(ReadTriangleMesh, RealMeshesHaveTheCountsOfTheirReadme) {
     EXPECT_EQ(mesh.vertices.size(), e.vertices) << e.file;
     const SurfaceMesh surface(mesh);
     EXPECT_EQ(surface.check().closed, e.closed) << e.file;
+    EXPECT_EQ(surface.check().outer_triangles == 0, e.closed) << e.file;
     EXPECT_TRUE(surface.check().consistently_oriented) << e.file;
     EXPECT_EQ(surface.check().degenerate_triangles, 0) << e.file;
+    EXPECT_EQ(surface.check().coincident_vertices, 0) << e.file;
     Eigen::AlignedBox3d box;
     for (const auto& v : mesh.vertices) box.extend(v);
     EXPECT_GT(box.sizes().maxCoeff(), e.extent_min) << e.file;

@@ -21,6 +21,8 @@ struct SurfaceCheck {
   int non_manifold_edges = 0;
   int inconsistent_edges = 0;
   int degenerate_triangles = 0;
+  int outer_triangles = 0;              // triangles with at least one boundary edge (§5.6); the rest are inner
+  int coincident_vertices = 0;          // vertices at the position of another (split seams: see welded_mesh)
   std::string problems;                 // empty when usable; else a readable list of what is wrong
 };
 
@@ -51,6 +53,10 @@ public:
   int vertex_count() const;
   // The triangle across edge e of triangle t (edge e joins corners e and (e+1)%3), or -1 on the boundary.
   int neighbor(int triangle, int edge) const;
+  // A triangle that uses the vertex (the first in the mesh's order), or -1 for a vertex no triangle uses.
+  int vertex_triangle(int vertex) const;
+  // Inner triangle (§5.6, Fig 5.9): all three edges shared with neighbours; an outer one touches the boundary.
+  bool is_inner(int triangle) const;
   const Eigen::Vector3d& face_normal(int triangle) const;   // unit, outward
   const Eigen::Vector3d& vertex_normal(int vertex) const;   // unit, angle-weighted
   Eigen::Vector3d interpolated_normal(int triangle, const Eigen::Vector3d& barycentric) const;

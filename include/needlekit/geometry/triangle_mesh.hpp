@@ -26,6 +26,10 @@ struct MeshTopologyReport {
 };
 MeshTopologyReport topology_report(const TriangleMesh& mesh);
 
+// The mesh with vertices of identical coordinates merged into one (kept in order of first use by the triangles;
+// vertices that no triangle uses are dropped). Use it on meshes exported with split vertices along seams.
+TriangleMesh welded_mesh(const TriangleMesh& mesh);
+
 // Writes binary STL (unit: the caller's; needlekit writes metres unless told otherwise via `scale`). Writes to a
 // temporary file and renames, so no partial file is left on failure. Throws IoError.
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, double scale = 1.0);

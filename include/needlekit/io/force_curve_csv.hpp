@@ -1,5 +1,7 @@
 // Force-depth curves as CSV: reading a measured (or previously computed) curve, for fitting the post-puncture scale
-// S (insertion/post_puncture_force.hpp) or as the pre-puncture part of an insertion.
+// S (insertion/post_puncture_force.hpp), as the pre-puncture part of an insertion, or for the two-insertion
+// toughness of Eq 3.16 (io/indentation_case.hpp). `needlekit indent --out` writes this format (NAME_force_depth.csv),
+// so measured and simulated curves read alike.
 //
 // Format: a header line naming a depth column `depth_<unit>` (unit nm, um, mm, cm or m) and a force column
 // `force_<unit>` (uN, mN or N), in any order among other columns (ignored); then one row per sample, depths
