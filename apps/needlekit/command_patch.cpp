@@ -15,6 +15,7 @@
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/patch/spring_geodesics.hpp"
 #include "progress_bar.hpp"
 
 namespace needlekit::cli {
@@ -103,6 +104,12 @@ void print_summary(const io::PatchCase& c, const nlohmann::json& s) {
   row("travel x (Eq 5.12)", range(s["travel_um"], "um"));
   row("performance index", fmt::format("{} (total {:.4g} 1/um)", range(s["performance_index_per_um"], "1/um"),
                                        s["performance_index_total_per_um"].get<double>()));
+  row("|geodesic - rest| / rest", s["spring_geodesic_strain"].is_null()
+                                      ? "-"
+                                      : fmt::format("max {:.3g}, mean {:.3g} ({} not converged)",
+                                                    s["spring_geodesic_strain"]["max"].get<double>(),
+                                                    s["spring_geodesic_strain"]["mean"].get<double>(),
+                                                    s["spring_geodesics_not_converged"].get<int>()));
   row("spring energy (Eq 5.13)", s["spring_energy_mJ"].is_null()
                                      ? "-"
                                      : fmt::format("total {:.4g} mJ, max {:.4g} mJ",
@@ -177,14 +184,21 @@ void run_patch(const PatchArguments& arguments) {
   double ms = 0;
   const patch::FittedPatch fit = run_once(c.fit, ms);
   const patch::PatchEvaluation evaluation = patch::evaluate_needles(surface, design, fit, c.evaluation);
-  const nlohmann::json summary = io::patch_summary_json(design, c.fit, fit, evaluation, ms);
+  nlohmann::json summary = io::patch_summary_json(design, c.fit, fit, evaluation, ms);
+  // Beyond the dissertation: the springs measured along the surface (exact geodesic distances).
+  const patch::SpringGeodesics geodesics = patch::spring_geodesics(surface, design, fit);
+  summary["spring_geodesic_strain"] =
+      geodesics.strain_abs.count == 0
+          ? nlohmann::json(nullptr)
+          : nlohmann::json{{"max", geodesics.strain_abs.max}, {"mean", geodesics.strain_abs.mean}};
+  summary["spring_geodesics_not_converged"] = geodesics.not_converged;
   if (!arguments.out_dir.empty()) {
     const std::filesystem::path out(arguments.out_dir);
     std::error_code error;
     std::filesystem::create_directories(out, error);
     if (error) throw IoError(fmt::format("{}: cannot create the output folder: {}", out.string(), error.message()));
     const io::VtuGrid surface_part = io::surface_grid(surface, frame.surface_point, diagonal);
-    const io::VtuGrid patch_part = io::patch_grid(design, fit);
+    const io::VtuGrid patch_part = io::patch_grid(design, fit, geodesics.strain);
     const io::VtuGrid needles_part = io::needles_grid(evaluation);
     io::write_text_file_atomically(out / "needles.csv", io::patch_needles_csv(design, fit, evaluation));
     io::write_text_file_atomically(out / "summary.json", summary.dump(2) + "\n");
@@ -228,7 +242,8 @@ void add_patch_command(CLI::App& app) {
       "             approach = \"-z\" (default) | \"normal\"\n"
       "  [patch]    kind = \"rigid\" | \"flexible\" | \"equilibrium\"; size = \"10 mm\"; needles_per_row = 10;\n"
       "             spring_constant = \"1 N/mm\" or { u = , v = , diagonal = }; max_spring_energy = \"0.05 mJ\";\n"
-      "             first_node = \"first-contact\" | \"corner\"; load = \"0.0712 N\" (equilibrium)\n"
+      "             first_node = \"first-contact\" | \"corner\"; walk = \"cutting-plane\" | \"unfolding\";\n"
+      "             load = \"0.0712 N\" (equilibrium: force per node)\n"
       "  [needle], [tissue], [insertion]  as in design files (see needlekit evaluate --help)");
   command->callback([arguments] { run_patch(*arguments); });
 }

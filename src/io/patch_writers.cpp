@@ -115,7 +115,8 @@ VtuGrid surface_grid(const geometry::SurfaceMesh& surface, const Eigen::Vector3d
   return grid;
 }
 
-VtuGrid patch_grid(const patch::PatchDesign& design, const patch::FittedPatch& fit) {
+VtuGrid patch_grid(const patch::PatchDesign& design, const patch::FittedPatch& fit,
+                   const std::vector<double>& geodesic_strain) {
   VtuGrid grid;
   grid.points = fit.positions;
   VtuField on_surface{"on_surface", 1, {}}, inner{"inner", 1, {}}, normal{"normal", 3, {}};
@@ -136,6 +137,7 @@ VtuGrid patch_grid(const patch::PatchDesign& design, const patch::FittedPatch& f
   }
   grid.point_fields = {on_surface, inner, normal};
   grid.cell_fields = {energy, stretch, direction};
+  if (!geodesic_strain.empty()) grid.cell_fields.push_back({"geodesic_strain", 1, geodesic_strain});
   return grid;
 }
 

@@ -44,6 +44,8 @@ inline std::string_view example_of(Dimension dimension) {
     case Dimension::Force: return "\"0.0183 N\"";
     case Dimension::InverseLength: return "\"6.25 /mm\"";
     case Dimension::Angle: return "\"10 deg\"";
+    case Dimension::Stiffness: return "\"1 N/mm\"";
+    case Dimension::Energy: return "\"0.05 mJ\"";
     default: return "\"1\"";
   }
 }

@@ -9,127 +9,30 @@
 #include <limits>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/geometry/cutting_plane_trace.hpp"
+#include "needlekit/geometry/geodesic_trace.hpp"
 #include "needlekit/patch/rigid_fit.hpp"
 
 namespace needlekit::patch {
 namespace {
 
-struct TriangleFrame {
-  Eigen::Vector3d corner[3];
-  Eigen::Vector3d normal;
-  Eigen::Vector3d gradient[3];  // ∇λ_k of the barycentric coordinates
-  bool degenerate = false;
-};
-
-TriangleFrame triangle_frame(const geometry::SurfaceMesh& surface, int t) {
-  TriangleFrame f;
-  const auto& tri = surface.mesh().triangles[t];
-  for (int c = 0; c < 3; ++c) f.corner[c] = surface.mesh().vertices[tri[c]];
-  const Eigen::Vector3d cross = (f.corner[1] - f.corner[0]).cross(f.corner[2] - f.corner[0]);
-  const double scale = std::max({(f.corner[1] - f.corner[0]).squaredNorm(), (f.corner[2] - f.corner[1]).squaredNorm(),
-                                 (f.corner[0] - f.corner[2]).squaredNorm()});
-  const double twice_area = cross.norm();
-  f.degenerate = !(twice_area > 1e-12 * scale);
-  if (f.degenerate) return f;
-  f.normal = cross / twice_area;
-  // ∇λ_k = n × (P_{k+2} − P_{k+1}) / (2A).
-  for (int k = 0; k < 3; ++k) f.gradient[k] = f.normal.cross(f.corner[(k + 2) % 3] - f.corner[(k + 1) % 3]) / twice_area;
-  return f;
-}
-
-double barycentric(const TriangleFrame& f, int k, const Eigen::Vector3d& q) {
-  return f.gradient[k].dot(q - f.corner[(k + 1) % 3]);
-}
-
-// The in-triangle direction along the cutting plane (normal m), on the side of `previous`.
-Eigen::Vector3d plane_direction(const Eigen::Vector3d& m, const TriangleFrame& f, const Eigen::Vector3d& previous) {
-  Eigen::Vector3d dir = m.cross(f.normal);
-  if (dir.norm() < 1e-9) {  // the plane is (nearly) the triangle's plane: keep the previous direction
-    dir = previous - previous.dot(f.normal) * f.normal;
+// Alg 5.3 by the surface's traces: the cutting plane (dissertation) or the straightest geodesic (unfolding).
+geometry::SurfacePath walk_on(const geometry::SurfaceMesh& surface, const geometry::SurfaceLocation& start,
+                              const Eigen::Vector3d& direction, double length, WalkMethod method) {
+  try {
+    return method == WalkMethod::CuttingPlane ? geometry::cutting_plane_trace(surface, start, direction, length)
+                                              : geometry::straightest_geodesic(surface, start, direction, length);
+  } catch (const InvalidInput& error) {  // e.g. a direction along the normal of a degenerate start triangle
+    geometry::SurfacePath path;
+    path.status = geometry::PathStatus::DegenerateTriangle;
+    path.reason = error.what();
+    path.end = start;
+    path.end_point = geometry::position(surface, start);
+    return path;
   }
-  dir.normalize();
-  return dir.dot(previous) < 0 ? Eigen::Vector3d(-dir) : dir;
 }
 
 }  // namespace
-
-SurfaceWalk surface_walk(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& start, int triangle,
-                         const Eigen::Vector3d& direction, double length, WalkMethod method) {
-  SurfaceWalk walk;
-  walk.point = start;
-  walk.triangle = triangle;
-  TriangleFrame f = triangle_frame(surface, triangle);
-  if (f.degenerate) {
-    walk.stop = SurfaceWalk::Stop::Degenerate;
-    return walk;
-  }
-  // Alg 5.3: the cutting plane contains d and the surface normal at the start.
-  Eigen::Vector3d m = direction.cross(f.normal);
-  if (m.norm() < 1e-12 * direction.norm()) {
-    walk.stop = SurfaceWalk::Stop::Degenerate;  // d along the normal: no direction on the surface
-    return walk;
-  }
-  m.normalize();
-  Eigen::Vector3d dir = plane_direction(m, f, direction);
-  int entry_edge = -1;
-  double remaining = length;
-  const int max_steps = 100000;
-  for (int step = 0; step < max_steps; ++step) {
-    int exit_edge = -1;
-    double exit_at = std::numeric_limits<double>::infinity();
-    for (int e = 0; e < 3; ++e) {
-      if (e == entry_edge) continue;
-      const int k = (e + 2) % 3;  // the corner opposite edge e
-      const double rate = f.gradient[k].dot(dir);
-      if (rate >= -1e-14 * f.gradient[k].norm()) continue;
-      const double at = std::max(0.0, -barycentric(f, k, walk.point) / rate);
-      if (at < exit_at) {
-        exit_at = at;
-        exit_edge = e;
-      }
-    }
-    if (exit_edge < 0 || remaining <= exit_at) {
-      walk.point += remaining * dir;
-      walk.length = length;
-      walk.stop = SurfaceWalk::Stop::Done;
-      return walk;
-    }
-    walk.point += exit_at * dir;
-    remaining -= exit_at;
-    walk.length = length - remaining;
-    const int next = surface.neighbor(walk.triangle, exit_edge);
-    if (next < 0) {
-      walk.stop = SurfaceWalk::Stop::Boundary;
-      return walk;
-    }
-    // The entry edge of `next` joins the same two vertices.
-    const auto& here = surface.mesh().triangles[walk.triangle];
-    const auto& there = surface.mesh().triangles[next];
-    const int a = here[exit_edge], b = here[(exit_edge + 1) % 3];
-    entry_edge = -1;
-    for (int e = 0; e < 3; ++e) {
-      if ((there[e] == b && there[(e + 1) % 3] == a) || (there[e] == a && there[(e + 1) % 3] == b)) entry_edge = e;
-    }
-    walk.triangle = next;
-    const Eigen::Vector3d previous_normal = f.normal;
-    f = triangle_frame(surface, next);
-    if (f.degenerate) {
-      walk.stop = SurfaceWalk::Stop::Degenerate;
-      return walk;
-    }
-    if (method == WalkMethod::CuttingPlane) {
-      dir = plane_direction(m, f, dir);
-    } else {
-      // Unfolding: turn the direction about the shared edge by the dihedral angle (straightest geodesic).
-      const Eigen::Vector3d axis = (surface.mesh().vertices[b] - surface.mesh().vertices[a]).normalized();
-      const double angle = std::atan2(previous_normal.cross(f.normal).dot(axis), previous_normal.dot(f.normal));
-      dir = Eigen::AngleAxisd(angle, axis) * dir;
-      dir = (dir - dir.dot(f.normal) * f.normal).normalized();
-    }
-  }
-  walk.stop = SurfaceWalk::Stop::Degenerate;
-  return walk;
-}
 
 FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,
                          const FlexibleFitOptions& options) {
@@ -145,19 +48,15 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
   FittedPatch fit = rigid_fit(surface, design, frame);
   if (fit.status == FitStatus::MissesSurface) return fit;
   const std::vector<Eigen::Vector3d> start = flat_positions(design, frame, frame.approach_height);
-  int first = fit.first_node;
-  Eigen::Vector3d first_point = fit.positions[first];
-  if (options.first_node == FirstNode::Corner) {
-    first = design.node(0, 0);
-    const auto hit = surface.first_hit(start[first], frame.approach);
-    if (!hit) {
-      fit.status = FitStatus::MissesSurface;
-      fit.reason = "the first node N(0,0) is not over the surface along the approach direction: node 0";
-      fit.affected_nodes = {first};
-      return fit;
-    }
-    first_point = hit->point;
+  const int first = options.first_node == FirstNode::Corner ? design.node(0, 0) : fit.first_node;
+  const auto hit = surface.first_hit(start[first], frame.approach);  // Alg 5.1: project the first node
+  if (!hit) {
+    fit.status = FitStatus::MissesSurface;
+    fit.reason = "the first node N(0,0) is not over the surface along the approach direction: node 0";
+    fit.affected_nodes = {first};
+    return fit;
   }
+  const Eigen::Vector3d first_point = hit->point;
   fit.first_node = first;
   fit.affected_nodes.clear();
   fit.status = FitStatus::Ok;
@@ -174,14 +73,14 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
     return d.x() * frame.u + d.y() * frame.v;
   };
 
-  std::vector<Eigen::Vector3d> position(n), surface_point(n), tangent_u(n), tangent_v(n);
-  std::vector<int> surface_triangle(n, -1);
+  std::vector<Eigen::Vector3d> position(n), tangent_u(n), tangent_v(n);
+  std::vector<geometry::SurfaceLocation> location(n);
   std::vector<bool> mapped(n, false), on_surface(n, false);
   std::vector<int> boundary_nodes, degenerate_nodes, capped_nodes;
   {
     const geometry::ClosestPoint cp = surface.closest_point(first_point);
-    position[first] = surface_point[first] = cp.point;
-    surface_triangle[first] = cp.triangle;
+    position[first] = cp.point;
+    location[first] = geometry::surface_location(cp);
     mapped[first] = on_surface[first] = true;
     // The patch frame turned onto the tangent plane at the first node.
     const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(-frame.approach, surface.face_normal(cp.triangle));
@@ -203,17 +102,18 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
       // and the surface normal (Alg 5.3; notes).
       const Eigen::Vector2d rest = design.rest_positions[k] - design.rest_positions[a];
       const Eigen::Vector3d turned = rest.x() * tangent_u[a] + rest.y() * tangent_v[a];
-      const SurfaceWalk walk =
-          surface_walk(surface, surface_point[a], surface_triangle[a], turned, d.norm(), options.walk);
+      const geometry::SurfacePath walk = walk_on(surface, location[a], turned, d.norm(), options.walk);
       {
-        const Eigen::Quaterniond carry = Eigen::Quaterniond::FromTwoVectors(surface.face_normal(surface_triangle[a]),
-                                                                            surface.face_normal(walk.triangle));
+        const Eigen::Quaterniond carry = Eigen::Quaterniond::FromTwoVectors(
+            surface.face_normal(location[a].triangle), surface.face_normal(walk.end.triangle));
         tangent_u[k] = carry * tangent_u[a];
         tangent_v[k] = carry * tangent_v[a];
       }
-      if (walk.stop == SurfaceWalk::Stop::Boundary) boundary_nodes.push_back(k);
-      if (walk.stop == SurfaceWalk::Stop::Degenerate) degenerate_nodes.push_back(k);
-      const Eigen::Vector3d conforming = walk.point;   // N_int
+      if (walk.status == geometry::PathStatus::HitBoundary) boundary_nodes.push_back(k);
+      if (walk.status == geometry::PathStatus::DegenerateTriangle || walk.status == geometry::PathStatus::StepLimit) {
+        degenerate_nodes.push_back(k);
+      }
+      const Eigen::Vector3d conforming = walk.end_point;  // N_int
       const Eigen::Vector3d rigid = position[a] + d;   // N: the patch locally undeformed
       // The energy cap: the largest λ with every spring to a mapped node at or under E_cri (Eqs 5.13, 5.14).
       auto worst_energy = [&](double lambda) {
@@ -269,8 +169,7 @@ FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign
       }
       position[k] = x;
       on_surface[k] = touching || (x - conforming).norm() <= 1e-9 * length_scale;
-      surface_point[k] = conforming;
-      surface_triangle[k] = walk.triangle;
+      location[k] = walk.end;
       mapped[k] = true;
       active.push_back(k);
     }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <cmath>
 #include <limits>
 
 namespace needlekit::patch {
@@ -23,6 +24,18 @@ FittedPatch rigid_fit(const geometry::SurfaceMesh& surface, const PatchDesign& d
       fit.affected_nodes.push_back(k);
     }
   }
+  // The substrate is a plate: a surface vertex under its footprint may touch before any node does.
+  const Eigen::Vector3d origin = frame.surface_point - frame.approach_height * frame.approach;
+  double plate_contact = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& vertex : surface.mesh().vertices) {
+    const Eigen::Vector3d r = vertex - origin;
+    const double along = r.dot(frame.approach);
+    if (along > 0 && along < plate_contact && std::abs(r.dot(frame.u)) <= 0.5 * design.width_u &&
+        std::abs(r.dot(frame.v)) <= 0.5 * design.width_v) {
+      plate_contact = along;
+    }
+  }
+  if (fit.first_node >= 0) contact = std::min(contact, plate_contact);
   fit.normals.assign(design.node_count(), -frame.approach);
   fit.on_surface.assign(design.node_count(), false);
   if (fit.first_node < 0) {

@@ -8,6 +8,7 @@
 //   [patch]    kind = "rigid" | "flexible" | "equilibrium"; size = "10 mm" (side w); needles_per_row (>= 2);
 //              spring_constant = "1 N/mm" or { u = "1 N/mm", v = "1 N/mm", diagonal = "1 N/mm" };
 //              max_spring_energy = "0.05 mJ" (flexible); first_node = "first-contact" (default) | "corner";
+//              walk = "cutting-plane" (default, Alg 5.3) | "unfolding" (straightest geodesic);
 //              load = "0.0712 N" (equilibrium: force per node; default |F(A)| of the needle)
 //   [needle], [tissue], [insertion]   as in design files (io/design_config.hpp)
 #pragma once

@@ -32,8 +32,10 @@ int failure_code(const patch::NeedleState& needle);
 
 // The triangles with a vertex within `radius` of `center` (all of them when radius is infinite).
 VtuGrid surface_grid(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& center, double radius);
-// Nodes (point field on_surface) and springs as lines (cell fields strain_energy_mJ, stretch_um, direction).
-VtuGrid patch_grid(const patch::PatchDesign& design, const patch::FittedPatch& fit);
+// Nodes (point field on_surface) and springs as lines (cell fields strain_energy_mJ, stretch_um, direction, and
+// geodesic_strain when given: patch::spring_geodesics().strain, one per spring).
+VtuGrid patch_grid(const patch::PatchDesign& design, const patch::FittedPatch& fit,
+                   const std::vector<double>& geodesic_strain = {});
 // Needles as base→tip segments with cell fields buckling_force_N, bending_force_N, angle_deg, failure,
 // performance_index_per_um, travel_um, penetration_um.
 VtuGrid needles_grid(const patch::PatchEvaluation& evaluation);

@@ -28,9 +28,9 @@ enum class FirstNode {
 };
 
 enum class WalkMethod {
-  CuttingPlane,  // Alg 5.3: the intersection of the surface with the plane through d and the start normal
-  Unfolding,     // the straightest geodesic: the direction is carried across each edge by unfolding the two
-                 // triangles (Polthier & Schmies); exact geodesics on developable surfaces such as the cylinder
+  CuttingPlane,  // Alg 5.3: geometry::cutting_plane_trace, the surface cut by the plane through d and the normal
+  Unfolding,     // geometry::straightest_geodesic: edge unfolding (Polthier & Schmies), the exact geodesic on
+                 // developable surfaces such as the cylinder
 };
 
 struct FlexibleFitOptions {
@@ -44,17 +44,5 @@ struct FlexibleFitOptions {
 // boundary or a degenerate triangle stop there: status BoundaryReached / DegenerateSurface naming the nodes.
 FittedPatch flexible_fit(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,
                          const FlexibleFitOptions& options = {});
-
-// The geodesic traverse of Alg 5.3 (until the surface branch's geodesic_trace is merged): from `start` on
-// `triangle`, in the tangent direction closest to `direction`, across adjacent triangles for a path length
-// `length`; CuttingPlane keeps to the plane through `start` spanned by `direction` and the triangle's normal.
-struct SurfaceWalk {
-  Eigen::Vector3d point;
-  int triangle = -1;
-  double length = 0;     // m, walked (< requested when stopped early)
-  enum class Stop { Done, Boundary, Degenerate } stop = Stop::Done;
-};
-SurfaceWalk surface_walk(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& start, int triangle,
-                         const Eigen::Vector3d& direction, double length, WalkMethod method = WalkMethod::CuttingPlane);
 
 }  // namespace needlekit::patch

@@ -1,6 +1,7 @@
 // Rigid patch fitting (dissertation §6.4.1, the control group): the flat patch is lowered along the approach
-// direction until its first node touches the surface; it does not deform and every needle stays normal to the
-// patch (along the approach).
+// direction until it first touches the surface — at a node, or at a surface vertex under its w × w footprint (the
+// substrate is a plate); it does not deform and every needle stays normal to the patch (along the approach).
+// `first_node` is the node nearest to the surface along the approach.
 #pragma once
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/patch/fitted_patch.hpp"
