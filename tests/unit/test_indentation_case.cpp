@@ -252,8 +252,7 @@ TEST(IndentationCase, ToughnessFromTwoInsertions) {
     io::read_indentation_case(dir / "case.toml");
     ADD_FAILURE() << "no error for a header without a unit";
   } catch (const InvalidInput& error) {
-    // The merged force-curve reader (postpuncture's) names the missing column.
-    EXPECT_THAT(error.what(), HasSubstr("second.csv:1: missing column depth_<unit>"));
+    EXPECT_THAT(error.what(), HasSubstr("second.csv:1: column 'depth' is not a depth with its unit"));
     EXPECT_THAT(error.what(), HasSubstr("case.toml:36:"));
   }
   std::ofstream(dir / "second.csv") << "depth_um,force_mN\n0,0\n0,1000\n";
