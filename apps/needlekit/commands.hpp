@@ -13,6 +13,7 @@ void add_mesh_command(CLI::App& app);       // command_mesh.cpp
 void add_tissue_mesh_command(CLI::App& app);  // command_tissue_mesh.cpp
 void add_surface_command(CLI::App& app);    // command_surface.cpp
 void add_patch_command(CLI::App& app);      // command_patch.cpp
+void add_reproduce_command(CLI::App& app);  // command_reproduce.cpp
 void add_indent_command(CLI::App& app);     // command_indent.cpp
 void add_insert_command(CLI::App& app);     // command_insert.cpp
 

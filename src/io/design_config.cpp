@@ -1,8 +1,9 @@
 #include "needlekit/io/design_config.hpp"
 
-#include <algorithm>
-
 #include "toml_config.hpp"
+
+#include <algorithm>
+#include <initializer_list>
 
 namespace needlekit::io {
 namespace {

@@ -1,0 +1,255 @@
+// `needlekit reproduce --quick`, the main job, as a test: it writes a self-contained report with every figure, the
+// numbers that the dissertation's formulas determine agree with the printed ones to their printed digits, and bad
+// input (an output directory that cannot be written, a missing mesh, Ctrl-C) leaves no report behind.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+
+using testing::HasSubstr;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+CliResult run_cli(const fs::path& dir, const std::string& arguments) {
+  const std::string command = "cd '" + dir.string() + "' && '" + NEEDLEKIT_CLI + "' " + arguments +
+                              " > stdout.txt 2> stderr.txt";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stdout.txt"), read_file(dir / "stderr.txt")};
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("needlekit-reproduce-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// One unit of the last printed digit, computed here independently of the tool ("42.9" -> 0.1, "1.288e-4" -> 1e-7).
+double last_digit(const std::string& printed) {
+  const std::size_t e = printed.find_first_of("eE");
+  const std::string mantissa = printed.substr(0, e);
+  const int exponent = e == std::string::npos ? 0 : std::stoi(printed.substr(e + 1));
+  const std::size_t dot = mantissa.find('.');
+  const int decimals = dot == std::string::npos ? 0 : static_cast<int>(mantissa.size() - dot - 1);
+  return std::pow(10.0, exponent - decimals);
+}
+
+bool leaves_staging_behind(const fs::path& out) {
+  if (!fs::exists(out)) return false;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    if (entry.path().filename().string().rfind(".reproduce-staging", 0) == 0) return true;
+  }
+  return false;
+}
+
+// The quick run, once for the whole suite.
+class Reproduce : public testing::Test {
+protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fresh_dir("quick"));
+    run_ = new CliResult(run_cli(*dir_, "reproduce --quick --out out"));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+    delete run_;
+  }
+  static nlohmann::json results() { return nlohmann::json::parse(read_file(*dir_ / "out" / "results.json")); }
+  static void report_is_self_contained_with_every_figure();
+  static void numbers_agree_to_the_printed_digits();
+  static void table_6_3_shows_both_pitches();
+
+  static fs::path* dir_;
+  static CliResult* run_;
+};
+fs::path* Reproduce::dir_ = nullptr;
+CliResult* Reproduce::run_ = nullptr;
+
+void Reproduce::report_is_self_contained_with_every_figure() {
+  const fs::path out = *dir_ / "out";
+  ASSERT_TRUE(fs::is_regular_file(out / "report.html"));
+  EXPECT_FALSE(leaves_staging_behind(out));
+  const std::string report = read_file(out / "report.html");
+  const nlohmann::json r = results();
+  EXPECT_EQ(r["mode"], "quick");
+  EXPECT_GT(r["seconds"].get<double>(), 0);
+  std::size_t figures = 0;
+  for (const auto& section : r["sections"]) {
+    for (const auto& figure : section["figures"]) {
+      ++figures;
+      const fs::path png = out / figure["file"].get<std::string>();
+      ASSERT_TRUE(fs::is_regular_file(png)) << png;
+      const std::string bytes = read_file(png);
+      EXPECT_GT(bytes.size(), 5000u) << png << " is (nearly) empty";
+      EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
+    }
+    for (const auto& data : section["data_files"]) {
+      EXPECT_TRUE(fs::is_regular_file(out / data.get<std::string>())) << data;
+    }
+    // Every section is in the report, with its status.
+    EXPECT_THAT(report, HasSubstr(section["title"].get<std::string>().substr(0, 10)));
+  }
+  EXPECT_GE(figures, 5u);
+  // Self-contained: every figure embedded, nothing fetched from the network.
+  std::size_t embedded = 0;
+  for (std::size_t at = 0; (at = report.find("data:image/png;base64,", at)) != std::string::npos; ++at) ++embedded;
+  EXPECT_EQ(embedded, figures);
+  EXPECT_THAT(report, testing::Not(HasSubstr("src=\"http")));
+  EXPECT_THAT(report, testing::Not(HasSubstr("href=\"http")));
+  EXPECT_THAT(run_->out, HasSubstr("report: "));
+  EXPECT_THAT(run_->out, HasSubstr("quick run took"));
+}
+
+// §6.3.1, Figs 6.15/6.16, Table 6.3 (and the §6.4 forces, when that section runs): every number that the formulas
+// determine is within one unit of its last printed digit, checked here against docs/published/chapter6.json.
+void Reproduce::numbers_agree_to_the_printed_digits() {
+  const nlohmann::json published =
+      nlohmann::json::parse(read_file(fs::path(NEEDLEKIT_SOURCE_DIR) / "docs" / "published" / "chapter6.json"));
+  std::map<std::string, nlohmann::json> by_id;
+  for (const auto& v : published["values"]) by_id[v["id"]] = v;
+
+  std::set<std::string> compared;
+  std::set<std::string> sections_ok;
+  const nlohmann::json run = results();
+  for (const auto& section : run["sections"]) {
+    if (section["status"] == "ok") sections_ok.insert(section["id"].get<std::string>());
+    for (const auto& c : section["comparisons"]) {
+      const std::string id = c["id"];
+      ASSERT_TRUE(by_id.count(id)) << id;
+      const nlohmann::json& p = by_id[id];
+      compared.insert(id);
+      EXPECT_EQ(c["published"], p["printed"]) << id;
+      if (!p["reproduces"].get<bool>()) continue;
+      const std::string printed = p["printed"];
+      const double value = std::stod(printed);
+      const double needlekit = c["needlekit"];
+      if (value == 0) {
+        EXPECT_EQ(needlekit, 0) << id;
+      } else {
+        EXPECT_LE(std::abs(needlekit - value), last_digit(printed) * (1 + 1e-9))
+            << id << ": needlekit " << needlekit << ", printed " << printed;
+      }
+      EXPECT_TRUE(c["agrees"].get<bool>()) << id;
+    }
+  }
+  ASSERT_TRUE(sections_ok.count("6.3"));
+  // Every reproducible number of a section that ran is in the report (none silently dropped).
+  for (const auto& [id, p] : by_id) {
+    if (!p["reproduces"].get<bool>()) continue;
+    for (const std::string section : {"6.3", "6.4"}) {
+      if (id.rfind(section, 0) == 0 && sections_ok.count(section)) EXPECT_TRUE(compared.count(id)) << id;
+    }
+  }
+  EXPECT_GE(compared.size(), 50u);
+}
+
+// Table 6.3 side by side: the corrected pitch finds better hollow cylinder and hollow cone designs than the
+// published-compatible optimizer (which reproduces the printed rows).
+void Reproduce::table_6_3_shows_both_pitches() {
+  const nlohmann::json compat =
+      nlohmann::json::parse(read_file(*dir_ / "out/section_6_3/table_6_3_hollow_cone_published_compat.json"));
+  const nlohmann::json corrected =
+      nlohmann::json::parse(read_file(*dir_ / "out/section_6_3/table_6_3_hollow_cone_corrected_pitch.json"));
+  EXPECT_NEAR(compat["best"]["performance_index_per_um"].get<double>(), 0.00061, 0.00001);
+  EXPECT_GT(corrected["best"]["performance_index_per_um"].get<double>(),
+            1.5 * compat["best"]["performance_index_per_um"].get<double>());
+}
+
+// One test for the whole quick run (CTest runs every test in its own process: one run, not one per check).
+TEST_F(Reproduce, QuickRunWritesTheReportAndReproducesThePublishedNumbers) {
+  ASSERT_EQ(run_->exit_code, 0) << run_->err;
+  {
+    SCOPED_TRACE("report and figures");
+    report_is_self_contained_with_every_figure();
+  }
+  {
+    SCOPED_TRACE("numbers that reproduce");
+    numbers_agree_to_the_printed_digits();
+  }
+  {
+    SCOPED_TRACE("Table 6.3");
+    table_6_3_shows_both_pitches();
+  }
+}
+
+TEST(ReproduceBadInput, UnwritableOutputDirectoryExitsWithCode2) {
+  const fs::path dir = fresh_dir("unwritable");
+  std::ofstream(dir / "a-file") << "not a directory\n";
+  const CliResult run = run_cli(dir, "reproduce --quick --out a-file/out");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("cannot create the output directory 'a-file/out'"));
+  EXPECT_EQ(read_file(dir / "a-file"), "not a directory\n");
+  fs::remove_all(dir);
+}
+
+TEST(ReproduceBadInput, MissingMeshFolderExitsWithCode2BeforeRunning) {
+  const fs::path dir = fresh_dir("nomesh");
+  const CliResult run = run_cli(dir, "reproduce --quick --out out --meshes no-such-folder");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("no-such-folder"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "report.html"));
+  EXPECT_FALSE(leaves_staging_behind(dir / "out"));
+  fs::remove_all(dir);
+}
+
+// Ctrl-C (SIGINT to the whole process group, as a terminal sends it) mid-run: a clear message, exit code 130, no
+// report and no staging folder left behind.
+TEST(ReproduceBadInput, CtrlCLeavesNoHalfWrittenReport) {
+  const fs::path dir = fresh_dir("sigint");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    ::chdir(dir.c_str());
+    std::FILE* err = std::freopen("stderr.txt", "w", stderr);
+    std::FILE* out = std::freopen("stdout.txt", "w", stdout);
+    (void)err;
+    (void)out;
+    ::execl(NEEDLEKIT_CLI, NEEDLEKIT_CLI, "reproduce", "--quick", "--out", "out", static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  ::setpgid(pid, pid);
+  // Wait until the run is under way (its staging folder exists), then interrupt it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!leaves_staging_behind(dir / "out") && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ::kill(-pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << read_file(dir / "stderr.txt");
+  EXPECT_THAT(read_file(dir / "stderr.txt"), HasSubstr("interrupted"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "report.html"));
+  EXPECT_FALSE(leaves_staging_behind(dir / "out"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
