@@ -89,6 +89,8 @@ struct NeedleState {
   std::vector<double> gap_now;           // Surface: signed gap per top node at the last evaluation, m
   std::vector<double> force_now;         // Surface: contact force per top node, N
   std::vector<Eigen::Vector3d> normal_now;
+  std::vector<char> ahead;               // Surface: per top node, under the needle's leading faces at the last
+                                         // converged state (see RigidSurfaceDistance::signed_distance)
 };
 
 }  // namespace
@@ -221,7 +223,8 @@ struct QuasiStaticSolver::Impl {
         nd.force_now[t] = 0;
         nd.gap_now[t] = std::numeric_limits<double>::infinity();
         if ((q.array() < lo.array()).any() || (q.array() > hi.array()).any()) continue;
-        const auto sd = nd.distance->signed_distance(q, (nd.distance->box_max() - nd.distance->box_min()).norm());
+        const auto sd =
+            nd.distance->signed_distance(q, (nd.distance->box_max() - nd.distance->box_min()).norm(), nd.ahead[t]);
         nd.gap_now[t] = sd.distance;
         const double p = nd.lambda[t] - k * sd.distance;
         if (p <= 0) continue;
@@ -444,6 +447,20 @@ struct QuasiStaticSolver::Impl {
     return pen;
   }
 
+  // Surface: which top nodes are ahead of each needle in the converged state (u, disp): their nearest point on the
+  // needle's surface has an outward normal along the direction of motion (under a leading face or its rim), or they
+  // are out of reach. Nodes beside the needle (nearest a side wall) are not.
+  void update_ahead(double disp) {
+    for (auto& nd : needles) {
+      const double reach = (nd.distance->box_max() - nd.distance->box_min()).norm();
+      for (size_t t = 0; t < top_nodes.size(); ++t) {
+        const int a = top_nodes[t];
+        const auto sd = nd.distance->signed_distance(nodes[a] + u.segment<3>(3 * a) - disp * nd.direction, reach);
+        nd.ahead[t] = sd.distance >= reach || sd.normal.dot(nd.direction) > detail::RigidSurfaceDistance::kLeadingCosine;
+      }
+    }
+  }
+
   // One substep from the current converged state (u, d) to displacement `target`.
   bool substep(double target, StepResult& res, std::string& why, int cutbacks_so_far) {
     if (opt.contact == ContactModel::TipNodes) {
@@ -488,8 +505,10 @@ struct QuasiStaticSolver::Impl {
     for (int aug = 0;; ++aug) {
       if (!newton(target, res, why, cutbacks_so_far)) return false;
       const double pen = max_penetration();
-      if (pen <= opt.penetration_tolerance * std::max(std::abs(target), h_min) || aug >= opt.max_augmentations)
+      if (pen <= opt.penetration_tolerance * std::max(std::abs(target), h_min) || aug >= opt.max_augmentations) {
+        update_ahead(target);
         return true;
+      }
       for (auto& nd : needles)
         for (size_t t = 0; t < top_nodes.size(); ++t) nd.lambda[t] = nd.force_now[t];
     }
@@ -802,11 +821,12 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
       double hmax = -std::numeric_limits<double>::infinity();
       for (const auto& v : ind.surface.vertices) hmax = std::max(hmax, v.dot(nd.direction));
       nd.gap = std::max(0.0, -m.z_top * nd.direction.z() - hmax);  // rough: exact only for -z
-      nd.distance = std::make_unique<detail::RigidSurfaceDistance>(ind.surface);
+      nd.distance = std::make_unique<detail::RigidSurfaceDistance>(ind.surface, nd.direction);
       nd.lambda.assign(m.top_nodes.size(), 0.0);
       nd.gap_now.assign(m.top_nodes.size(), std::numeric_limits<double>::infinity());
       nd.force_now.assign(m.top_nodes.size(), 0.0);
       nd.normal_now.assign(m.top_nodes.size(), Eigen::Vector3d::Zero());
+      nd.ahead.assign(m.top_nodes.size(), 1);  // the needle starts above the tissue
     }
     nd.indenter = std::move(ind);
     m.needles.push_back(std::move(nd));

@@ -8,7 +8,8 @@
 
 namespace needlekit::fem::detail {
 
-RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh) : v_(mesh.vertices), t_(mesh.triangles) {
+RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, const Eigen::Vector3d& direction)
+    : v_(mesh.vertices), t_(mesh.triangles) {
   const size_t nt = t_.size();
   face_normal_.resize(nt);
   vertex_normal_.assign(v_.size(), Eigen::Vector3d::Zero());
@@ -35,6 +36,9 @@ RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh) :
       edge_sum[{std::min(a, b), std::max(a, b)}] += face_normal_[f];
     }
   }
+  const Eigen::Vector3d along = direction.normalized();
+  for (size_t f = 0; f < nt; ++f)
+    if (face_normal_[f].dot(along) > kLeadingCosine) leading_.push_back(static_cast<int>(f));
   for (auto& n : vertex_normal_)
     if (n.norm() > 0) n.normalize();
   for (size_t f = 0; f < nt; ++f)
@@ -73,24 +77,34 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
 }
 }  // namespace
 
-SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, double reach) const {
-  double best = reach * reach;
-  int best_f = -1, best_feature = 6;
-  Eigen::Vector3d best_p;
-  for (size_t f = 0; f < t_.size(); ++f) {
+RigidSurfaceDistance::Nearest RigidSurfaceDistance::nearest(const Eigen::Vector3d& q, double reach,
+                                                           const std::vector<int>* subset) const {
+  Nearest n;
+  n.squared_distance = reach * reach;
+  const size_t count = subset ? subset->size() : t_.size();
+  for (size_t i = 0; i < count; ++i) {
+    const int f = subset ? (*subset)[i] : static_cast<int>(i);
     const Eigen::Vector3d d = (tri_lo_[f] - q).cwiseMax(q - tri_hi_[f]).cwiseMax(0.0);
-    if (d.squaredNorm() >= best) continue;
+    if (d.squaredNorm() >= n.squared_distance) continue;
     int feature;
     const auto& t = t_[f];
     const Eigen::Vector3d p = closest_on_triangle(q, v_[t[0]], v_[t[1]], v_[t[2]], feature);
     const double d2 = (q - p).squaredNorm();
-    if (d2 < best) {
-      best = d2;
-      best_f = static_cast<int>(f);
-      best_feature = feature;
-      best_p = p;
+    if (d2 < n.squared_distance) {
+      n.squared_distance = d2;
+      n.triangle = f;
+      n.feature = feature;
+      n.point = p;
     }
   }
+  return n;
+}
+
+SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, double reach, bool ahead) const {
+  const Nearest all = nearest(q, reach, nullptr);
+  const double best = all.squared_distance;
+  const int best_f = all.triangle, best_feature = all.feature;
+  const Eigen::Vector3d best_p = all.point;
   SignedDistance out;
   if (best_f < 0) {
     out.distance = reach;
@@ -107,6 +121,16 @@ SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, d
   const double dist = std::sqrt(best);
   const Eigen::Vector3d diff = q - best_p;
   const bool inside = diff.dot(pseudo) < 0;
+  if (inside && ahead && !leading_.empty()) {
+    // The nearest point of the leading faces (see the header): the node leaves the needle the way the needle's
+    // motion pushes it.
+    const Nearest lead = nearest(q, std::numeric_limits<double>::infinity(), &leading_);
+    const double lead_dist = std::sqrt(lead.squared_distance);
+    out.distance = -lead_dist;
+    out.normal = lead_dist > 1e-12 * (hi_ - lo_).norm() ? Eigen::Vector3d((lead.point - q) / lead_dist)
+                                                        : face_normal_[lead.triangle];
+    return out;
+  }
   out.distance = inside ? -dist : dist;
   if (dist > 1e-12 * (hi_ - lo_).norm()) out.normal = inside ? Eigen::Vector3d(-diff / dist) : Eigen::Vector3d(diff / dist);
   else out.normal = pseudo.normalized();

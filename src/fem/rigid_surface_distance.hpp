@@ -16,18 +16,37 @@ struct SignedDistance {
 
 class RigidSurfaceDistance {
 public:
-  explicit RigidSurfaceDistance(const geometry::TriangleMesh& mesh);
+  // `direction`: the needle's direction of motion. Triangles whose outward normal points along it (n . direction >
+  // kLeadingCosine) are the needle's leading faces, the ones that can push tissue ahead of the needle.
+  RigidSurfaceDistance(const geometry::TriangleMesh& mesh, const Eigen::Vector3d& direction);
   // Signed distance of q, or a positive value >= `reach` (normal undefined) when q is farther than `reach`.
-  SignedDistance signed_distance(const Eigen::Vector3d& q, double reach) const;
+  // With `ahead` (a node that was ahead of the needle, under its leading faces, at the last converged state), inside
+  // the needle the distance and normal are those to the nearest point of the leading faces (the way out that the
+  // needle's motion defines), not to the nearest point of the whole surface: a tissue node under a thin tip (a sharp
+  // bevel's tip segment, a rim) is otherwise closest to a side wall once the needle has moved by more than half the
+  // tip's width, gets a horizontal normal and is pushed sideways with zero force along the needle while the needle
+  // slides past it.
+  SignedDistance signed_distance(const Eigen::Vector3d& q, double reach, bool ahead = false) const;
+  static constexpr double kLeadingCosine = 1e-3;
   const Eigen::Vector3d& box_min() const { return lo_; }
   const Eigen::Vector3d& box_max() const { return hi_; }
 
 private:
+  struct Nearest {
+    double squared_distance = 0;  // m^2; reach^2 when no triangle is nearer
+    int triangle = -1;            // -1: none within reach
+    int feature = 6;              // closest_on_triangle's feature: 0..2 vertex, 3..5 edge, 6 face
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  };
+  // The nearest point of the triangles in `subset` (all when null) to q, within `reach`.
+  Nearest nearest(const Eigen::Vector3d& q, double reach, const std::vector<int>* subset) const;
+
   std::vector<Eigen::Vector3d> v_;
   std::vector<std::array<int, 3>> t_;
   std::vector<Eigen::Vector3d> face_normal_, vertex_normal_;
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normal_;  // per triangle edge k = (k, k+1)
   std::vector<Eigen::Vector3d> tri_lo_, tri_hi_;
+  std::vector<int> leading_;  // indices of the leading triangles
   Eigen::Vector3d lo_, hi_;
 };
 
