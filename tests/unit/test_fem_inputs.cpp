@@ -9,20 +9,14 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/mesh/structured_block_mesh.hpp"
+#include "../support/expect_invalid.hpp"
+#include "../verification/fem_test_support.hpp"
 
 using namespace needlekit;
 using namespace needlekit::fem;
+using needlekit::test::expect_invalid;
 
 namespace {
-
-geometry::TriangleMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  geometry::TriangleMesh m;
-  for (int k = 0; k < 8; ++k)
-    m.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
-  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  return m;
-}
 
 mesh::TetMesh small_block() {
   mesh::StructuredBlockOptions o;
@@ -30,15 +24,8 @@ mesh::TetMesh small_block() {
   return mesh::structured_block_mesh(o);
 }
 
-Indenter punch(double z_bottom = 0) { return {box({-1e-4, -1e-4, z_bottom}, {1e-4, 1e-4, 1e-3}), {0, 0, -1}}; }
-
-void expect_invalid(const std::function<void()>& f, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no InvalidInput thrown, expected one mentioning \"" << fragment << "\"";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
+Indenter punch(double z_bottom = 0) {
+  return {test_support::box_surface({-1e-4, -1e-4, z_bottom}, {1e-4, 1e-4, 1e-3}), {0, 0, -1}};
 }
 
 TEST(FemInputs, InvertedAndDegenerateTetrahedraAreRejected) {
