@@ -70,6 +70,11 @@ BoundaryCondition boundary_condition_from_string(const std::string& t, const std
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Inexact Newton: CG's relative tolerance for the first Newton iteration of a (sub)step and its upper bound (also
+// the linearised predictor's tolerance: that solve only provides a start for Newton).
+constexpr double kFirstForcing = 1e-3;
+constexpr double kMaxForcing = 1e-1;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string fmt_um(double m) {
@@ -114,6 +119,10 @@ struct QuasiStaticSolver::Impl {
   std::vector<char> tip_dof;     // per dof: 1 when prescribed by a needle tip (TipNodes)
   std::vector<int64_t> colptr, rowidx;
   std::vector<double> values;
+  // Per element, (3N)^2 entries in column-major order of the element matrix: the index into `values` of the entry
+  // (row dof, column dof) when both are free and row <= column, else -1. Built once: assembly then adds without
+  // searching the pattern.
+  std::vector<int32_t> value_slot;
   std::unique_ptr<detail::SparseCholesky> cholesky;
 
   std::vector<int> top_nodes;              // nodes on the top surface (contact candidates)
@@ -176,6 +185,12 @@ struct QuasiStaticSolver::Impl {
             en += we;
             for (int a = 0; a < N; ++a) fint.segment<3>(3 * c[a]) += fe.col(a);
             if (!want_tangent) continue;
+            const int32_t* slot = &value_slot[static_cast<size_t>(e) * 9 * N * N];
+            for (int col = 0; col < 3 * N; ++col)
+              for (int row = 0; row < 3 * N; ++row)
+                if (slot[col * 3 * N + row] >= 0) values[static_cast<size_t>(slot[col * 3 * N + row])] += ke(row, col);
+            if (!kdup) continue;
+            // Coupling to the prescribed tip dofs: the linear predictor's right-hand side K_fp du_p.
             for (int a = 0; a < N; ++a)
               for (int i = 0; i < 3; ++i) {
                 const int ra = free_index[3 * c[a] + i];
@@ -183,15 +198,7 @@ struct QuasiStaticSolver::Impl {
                 for (int b = 0; b < N; ++b)
                   for (int j = 0; j < 3; ++j) {
                     const int dofb = 3 * c[b] + j;
-                    const int cb = free_index[dofb];
-                    const double kv = ke(3 * a + i, 3 * b + j);
-                    if (cb < 0) {
-                      if (kdup) (*kdup)[ra] += kv * (*dup)[dofb];
-                      continue;
-                    }
-                    if (ra > cb) continue;
-                    const auto first = rowidx.begin() + colptr[cb], last = rowidx.begin() + colptr[cb + 1];
-                    values[static_cast<size_t>(std::lower_bound(first, last, ra) - rowidx.begin())] += kv;
+                    if (free_index[dofb] < 0) (*kdup)[ra] += ke(3 * a + i, 3 * b + j) * (*dup)[dofb];
                   }
               }
           }
@@ -267,28 +274,60 @@ struct QuasiStaticSolver::Impl {
 
   double tip_value(const NeedleState& nd, double disp) const { return -std::max(0.0, disp - nd.gap); }
 
-  // y = K x for the upper-triangular CSC values.
-  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-    y.setZero(x.size());
+  // y = K x for the upper-triangular CSC values. Threaded over column ranges; each range scatters its transposed
+  // part into its own vector (the symmetric product writes rows above the range), summed at the end.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
     const int64_t nc = static_cast<int64_t>(colptr.size()) - 1;
-    for (int64_t c = 0; c < nc; ++c) {
-      double acc = 0;
-      const double xc = x[c];
-      for (int64_t k = colptr[c]; k < colptr[c + 1]; ++k) {
-        const int64_t r = rowidx[k];
-        const double v = values[static_cast<size_t>(k)];
-        if (r == c) {
-          acc += v * xc;
-        } else {
-          acc += v * x[r];
-          y[r] += v * xc;
+    const int parts = std::max(1, arena.max_concurrency());
+    std::vector<Eigen::VectorXd> partial(static_cast<size_t>(parts));
+    arena.execute([&] {
+      tbb::parallel_for(0, parts, [&](int part) {
+        Eigen::VectorXd& yp = partial[static_cast<size_t>(part)];
+        yp.setZero(x.size());
+        // Equal shares of the stored entries, not of the columns (columns grow longer towards the end).
+        const auto begin_column = [&](int q) {
+          const int64_t target = colptr.back() * q / parts;
+          return static_cast<int64_t>(std::lower_bound(colptr.begin(), colptr.end(), target) - colptr.begin());
+        };
+        const int64_t c0 = std::min(begin_column(part), nc), c1 = part + 1 == parts ? nc : std::min(begin_column(part + 1), nc);
+        for (int64_t c = c0; c < c1; ++c) {
+          double acc = 0;
+          const double xc = x[c];
+          for (int64_t k = colptr[c]; k < colptr[c + 1]; ++k) {
+            const int64_t r = rowidx[k];
+            const double v = values[static_cast<size_t>(k)];
+            if (r == c) {
+              acc += v * xc;
+            } else {
+              acc += v * x[r];
+              yp[r] += v * xc;
+            }
+          }
+          yp[c] += acc;
         }
-      }
-      y[c] += acc;
-    }
+      });
+    });
+    y = partial[0];
+    for (size_t p = 1; p < partial.size(); ++p) y += partial[p];
   }
 
   bool have_factor = false;
+  Eigen::VectorXd last_increment;  // u change of the last converged substep (for the secant predictor)
+  double last_step = 0;            // m, its needle displacement change
+  // Cost balance of the reused factorization: CG on the last factor is worth it while its iterations cost less than
+  // a fresh factorization. Measured wall times (seconds) of the last factorization and of one CG iteration, and the
+  // iterations of the last CG solve.
+  double factor_seconds = 0;
+  double cg_iteration_seconds = 0;
+  int last_cg_iterations = 0;
+
+  // CG iterations worth trying before a factorization is cheaper: factor time / CG iteration time, within
+  // [1, max_reuse_iterations].
+  int cg_budget() const {
+    if (!(cg_iteration_seconds > 0)) return opt.max_reuse_iterations;
+    return static_cast<int>(std::clamp(factor_seconds / cg_iteration_seconds, 1.0,
+                                       static_cast<double>(opt.max_reuse_iterations)));
+  }
 
   Eigen::VectorXd apply_factor(const Eigen::VectorXd& r) {
     const std::vector<double> b(r.data(), r.data() + r.size());
@@ -297,13 +336,13 @@ struct QuasiStaticSolver::Impl {
   }
 
   // Preconditioned CG on the current values with the last factorization; false if it does not converge in time.
-  bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance) {
+  bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget) {
     const double bnorm = rhs.norm();
     x = Eigen::VectorXd::Zero(rhs.size());
     if (bnorm == 0) return true;
     Eigen::VectorXd r = rhs, z = apply_factor(r), p = z, q;
     double rz = r.dot(z);
-    for (iterations = 1; iterations <= opt.max_reuse_iterations; ++iterations) {
+    for (iterations = 1; iterations <= budget; ++iterations) {
       multiply(p, q);
       const double pq = p.dot(q);
       if (!(pq > 0)) return false;  // not positive definite along p
@@ -321,24 +360,30 @@ struct QuasiStaticSolver::Impl {
 
   // Solve K du = rhs: CG preconditioned by the last factorization when allowed, else (or on failure) a fresh
   // factorization (with a diagonal shift if K is not positive definite).
-  // `target` (N): the residual the Newton step should leave; CG stops at relative residual
-  // clamp(0.01 * target / |rhs|, linear_tolerance, 1e-2) (inexact Newton: loose early, tight near convergence).
-  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord* rec = nullptr,
-                        double target = 0) {
-    if (opt.reuse_factorization && have_factor) {
+  // `forcing`: the relative residual at which CG may stop (inexact Newton); never below linear_tolerance.
+  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord* rec, double forcing) {
+    // The last CG solve cost more than half a factorization: refactorize now rather than after a failed CG.
+    const int budget = cg_budget();
+    if (opt.reuse_factorization && have_factor && 2 * last_cg_iterations <= budget) {
       int its = 0;
       const double bnorm = rhs.norm();
-      const double tol = bnorm > 0 ? std::clamp(0.01 * target / bnorm, opt.linear_tolerance, 1e-2) : 1.0;
-      if (reuse_solve(rhs, du, its, tol)) {
+      const double tol = bnorm > 0 ? std::max(forcing, opt.linear_tolerance) : 1.0;
+      const auto t0 = Clock::now();
+      const bool converged = reuse_solve(rhs, du, its, tol, budget);
+      if (its > 0) cg_iteration_seconds = seconds_since(t0) / std::min(its, budget);
+      last_cg_iterations = converged ? its : budget;
+      if (converged) {
         if (rec) rec->linear_iterations = its;
         return true;
       }
     }
+    last_cg_iterations = 0;
     if (rec) {
       rec->factorized = true;
       rec->linear_iterations = 0;
     }
     have_factor = false;
+    const auto factor_start = Clock::now();
     if (!cholesky->factorize(values)) {
       bool ok = false;
       std::vector<double> shifted = values;
@@ -355,6 +400,7 @@ struct QuasiStaticSolver::Impl {
       if (!ok) return false;
     }
     have_factor = true;
+    factor_seconds = seconds_since(factor_start);
     du = apply_factor(rhs);
     return du.allFinite();
   }
@@ -367,11 +413,17 @@ struct QuasiStaticSolver::Impl {
   bool newton(double disp, StepResult& res, std::string& why, int cutbacks_so_far) {
     const double tiny = 1e-14 * e_mean * h_mean * h_mean;
     double first_energy_norm = 0, last_du = std::numeric_limits<double>::infinity(), last_en = last_du;
+    // Forces and tangent at u: assembled here for the first iteration, afterwards by the line search's full-step
+    // trial when that step is accepted (the usual case), so an accepted full step costs one assembly, not two.
+    bool assembled = false;
+    double carried_assembly_seconds = 0, previous_residual = 0;
+    Eval ev;
     for (int it = 1; it <= opt.max_iterations + 1; ++it) {
       IterationRecord rec;
       auto t0 = Clock::now();
-      Eval ev = evaluate(u, disp, true, true);
-      rec.assembly_seconds = seconds_since(t0);
+      if (!assembled) ev = evaluate(u, disp, true, true);
+      rec.assembly_seconds = assembled ? carried_assembly_seconds : seconds_since(t0);
+      assembled = false;
       if (!ev.valid) {
         why = "an element inverted (J <= 0)";
         return false;
@@ -397,7 +449,13 @@ struct QuasiStaticSolver::Impl {
       }
       t0 = Clock::now();
       Eigen::VectorXd du;
-      if (!factor_and_solve(-r, du, &rec, opt.residual_tolerance * ref)) {
+      // Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no
+      // tighter than leaving a tenth of the convergence target. Loose while far from the solution, tight near it,
+      // without spoiling Newton's quadratic convergence.
+      const double eta = std::clamp(previous_residual > 0 ? std::pow(rec.residual_norm / previous_residual, 2) : kFirstForcing,
+                                    0.1 * opt.residual_tolerance * ref / rec.residual_norm, kMaxForcing);
+      previous_residual = rec.residual_norm;
+      if (!factor_and_solve(-r, du, &rec, eta)) {
         why = "the tangent matrix could not be factorized";
         return false;
       }
@@ -410,12 +468,22 @@ struct QuasiStaticSolver::Impl {
       double alpha = 1;
       if (opt.line_search && slope < 0) {
         const double pi0 = ev.potential();
+        const auto sufficient = [&](const Eval& e, double a) {
+          return e.valid && e.potential() <= pi0 + 1e-4 * a * slope + 1e-10 * std::abs(pi0);
+        };
         Eigen::VectorXd trial = u;
-        for (int ls = 0;; ++ls) {
+        add_free(trial, du, 1.0);
+        t0 = Clock::now();
+        const Eval full = evaluate(trial, disp, true, true);  // the next iteration's assembly if accepted
+        carried_assembly_seconds = seconds_since(t0);
+        assembled = sufficient(full, 1.0);
+        if (assembled) ev = full;
+        for (int ls = 1; !assembled; ++ls) {
+          alpha *= 0.5;
           trial = u;
           add_free(trial, du, alpha);
           const Eval et = evaluate(trial, disp, false, false);
-          if (et.valid && et.potential() <= pi0 + 1e-4 * alpha * slope + 1e-10 * std::abs(pi0)) break;
+          if (sufficient(et, alpha)) break;
           if (ls >= 12) {
             // No sufficient decrease (a kink of the contact energy or round-off): take the full Newton step and let
             // the convergence test and the iteration limit decide.
@@ -423,7 +491,6 @@ struct QuasiStaticSolver::Impl {
             rec.line_search_failed = true;
             break;
           }
-          alpha *= 0.5;
         }
       }
       rec.step_length = alpha;
@@ -463,6 +530,9 @@ struct QuasiStaticSolver::Impl {
 
   // One substep from the current converged state (u, d) to displacement `target`.
   bool substep(double target, StepResult& res, std::string& why, int cutbacks_so_far) {
+    // Secant predictor: the last converged state plus the last step's increment scaled to this step.
+    const bool extrapolate = opt.extrapolate_predictor && last_step != 0 && last_increment.size() == ndof;
+    if (extrapolate) u += ((target - d) / last_step) * last_increment;
     if (opt.contact == ContactModel::TipNodes) {
       Eigen::VectorXd dup = Eigen::VectorXd::Zero(ndof);
       for (const auto& nd : needles)
@@ -470,7 +540,7 @@ struct QuasiStaticSolver::Impl {
           const int dof = 3 * a + 2;
           if (tip_dof[dof]) dup[dof] = tip_value(nd, target) - u[dof];
         }
-      if (opt.linear_predictor && dup.squaredNorm() > 0) {
+      if (!extrapolate && opt.linear_predictor && dup.squaredNorm() > 0) {
         // §3.4: first iterate = linear(ised) elastic solution: K_ff du_f = -(R_f + K_fp du_p).
         IterationRecord rec;
         auto t0 = Clock::now();
@@ -485,7 +555,7 @@ struct QuasiStaticSolver::Impl {
         rec.residual_norm = r.norm();
         t0 = Clock::now();
         Eigen::VectorXd du;
-        if (!factor_and_solve(-(r + kdup), du, &rec)) {
+        if (!factor_and_solve(-(r + kdup), du, &rec, kMaxForcing)) {
           why = "the tangent matrix could not be factorized";
           return false;
         }
@@ -905,6 +975,21 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
       std::vector<int>().swap(v);
     }
     m.values.assign(m.rowidx.size(), 0.0);
+    check(m.values.size() < static_cast<size_t>(std::numeric_limits<int32_t>::max()),
+          "tissue mesh: the stiffness matrix has " + str(m.values.size()) + " entries, more than this solver indexes");
+    const int k = 3 * m.nn;
+    m.value_slot.assign(ne * static_cast<size_t>(k * k), -1);
+    for (size_t e = 0; e < ne; ++e)
+      for (int col = 0; col < k; ++col) {
+        const int cb = m.free_index[3 * m.conn[e * m.nn + col / 3] + col % 3];
+        if (cb < 0) continue;
+        const auto first = m.rowidx.begin() + m.colptr[cb], last = m.rowidx.begin() + m.colptr[cb + 1];
+        for (int row = 0; row < k; ++row) {
+          const int ra = m.free_index[3 * m.conn[e * m.nn + row / 3] + row % 3];
+          if (ra < 0 || ra > cb) continue;
+          m.value_slot[e * k * k + col * k + row] = static_cast<int32_t>(std::lower_bound(first, last, ra) - m.rowidx.begin());
+        }
+      }
     m.cholesky = std::make_unique<detail::SparseCholesky>(nf, m.colptr, m.rowidx);
   }
 
@@ -942,6 +1027,8 @@ StepResult QuasiStaticSolver::advance_to(double target) {
     if (m.substep(next, res, why, res.cutbacks)) {
       const double previous = m.d;
       m.d = next;
+      m.last_increment = m.u - u_saved;
+      m.last_step = next - previous;
       StepResult probe;
       m.measure(probe);
       for (size_t k = 0; k < m.needles.size(); ++k)
