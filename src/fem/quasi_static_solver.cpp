@@ -361,7 +361,7 @@ struct QuasiStaticSolver::Impl {
   // Solve K du = rhs: CG preconditioned by the last factorization when allowed, else (or on failure) a fresh
   // factorization (with a diagonal shift if K is not positive definite).
   // `forcing`: the relative residual at which CG may stop (inexact Newton); never below linear_tolerance.
-  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord* rec, double forcing) {
+  bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
     // The last CG solve cost more than half a factorization: refactorize now rather than after a failed CG.
     const int budget = cg_budget();
     if (opt.reuse_factorization && have_factor && 2 * last_cg_iterations <= budget) {
@@ -373,15 +373,13 @@ struct QuasiStaticSolver::Impl {
       if (its > 0) cg_iteration_seconds = seconds_since(t0) / std::min(its, budget);
       last_cg_iterations = converged ? its : budget;
       if (converged) {
-        if (rec) rec->linear_iterations = its;
+        rec.linear_iterations = its;
         return true;
       }
     }
     last_cg_iterations = 0;
-    if (rec) {
-      rec->factorized = true;
-      rec->linear_iterations = 0;
-    }
+    rec.factorized = true;
+    rec.linear_iterations = 0;
     have_factor = false;
     const auto factor_start = Clock::now();
     if (!cholesky->factorize(values)) {
@@ -403,6 +401,28 @@ struct QuasiStaticSolver::Impl {
     factor_seconds = seconds_since(factor_start);
     du = apply_factor(rhs);
     return du.allFinite();
+  }
+
+  // One iteration's linear solve (predictor or Newton), timed and counted into `rec` and `res`.
+  bool solve_iteration(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing,
+                       StepResult& res, std::string& why) {
+    const auto t0 = Clock::now();
+    if (!factor_and_solve(rhs, du, rec, forcing)) {
+      why = "the tangent matrix could not be factorized";
+      return false;
+    }
+    rec.solve_seconds = seconds_since(t0);
+    rec.increment_norm = du.norm();
+    if (rec.factorized) res.factorizations++;
+    return true;
+  }
+
+  // Adds a finished iteration to the step's record.
+  static void book(const IterationRecord& rec, StepResult& res) {
+    res.iterations.push_back(rec);
+    res.newton_iterations++;
+    res.assembly_seconds += rec.assembly_seconds;
+    res.solve_seconds += rec.solve_seconds;
   }
 
   void add_free(Eigen::VectorXd& uu, const Eigen::VectorXd& du, double alpha) const {
@@ -447,7 +467,6 @@ struct QuasiStaticSolver::Impl {
               std::to_string(rec.residual_norm / ref) + " of the force scale)";
         return false;
       }
-      t0 = Clock::now();
       Eigen::VectorXd du;
       // Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no
       // tighter than leaving a tenth of the convergence target. Loose while far from the solution, tight near it,
@@ -455,14 +474,8 @@ struct QuasiStaticSolver::Impl {
       const double eta = std::clamp(previous_residual > 0 ? std::pow(rec.residual_norm / previous_residual, 2) : kFirstForcing,
                                     0.1 * opt.residual_tolerance * ref / rec.residual_norm, kMaxForcing);
       previous_residual = rec.residual_norm;
-      if (!factor_and_solve(-r, du, &rec, eta)) {
-        why = "the tangent matrix could not be factorized";
-        return false;
-      }
-      rec.solve_seconds = seconds_since(t0);
-      if (rec.factorized) res.factorizations++;
+      if (!solve_iteration(-r, du, rec, eta, res, why)) return false;
       const double slope = r.dot(du);
-      rec.increment_norm = du.norm();
       rec.energy_norm = std::abs(slope);
       if (it == 1) first_energy_norm = rec.energy_norm;
       double alpha = 1;
@@ -497,10 +510,7 @@ struct QuasiStaticSolver::Impl {
       add_free(u, du, alpha);
       last_du = alpha * rec.increment_norm;
       last_en = alpha * rec.energy_norm;
-      res.iterations.push_back(rec);
-      res.newton_iterations++;
-      res.assembly_seconds += rec.assembly_seconds;
-      res.solve_seconds += rec.solve_seconds;
+      book(rec, res);
       if (opt.progress) opt.progress({disp, it, rec.residual_norm, cutbacks_so_far});
     }
     return false;
@@ -553,20 +563,10 @@ struct QuasiStaticSolver::Impl {
         }
         const Eigen::VectorXd r = free_residual();
         rec.residual_norm = r.norm();
-        t0 = Clock::now();
         Eigen::VectorXd du;
-        if (!factor_and_solve(-(r + kdup), du, &rec, kMaxForcing)) {
-          why = "the tangent matrix could not be factorized";
-          return false;
-        }
-        rec.solve_seconds = seconds_since(t0);
-        if (rec.factorized) res.factorizations++;
-        rec.increment_norm = du.norm();
+        if (!solve_iteration(-(r + kdup), du, rec, kMaxForcing, res, why)) return false;
         add_free(u, du, 1.0);
-        res.iterations.push_back(rec);
-        res.newton_iterations++;
-        res.assembly_seconds += rec.assembly_seconds;
-        res.solve_seconds += rec.solve_seconds;
+        book(rec, res);
       }
       u += dup;
       return newton(target, res, why, cutbacks_so_far);
