@@ -130,6 +130,43 @@ void read_model(const Section& section, fem::SolverOptions& solver) {
   }
 }
 
+// [solver]: Newton tolerances and strategy (fem::SolverOptions; defaults and meanings in quasi_static_solver.hpp).
+void read_solver(const Section& section, fem::SolverOptions& solver) {
+  const auto fraction = [&](std::string_view key, double& target) {
+    if (const toml::node* node = section.optional(key)) {
+      const double value = number_at_least(section, *node, key, 0.0);
+      if (!(value > 0 && value < 1)) {
+        section.fail(*node, key, fmt::format("{} is out of range, expected a number in (0, 1)", value));
+      }
+      target = value;
+    }
+  };
+  fraction("residual_tolerance", solver.residual_tolerance);
+  fraction("displacement_tolerance", solver.displacement_tolerance);
+  fraction("energy_tolerance", solver.energy_tolerance);
+  fraction("penetration_tolerance", solver.penetration_tolerance);
+  if (const toml::node* node = section.optional("max_iterations")) {
+    solver.max_iterations = integer_at_least(section, *node, "max_iterations", 1);
+  }
+  if (const toml::node* node = section.optional("max_cutbacks")) {
+    solver.max_cutbacks = integer_at_least(section, *node, "max_cutbacks", 0);
+  }
+  if (const toml::node* node = section.optional("predictor")) {
+    solver.extrapolate_predictor =
+        choice_of<bool>(section, *node, "predictor", {{"secant", true}, {"linearised", false}});
+  }
+  if (const toml::node* node = section.optional("linear_solver")) {
+    solver.reuse_factorization =
+        choice_of<bool>(section, *node, "linear_solver", {{"cholesky-cg", true}, {"cholesky", false}});
+  }
+  if (const toml::node* node = section.optional("penalty_factor")) {
+    const double value = number_at_least(section, *node, "penalty_factor", 0.0);
+    if (!(value > 0)) section.fail(*node, "penalty_factor", "0 is out of range, expected a number > 0");
+    solver.penalty_factor = value;
+  }
+  if (const toml::node* node = section.optional("threads")) solver.threads = integer_at_least(section, *node, "threads", 0);
+}
+
 // toughness_from = { first = "a.csv", second = "b.csv", crack_area = "6661 um2", min_depth?, max_depth? }: J of
 // Eq 3.16 from two insertions at the same spot; the crack area defaults to the parametric needle's tip area.
 double two_insertion_toughness_of(const Section& puncture, const toml::node& node,
@@ -164,7 +201,8 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
                                                        const std::filesystem::path& base_directory) {
   const std::string file(source_name);
   const toml::table root = parse_toml(text, file);
-  const Section top(root, "", file, {"name", "needle", "needles", "tissue", "mesh", "loading", "model", "puncture"});
+  const Section top(root, "", file,
+                    {"name", "needle", "needles", "tissue", "mesh", "loading", "model", "solver", "puncture"});
 
   insertion::IndentationCase result;
   result.name = std::filesystem::path(file).stem().string();
@@ -209,6 +247,11 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   }
   if (const auto model = top.optional_subsection("model", {"law", "contact", "element", "boundary"})) {
     read_model(*model, result.solver);
+  }
+  if (const auto solver = top.optional_subsection(
+          "solver", {"residual_tolerance", "displacement_tolerance", "energy_tolerance", "penetration_tolerance",
+                     "max_iterations", "max_cutbacks", "predictor", "linear_solver", "penalty_factor", "threads"})) {
+    read_solver(*solver, result.solver);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
     result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);

@@ -98,6 +98,34 @@ TEST(IndentationCase, ParsesEverySection) {
   EXPECT_TRUE(c.stop_at_puncture);
 }
 
+TEST(IndentationCase, SolverSection) {
+  const fem::SolverOptions defaults;
+  EXPECT_EQ(parse(kCase).solver.residual_tolerance, defaults.residual_tolerance);  // no [solver]: the defaults
+  const auto c = parse(replaced(kCase, "[puncture]",
+                                "[solver]\nresidual_tolerance = 1e-8\ndisplacement_tolerance = 1e-7\n"
+                                "energy_tolerance = 1e-12\npenetration_tolerance = 0.01\nmax_iterations = 40\n"
+                                "max_cutbacks = 3\npredictor = \"linearised\"\nlinear_solver = \"cholesky\"\n"
+                                "penalty_factor = 10\nthreads = 1\n[puncture]"));
+  EXPECT_DOUBLE_EQ(c.solver.residual_tolerance, 1e-8);
+  EXPECT_DOUBLE_EQ(c.solver.displacement_tolerance, 1e-7);
+  EXPECT_DOUBLE_EQ(c.solver.energy_tolerance, 1e-12);
+  EXPECT_DOUBLE_EQ(c.solver.penetration_tolerance, 0.01);
+  EXPECT_EQ(c.solver.max_iterations, 40);
+  EXPECT_EQ(c.solver.max_cutbacks, 3);
+  EXPECT_FALSE(c.solver.extrapolate_predictor);
+  EXPECT_FALSE(c.solver.reuse_factorization);
+  EXPECT_DOUBLE_EQ(c.solver.penalty_factor, 10.0);
+  EXPECT_EQ(c.solver.threads, 1);
+  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\nresidual_tolerance = 1.5\n[puncture]")),
+              HasSubstr("case.toml:35: key 'solver.residual_tolerance': 1.5 is out of range, expected a number in (0, 1)"));
+  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\npredictor = \"cubic\"\n[puncture]")),
+              HasSubstr("key 'solver.predictor': unknown value 'cubic', expected one of: secant, linearised"));
+  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\nmax_iterations = 0\n[puncture]")),
+              HasSubstr("key 'solver.max_iterations': 0 is out of range"));
+  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\ntolerance = 1e-6\n[puncture]")),
+              HasSubstr("unknown key 'solver.tolerance'"));
+}
+
 TEST(IndentationCase, PresetsHeightsAndArrays) {
   // The skin preset in a taller block, and two needles.
   const std::string text = R"([needle]

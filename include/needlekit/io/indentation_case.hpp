@@ -18,6 +18,12 @@
 //   [model]    law = "svk" | "neo-hookean" (default "neo-hookean"); contact = "tip-nodes" | "surface" (default
 //              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =
 //              "sides-and-bottom-fixed" (default) | "bottom-fixed" | "bottom-fixed-sides-roller"
+//   [solver]   optional Newton settings (fem::SolverOptions): residual_tolerance (default 1e-6),
+//              displacement_tolerance (1e-5), energy_tolerance (1e-8), penetration_tolerance (1e-3), all in (0, 1);
+//              max_iterations (25), max_cutbacks (8); predictor = "secant" (default) | "linearised" (§3.4's
+//              linearised solve before every step); linear_solver = "cholesky-cg" (default: CG on a reused
+//              factorization) | "cholesky" (a factorization per Newton iteration); penalty_factor (100, surface
+//              contact); threads (0 = all cores)
 //   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
 //              or toughness_from = { first = "first.csv", second = "second.csv", crack_area = "6661 um2",
 //              min_depth, max_depth }: J by the two-insertion method (Eq 3.16) from two force curves (CSV with
