@@ -4,7 +4,8 @@
 // tetrahedra in thousands (100, 300, 1000).
 // Run one size per process (peak RSS): build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentation/100/'
 // Meshing alone is BM_SkinBlockMesh (bench_tissue_mesh.cpp). Counters: tets, dofs, steps_done, mesh_s, setup_s,
-// newton_iterations, assembly_s_per_iteration, solve_s_per_iteration, total_s, peak_rss_GB.
+// newton_iterations, factorizations, cg_iterations, assembly_s_per_iteration, solve_s_per_iteration, total_s,
+// peak_rss_GB.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -55,11 +56,13 @@ void BM_SkinIndentation(benchmark::State& state) {
     benchmark::DoNotOptimize(result);
   }
   double assembly = 0, solve = 0;
-  int iterations = 0;
+  int iterations = 0, factorizations = 0, cg_iterations = 0;
   for (const insertion::IndentationStep& step : result.steps) {
     assembly += step.assembly_seconds;
     solve += step.solve_seconds;
     iterations += step.newton_iterations;
+    factorizations += step.factorizations;
+    cg_iterations += step.linear_iterations;
   }
   state.counters["tets"] = result.elements;
   state.counters["dofs"] = result.dofs;
@@ -67,6 +70,8 @@ void BM_SkinIndentation(benchmark::State& state) {
   state.counters["mesh_s"] = result.mesh_seconds;
   state.counters["setup_s"] = result.setup_seconds;
   state.counters["newton_iterations"] = iterations;
+  state.counters["factorizations"] = factorizations;
+  state.counters["cg_iterations"] = cg_iterations;
   state.counters["assembly_s_per_iteration"] = iterations ? assembly / iterations : 0.0;
   state.counters["solve_s_per_iteration"] = iterations ? solve / iterations : 0.0;
   state.counters["total_s"] = result.total_seconds;

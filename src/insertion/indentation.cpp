@@ -38,6 +38,8 @@ IndentationStep step_of(const fem::StepResult& solved, double depth) {
   step.strain_energy = solved.strain_energy;
   step.newton_iterations = solved.newton_iterations;
   step.cutbacks = solved.cutbacks;
+  step.factorizations = solved.factorizations;
+  for (const fem::IterationRecord& iteration : solved.iterations) step.linear_iterations += iteration.linear_iterations;
   if (!solved.iterations.empty()) {
     step.max_residual = solved.iterations.front().residual_norm;
     step.final_residual = solved.iterations.back().residual_norm;

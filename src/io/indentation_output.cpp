@@ -100,12 +100,13 @@ std::string force_depth_csv(const insertion::IndentationResult& result) {
 
 std::string solver_statistics_csv(const insertion::IndentationResult& result) {
   std::ostringstream out;
-  out << "step,depth_um,newton_iterations,cutbacks,first_residual_N,final_residual_N,assembly_s,solve_s,step_s\n";
+  out << "step,depth_um,newton_iterations,cutbacks,factorizations,cg_iterations,first_residual_N,final_residual_N,"
+         "assembly_s,solve_s,step_s\n";
   for (std::size_t k = 0; k < result.steps.size(); ++k) {
     const insertion::IndentationStep& s = result.steps[k];
-    out << fmt::format("{},{:.9g},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", k + 1, s.depth * 1e6,
-                       s.newton_iterations, s.cutbacks, s.max_residual, s.final_residual, s.assembly_seconds,
-                       s.solve_seconds, s.step_seconds);
+    out << fmt::format("{},{:.9g},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", k + 1, s.depth * 1e6,
+                       s.newton_iterations, s.cutbacks, s.factorizations, s.linear_iterations, s.max_residual,
+                       s.final_residual, s.assembly_seconds, s.solve_seconds, s.step_seconds);
   }
   return out.str();
 }

@@ -77,6 +77,12 @@ TEST(Indentation, FlatPunchFollowsSneddonAndStoresTheWork) {
     EXPECT_NEAR(step.contact_area / (M_PI * kRadius * kRadius), 1.0, 0.35);
   }
   EXPECT_NEAR(result.steps[1].force / result.steps[0].force, 2.0, 0.02);  // linear at small depth
+  // Solver statistics per step: the first step factorizes; every Newton solve is a factorization or CG on one.
+  EXPECT_GE(result.steps[0].factorizations, 1);
+  for (const insertion::IndentationStep& step : result.steps) {
+    EXPECT_GE(step.newton_iterations, 1);
+    EXPECT_GE(step.factorizations + step.linear_iterations, step.newton_iterations);
+  }
   const insertion::PrePunctureCurve curve = insertion::pre_puncture_curve(result);
   ASSERT_EQ(curve.curve.depth.size(), 3u);
   EXPECT_EQ(curve.curve.depth[0], 0.0);

@@ -74,6 +74,8 @@ struct IndentationStep {
   double external_work = 0;          // J, work of the needles since the start (trapezoidal over the steps)
   int newton_iterations = 0;         // of this step (all substeps)
   int cutbacks = 0;                  // step halvings needed
+  int factorizations = 0;            // fresh Cholesky factorizations of this step
+  int linear_iterations = 0;         // CG iterations on a reused factorization, summed over the step's solves
   double max_residual = 0;           // N, residual norm at the first Newton iteration of the step
   double final_residual = 0;         // N, residual norm at the last Newton iteration of the step
   double assembly_seconds = 0;       // wall time of this step
