@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
@@ -315,17 +316,18 @@ struct QuasiStaticSolver::Impl {
   Eigen::VectorXd last_increment;  // u change of the last converged substep (for the secant predictor)
   double last_step = 0;            // m, its needle displacement change
   // Cost balance of the reused factorization: CG on the last factor is worth it while its iterations cost less than
-  // a fresh factorization. Measured wall times (seconds) of the last factorization and of one CG iteration, and the
-  // iterations of the last CG solve.
-  double factor_seconds = 0;
-  double cg_iteration_seconds = 0;
-  int last_cg_iterations = 0;
+  // a fresh factorization. The costs are estimated from the pattern, not timed, so that a run does not depend on the
+  // machine's load: a factorization takes CHOLMOD's flop count, a CG iteration 4 (nnz(L) + nnz(K)) flops (two
+  // triangular solves and the symmetric product), and a factorization's flops run kFactorFlopSpeedup times faster
+  // (dense BLAS-3 kernels against memory-bound triangular solves; measured 6.6 and 7.5 on the 100k- and 300k-tet
+  // skin blocks of BENCHMARKS.md).
+  static constexpr double kFactorFlopSpeedup = 7.0;
+  int last_cg_iterations = 0;  // of the last CG solve
 
-  // CG iterations worth trying before a factorization is cheaper: factor time / CG iteration time, within
-  // [1, max_reuse_iterations].
+  // CG iterations worth trying before a factorization is cheaper, within [1, max_reuse_iterations].
   int cg_budget() const {
-    if (!(cg_iteration_seconds > 0)) return opt.max_reuse_iterations;
-    return static_cast<int>(std::clamp(factor_seconds / cg_iteration_seconds, 1.0,
+    const double cg_flops = 4.0 * (cholesky->factor_nonzeros() + static_cast<double>(values.size()));
+    return static_cast<int>(std::clamp(cholesky->factor_flops() / (kFactorFlopSpeedup * cg_flops), 1.0,
                                        static_cast<double>(opt.max_reuse_iterations)));
   }
 
@@ -335,12 +337,52 @@ struct QuasiStaticSolver::Impl {
     return Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
   }
 
+  // Krylov recycling: the last solutions span most of the next one (successive Newton corrections and load steps
+  // deform the tissue alike). CG starts from the Galerkin projection of the solution onto them,
+  // x0 = W (W^T K W)^-1 W^T b, and only has to resolve what they miss.
+  static constexpr int kRecycled = 12;
+  std::vector<Eigen::VectorXd> recycled;  // unit vectors, newest last
+
+  void remember(const Eigen::VectorXd& solution) {
+    const double n = solution.norm();
+    if (!(n > 0) || !solution.allFinite()) return;
+    if (static_cast<int>(recycled.size()) == kRecycled) recycled.erase(recycled.begin());
+    recycled.push_back(solution / n);
+  }
+
+  void recycled_start(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    const int m = static_cast<int>(recycled.size());
+    if (m == 0) return;
+    std::vector<Eigen::VectorXd> kw(static_cast<size_t>(m));
+    Eigen::MatrixXd g(m, m);
+    Eigen::VectorXd wb(m);
+    for (int i = 0; i < m; ++i) multiply(recycled[static_cast<size_t>(i)], kw[static_cast<size_t>(i)]);
+    for (int i = 0; i < m; ++i) {
+      wb[i] = recycled[static_cast<size_t>(i)].dot(rhs);
+      for (int j = 0; j < m; ++j) g(i, j) = recycled[static_cast<size_t>(i)].dot(kw[static_cast<size_t>(j)]);
+    }
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(g);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
+    const Eigen::VectorXd y = ldlt.solve(wb);
+    if (!y.allFinite()) return;
+    for (int i = 0; i < m; ++i) {
+      x += y[i] * recycled[static_cast<size_t>(i)];
+      r -= y[i] * kw[static_cast<size_t>(i)];
+    }
+  }
+
   // Preconditioned CG on the current values with the last factorization; false if it does not converge in time.
   bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget) {
     const double bnorm = rhs.norm();
     x = Eigen::VectorXd::Zero(rhs.size());
     if (bnorm == 0) return true;
-    Eigen::VectorXd r = rhs, z = apply_factor(r), p = z, q;
+    Eigen::VectorXd r = rhs;
+    recycled_start(rhs, x, r);
+    if (r.norm() <= tolerance * bnorm) {
+      iterations = 0;
+      return x.allFinite();
+    }
+    Eigen::VectorXd z = apply_factor(r), p = z, q;
     double rz = r.dot(z);
     for (iterations = 1; iterations <= budget; ++iterations) {
       multiply(p, q);
@@ -368,12 +410,11 @@ struct QuasiStaticSolver::Impl {
       int its = 0;
       const double bnorm = rhs.norm();
       const double tol = bnorm > 0 ? std::max(forcing, opt.linear_tolerance) : 1.0;
-      const auto t0 = Clock::now();
       const bool converged = reuse_solve(rhs, du, its, tol, budget);
-      if (its > 0) cg_iteration_seconds = seconds_since(t0) / std::min(its, budget);
       last_cg_iterations = converged ? its : budget;
       if (converged) {
         rec.linear_iterations = its;
+        remember(du);
         return true;
       }
     }
@@ -381,7 +422,6 @@ struct QuasiStaticSolver::Impl {
     rec.factorized = true;
     rec.linear_iterations = 0;
     have_factor = false;
-    const auto factor_start = Clock::now();
     if (!cholesky->factorize(values)) {
       bool ok = false;
       std::vector<double> shifted = values;
@@ -398,8 +438,8 @@ struct QuasiStaticSolver::Impl {
       if (!ok) return false;
     }
     have_factor = true;
-    factor_seconds = seconds_since(factor_start);
     du = apply_factor(rhs);
+    remember(du);
     return du.allFinite();
   }
 
@@ -1072,6 +1112,7 @@ const std::vector<double>& QuasiStaticSolver::contact_pressure() const { return 
 const SolverOptions& QuasiStaticSolver::options() const { return impl_->opt; }
 int QuasiStaticSolver::dof_count() const { return impl_->ndof; }
 double QuasiStaticSolver::factor_nonzeros() const { return impl_->cholesky->factor_nonzeros(); }
+double QuasiStaticSolver::factor_flops() const { return impl_->cholesky->factor_flops(); }
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->free_dofs.size()); }
 
 ElementFields QuasiStaticSolver::element_fields() const {

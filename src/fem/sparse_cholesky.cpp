@@ -91,5 +91,6 @@ std::vector<double> SparseCholesky::solve(const std::vector<double>& b) {
 }
 
 double SparseCholesky::factor_nonzeros() const { return impl_->common.lnz; }
+double SparseCholesky::factor_flops() const { return impl_->common.fl; }
 
 }  // namespace needlekit::fem::detail

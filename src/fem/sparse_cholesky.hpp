@@ -20,6 +20,7 @@ public:
   // Solves A x = b with the last successful factorization.
   std::vector<double> solve(const std::vector<double>& b);
   double factor_nonzeros() const;
+  double factor_flops() const;  // floating-point operations of one numeric factorization (from the analysis)
 
 private:
   struct Impl;

@@ -117,8 +117,10 @@ struct SolverOptions {
   // Linear solves: a fresh CHOLMOD factorization per Newton iteration, or (reuse_factorization) conjugate gradients
   // on the current tangent preconditioned by the last factorization (the tangent changes little between iterations
   // and load steps). A fresh factorization is taken when CG would cost more than one: CG gets at most
-  // (measured factorization time / measured time per CG iteration) iterations, capped by max_reuse_iterations, and
-  // the factor is renewed at once when the previous CG solve used more than half of that.
+  // (estimated factorization cost / estimated CG iteration cost) iterations, from CHOLMOD's flop count and the
+  // factor's size (not timed: runs do not depend on the machine's load), capped by max_reuse_iterations, and the
+  // factor is renewed at once when the previous CG solve used more than half of that. CG starts from the projection
+  // of the solution on the last 12 solutions (Krylov recycling).
   bool reuse_factorization = true;       // see above
   int max_reuse_iterations = 40;         // >= 1: cap on the CG iterations of one solve
   double linear_tolerance = 1e-10;       // (0, 1): tightest CG relative residual. Inexact Newton: CG stops at the
@@ -203,6 +205,7 @@ public:
   int dof_count() const;        // 3 * nodes
   int free_dof_count() const;   // unknowns of the linear systems
   double factor_nonzeros() const;  // entries of the Cholesky factor (its memory is about 8 bytes each)
+  double factor_flops() const;     // floating-point operations of one numeric factorization
 
 private:
   struct Impl;
