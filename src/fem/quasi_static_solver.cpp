@@ -277,10 +277,12 @@ struct QuasiStaticSolver::Impl {
 
   // y = K x for the upper-triangular CSC values. Threaded over column ranges; each range scatters its transposed
   // part into its own vector (the symmetric product writes rows above the range), summed at the end.
+  std::vector<Eigen::VectorXd> partial;  // multiply's per-range products, kept between calls (CG's hot path)
+
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
     const int64_t nc = static_cast<int64_t>(colptr.size()) - 1;
     const int parts = std::max(1, arena.max_concurrency());
-    std::vector<Eigen::VectorXd> partial(static_cast<size_t>(parts));
+    partial.resize(static_cast<size_t>(parts));
     arena.execute([&] {
       tbb::parallel_for(0, parts, [&](int part) {
         Eigen::VectorXd& yp = partial[static_cast<size_t>(part)];
@@ -342,6 +344,7 @@ struct QuasiStaticSolver::Impl {
   // x0 = W (W^T K W)^-1 W^T b, and only has to resolve what they miss.
   static constexpr int kRecycled = 12;
   std::vector<Eigen::VectorXd> recycled;  // unit vectors, newest last
+  std::vector<Eigen::VectorXd> recycled_products;  // K times each, recomputed per solve (K changes); storage kept
 
   void remember(const Eigen::VectorXd& solution) {
     const double n = solution.norm();
@@ -353,7 +356,8 @@ struct QuasiStaticSolver::Impl {
   void recycled_start(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, Eigen::VectorXd& r) {
     const int m = static_cast<int>(recycled.size());
     if (m == 0) return;
-    std::vector<Eigen::VectorXd> kw(static_cast<size_t>(m));
+    std::vector<Eigen::VectorXd>& kw = recycled_products;
+    kw.resize(static_cast<size_t>(m));
     Eigen::MatrixXd g(m, m);
     Eigen::VectorXd wb(m);
     for (int i = 0; i < m; ++i) multiply(recycled[static_cast<size_t>(i)], kw[static_cast<size_t>(i)]);
@@ -404,15 +408,15 @@ struct QuasiStaticSolver::Impl {
   // factorization (with a diagonal shift if K is not positive definite).
   // `forcing`: the relative residual at which CG may stop (inexact Newton); never below linear_tolerance.
   bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
-    // The last CG solve cost more than half a factorization: refactorize now rather than after a failed CG.
+    // CG on the old factor, unless the last CG solve cost more than half a factorization: then refactorize now
+    // rather than after a failed CG.
     const int budget = cg_budget();
     if (opt.reuse_factorization && have_factor && 2 * last_cg_iterations <= budget) {
       int its = 0;
       const double bnorm = rhs.norm();
       const double tol = bnorm > 0 ? std::max(forcing, opt.linear_tolerance) : 1.0;
-      const bool converged = reuse_solve(rhs, du, its, tol, budget);
-      last_cg_iterations = converged ? its : budget;
-      if (converged) {
+      if (reuse_solve(rhs, du, its, tol, budget)) {
+        last_cg_iterations = its;
         rec.linear_iterations = its;
         remember(du);
         return true;
@@ -511,8 +515,12 @@ struct QuasiStaticSolver::Impl {
       // Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no
       // tighter than leaving a tenth of the convergence target. Loose while far from the solution, tight near it,
       // without spoiling Newton's quadratic convergence.
-      const double eta = std::clamp(previous_residual > 0 ? std::pow(rec.residual_norm / previous_residual, 2) : kFirstForcing,
-                                    0.1 * opt.residual_tolerance * ref / rec.residual_norm, kMaxForcing);
+      // (std::min/max, not std::clamp: the lower bound exceeds kMaxForcing once the residual is below its target
+      // and Newton still iterates for the displacement or energy test.)
+      const double suggested =
+          previous_residual > 0 ? std::pow(rec.residual_norm / previous_residual, 2) : kFirstForcing;
+      const double eta =
+          std::min(kMaxForcing, std::max(suggested, 0.1 * opt.residual_tolerance * ref / rec.residual_norm));
       previous_residual = rec.residual_norm;
       if (!solve_iteration(-r, du, rec, eta, res, why)) return false;
       const double slope = r.dot(du);

@@ -101,11 +101,14 @@ TEST(IndentationCase, ParsesEverySection) {
 TEST(IndentationCase, SolverSection) {
   const fem::SolverOptions defaults;
   EXPECT_EQ(parse(kCase).solver.residual_tolerance, defaults.residual_tolerance);  // no [solver]: the defaults
-  const auto c = parse(replaced(kCase, "[puncture]",
-                                "[solver]\nresidual_tolerance = 1e-8\ndisplacement_tolerance = 1e-7\n"
-                                "energy_tolerance = 1e-12\npenetration_tolerance = 0.01\nmax_iterations = 40\n"
-                                "max_cutbacks = 3\npredictor = \"linearised\"\nlinear_solver = \"cholesky\"\n"
-                                "penalty_factor = 10\nthreads = 1\n[puncture]"));
+  // kCase with a [solver] section of these lines (it starts on line 35).
+  const auto with_solver = [](std::string_view lines) {
+    return replaced(kCase, "[puncture]", "[solver]\n" + std::string(lines) + "[puncture]");
+  };
+  const auto c = parse(with_solver("residual_tolerance = 1e-8\ndisplacement_tolerance = 1e-7\n"
+                                   "energy_tolerance = 1e-12\npenetration_tolerance = 0.01\nmax_iterations = 40\n"
+                                   "max_cutbacks = 3\npredictor = \"linearised\"\nlinear_solver = \"cholesky\"\n"
+                                   "penalty_factor = 10\nthreads = 1\n"));
   EXPECT_DOUBLE_EQ(c.solver.residual_tolerance, 1e-8);
   EXPECT_DOUBLE_EQ(c.solver.displacement_tolerance, 1e-7);
   EXPECT_DOUBLE_EQ(c.solver.energy_tolerance, 1e-12);
@@ -116,13 +119,13 @@ TEST(IndentationCase, SolverSection) {
   EXPECT_FALSE(c.solver.reuse_factorization);
   EXPECT_DOUBLE_EQ(c.solver.penalty_factor, 10.0);
   EXPECT_EQ(c.solver.threads, 1);
-  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\nresidual_tolerance = 1.5\n[puncture]")),
+  EXPECT_THAT(error_of(with_solver("residual_tolerance = 1.5\n")),
               HasSubstr("case.toml:35: key 'solver.residual_tolerance': 1.5 is out of range, expected a number in (0, 1)"));
-  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\npredictor = \"cubic\"\n[puncture]")),
+  EXPECT_THAT(error_of(with_solver("predictor = \"cubic\"\n")),
               HasSubstr("key 'solver.predictor': unknown value 'cubic', expected one of: secant, linearised"));
-  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\nmax_iterations = 0\n[puncture]")),
+  EXPECT_THAT(error_of(with_solver("max_iterations = 0\n")),
               HasSubstr("key 'solver.max_iterations': 0 is out of range"));
-  EXPECT_THAT(error_of(replaced(kCase, "[puncture]", "[solver]\ntolerance = 1e-6\n[puncture]")),
+  EXPECT_THAT(error_of(with_solver("tolerance = 1e-6\n")),
               HasSubstr("unknown key 'solver.tolerance'"));
 }
 
