@@ -20,7 +20,9 @@
 #include "needlekit/fem/tet_element.hpp"
 #include "rigid_surface_distance.hpp"
 #include "sparse_cholesky.hpp"
+#include "sparse_pattern.hpp"
 #include "tet_kernel.hpp"
+#include "two_grid_preconditioner.hpp"
 
 namespace needlekit::fem {
 
@@ -28,6 +30,14 @@ namespace needlekit::fem {
 std::string to_string(MaterialLaw law) { return law == MaterialLaw::NeoHookean ? "neo-hookean" : "svk"; }
 std::string to_string(ElementOrder order) { return order == ElementOrder::Quadratic ? "quadratic" : "linear"; }
 std::string to_string(ContactModel contact) { return contact == ContactModel::Surface ? "surface" : "tip-nodes"; }
+std::string to_string(LinearSolver solver) {
+  switch (solver) {
+    case LinearSolver::Cholesky: return "cholesky";
+    case LinearSolver::CholeskyCg: return "cholesky-cg";
+    case LinearSolver::TwoGrid: return "two-grid";
+    default: return "auto";
+  }
+}
 std::string to_string(BoundaryCondition c) {
   switch (c) {
     case BoundaryCondition::BottomFixed: return "bottom-fixed";
@@ -56,6 +66,13 @@ ContactModel contact_model_from_string(const std::string& t, const std::string& 
   if (t == "tip-nodes") return ContactModel::TipNodes;
   if (t == "surface") return ContactModel::Surface;
   bad_choice(what, t, "\"tip-nodes\" or \"surface\"");
+}
+LinearSolver linear_solver_from_string(const std::string& t, const std::string& what) {
+  if (t == "auto") return LinearSolver::Automatic;
+  if (t == "cholesky") return LinearSolver::Cholesky;
+  if (t == "cholesky-cg") return LinearSolver::CholeskyCg;
+  if (t == "two-grid") return LinearSolver::TwoGrid;
+  bad_choice(what, t, "\"auto\", \"cholesky\", \"cholesky-cg\" or \"two-grid\"");
 }
 BoundaryCondition boundary_condition_from_string(const std::string& t, const std::string& what) {
   if (t == "sides-and-bottom-fixed") return BoundaryCondition::SidesAndBottomFixed;
@@ -118,13 +135,15 @@ struct QuasiStaticSolver::Impl {
   std::vector<int> free_index;   // per dof: index among free dofs or -1
   std::vector<int> free_dofs;
   std::vector<char> tip_dof;     // per dof: 1 when prescribed by a needle tip (TipNodes)
-  std::vector<int64_t> colptr, rowidx;
+  detail::UpperPattern pattern;  // of the free-dof stiffness
   std::vector<double> values;
   // Per element, (3N)^2 entries in column-major order of the element matrix: the index into `values` of the entry
   // (row dof, column dof) when both are free and row <= column, else -1. Built once: assembly then adds without
   // searching the pattern.
   std::vector<int32_t> value_slot;
-  std::unique_ptr<detail::SparseCholesky> cholesky;
+  LinearSolver linear_solver = LinearSolver::CholeskyCg;  // resolved (never Automatic)
+  std::unique_ptr<detail::SparseCholesky> cholesky;         // Cholesky, CholeskyCg
+  std::unique_ptr<detail::TwoGridPreconditioner> two_grid;  // TwoGrid
 
   std::vector<int> top_nodes;              // nodes on the top surface (contact candidates)
   std::vector<double> node_area;           // per node: lumped top-surface area, m^2
@@ -248,8 +267,7 @@ struct QuasiStaticSolver::Impl {
           for (int j = 0; j < 3; ++j) {
             const int c = free_index[3 * a + j];
             if (c < 0 || r > c) continue;
-            const auto first = rowidx.begin() + colptr[c], last = rowidx.begin() + colptr[c + 1];
-            values[static_cast<size_t>(std::lower_bound(first, last, r) - rowidx.begin())] += kn(i, j);
+            values[static_cast<size_t>(detail::entry_position(pattern, r, c))] += kn(i, j);
           }
         }
       }
@@ -280,7 +298,7 @@ struct QuasiStaticSolver::Impl {
   std::vector<Eigen::VectorXd> partial;  // multiply's per-range products, kept between calls (CG's hot path)
 
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-    const int64_t nc = static_cast<int64_t>(colptr.size()) - 1;
+    const int64_t nc = static_cast<int64_t>(pattern.column_pointers.size()) - 1;
     const int parts = std::max(1, arena.max_concurrency());
     partial.resize(static_cast<size_t>(parts));
     arena.execute([&] {
@@ -289,15 +307,15 @@ struct QuasiStaticSolver::Impl {
         yp.setZero(x.size());
         // Equal shares of the stored entries, not of the columns (columns grow longer towards the end).
         const auto begin_column = [&](int q) {
-          const int64_t target = colptr.back() * q / parts;
-          return static_cast<int64_t>(std::lower_bound(colptr.begin(), colptr.end(), target) - colptr.begin());
+          const int64_t target = pattern.column_pointers.back() * q / parts;
+          return static_cast<int64_t>(std::lower_bound(pattern.column_pointers.begin(), pattern.column_pointers.end(), target) - pattern.column_pointers.begin());
         };
         const int64_t c0 = std::min(begin_column(part), nc), c1 = part + 1 == parts ? nc : std::min(begin_column(part + 1), nc);
         for (int64_t c = c0; c < c1; ++c) {
           double acc = 0;
           const double xc = x[c];
-          for (int64_t k = colptr[c]; k < colptr[c + 1]; ++k) {
-            const int64_t r = rowidx[k];
+          for (int64_t k = pattern.column_pointers[c]; k < pattern.column_pointers[c + 1]; ++k) {
+            const int64_t r = pattern.row_indices[k];
             const double v = values[static_cast<size_t>(k)];
             if (r == c) {
               acc += v * xc;
@@ -375,8 +393,10 @@ struct QuasiStaticSolver::Impl {
     }
   }
 
-  // Preconditioned CG on the current values with the last factorization; false if it does not converge in time.
-  bool reuse_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget) {
+  // Preconditioned CG on the current values; false if it does not converge in `budget` iterations.
+  template <class Preconditioner>
+  bool cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget,
+                Preconditioner&& precondition) {
     const double bnorm = rhs.norm();
     x = Eigen::VectorXd::Zero(rhs.size());
     if (bnorm == 0) return true;
@@ -386,7 +406,9 @@ struct QuasiStaticSolver::Impl {
       iterations = 0;
       return x.allFinite();
     }
-    Eigen::VectorXd z = apply_factor(r), p = z, q;
+    Eigen::VectorXd z, p, q;
+    precondition(r, z);
+    p = z;
     double rz = r.dot(z);
     for (iterations = 1; iterations <= budget; ++iterations) {
       multiply(p, q);
@@ -396,7 +418,7 @@ struct QuasiStaticSolver::Impl {
       x += alpha * p;
       r -= alpha * q;
       if (r.norm() <= tolerance * bnorm) return x.allFinite();
-      z = apply_factor(r);
+      precondition(r, z);
       const double rz_new = r.dot(z);
       p = z + (rz_new / rz) * p;
       rz = rz_new;
@@ -410,12 +432,13 @@ struct QuasiStaticSolver::Impl {
   bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
     // CG on the old factor, unless the last CG solve cost more than half a factorization: then refactorize now
     // rather than after a failed CG.
+    if (linear_solver == LinearSolver::TwoGrid) return two_grid_solve(rhs, du, rec, forcing);
     const int budget = cg_budget();
-    if (opt.reuse_factorization && have_factor && 2 * last_cg_iterations <= budget) {
+    if (linear_solver == LinearSolver::CholeskyCg && have_factor && 2 * last_cg_iterations <= budget) {
       int its = 0;
-      const double bnorm = rhs.norm();
-      const double tol = bnorm > 0 ? std::max(forcing, opt.linear_tolerance) : 1.0;
-      if (reuse_solve(rhs, du, its, tol, budget)) {
+      const double tol = std::max(forcing, opt.linear_tolerance);
+      const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = apply_factor(r); };
+      if (cg_solve(rhs, du, its, tol, budget, precondition)) {
         last_cg_iterations = its;
         rec.linear_iterations = its;
         remember(du);
@@ -430,8 +453,8 @@ struct QuasiStaticSolver::Impl {
       bool ok = false;
       std::vector<double> shifted = values;
       for (double beta : {1e-6, 1e-4, 1e-2, 1e-1, 1.0}) {
-        for (size_t c = 0; c + 1 < colptr.size(); ++c) {
-          const auto pos = static_cast<size_t>(colptr[c + 1] - 1);  // diagonal: last entry of the column
+        for (size_t c = 0; c + 1 < pattern.column_pointers.size(); ++c) {
+          const auto pos = static_cast<size_t>(pattern.column_pointers[c + 1] - 1);  // diagonal: last entry of the column
           shifted[pos] = values[pos] * (1 + beta);
         }
         if (cholesky->factorize(shifted)) {
@@ -445,6 +468,34 @@ struct QuasiStaticSolver::Impl {
     du = apply_factor(rhs);
     remember(du);
     return du.allFinite();
+  }
+
+  // CG with the two-grid cycle. The coarse operator (and the smoother's spectral bound) is renewed when missing,
+  // when the last solve needed more than two_grid_refresh_iterations, or when CG fails on the stale one.
+  static constexpr int kTwoGridMaxIterations = 200;
+  bool two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
+    const auto multiply_k = [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { multiply(x, y); };
+    const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+      two_grid->apply(r, z, values, multiply_k);
+    };
+    const double tol = std::max(forcing, opt.linear_tolerance);
+    bool refreshed = false;
+    if (!have_factor || last_cg_iterations > opt.two_grid_refresh_iterations) {
+      rec.factorized = refreshed = true;
+      if (!(have_factor = two_grid->update(values, multiply_k))) return false;
+    }
+    int its = 0;
+    bool ok = cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+    rec.linear_iterations = its;
+    if (!ok && !refreshed) {
+      rec.factorized = true;
+      if (!(have_factor = two_grid->update(values, multiply_k))) return false;
+      ok = cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+      rec.linear_iterations += its;
+    }
+    last_cg_iterations = its;
+    if (ok) remember(du);
+    return ok;
   }
 
   // One iteration's linear solve (predictor or Newton), timed and counted into `rec` and `res`.
@@ -682,7 +733,8 @@ std::string str(T v) {
 }
 }  // namespace
 
-QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options)
+QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options,
+                                     const mesh::CoarseLevel* coarse)
     : impl_(std::make_unique<Impl>()) {
   auto& m = *impl_;
   m.opt = std::move(options);
@@ -705,6 +757,20 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   check(o.linear_tolerance > 0 && o.linear_tolerance < 1,
         "solver linear_tolerance = " + str(o.linear_tolerance) + ": expected (0, 1)");
   check(o.threads >= 0, "solver threads = " + str(o.threads) + ": expected >= 0");
+  check(o.two_grid_refresh_iterations >= 1,
+        "solver two_grid_refresh_iterations = " + str(o.two_grid_refresh_iterations) + ": expected >= 1");
+  check(o.linear_solver != LinearSolver::TwoGrid || coarse || o.order == ElementOrder::Quadratic,
+        "solver linear_solver = \"two-grid\" needs a coarse level for linear elements: a mesh split from a coarser "
+        "one (mesh::refine_uniformly; [mesh] split = true in a case file)");
+  if (coarse && o.order == ElementOrder::Linear) {
+    check(coarse->node_parents.size() == mesh.nodes.size(),
+          "coarse level: " + str(coarse->node_parents.size()) + " node parents for " + str(mesh.nodes.size()) +
+              " nodes");
+    for (const auto& parents : coarse->node_parents)
+      for (int a : parents)
+        check(a >= 0 && a < coarse->nodes, "coarse level: parent node " + str(a) + " outside [0, " +
+                                                str(coarse->nodes) + ")");
+  }
   m.arena.initialize(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
 
   // Mesh validation.
@@ -750,7 +816,12 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   for (size_t e = 0; e < ne; ++e)
     for (int a = 0; a < 4; ++a) m.conn[e * m.nn + a] = mesh.tets[e][a];
   std::vector<std::pair<int64_t, int>> edge_keys;  // (key, tet*6+k)
+  mesh::CoarseLevel corners;  // T10: the corner nodes as the two-grid solver's coarse level
   if (m.nn == 10) {
+    corners.nodes = n0;
+    corners.tets = mesh.tets;
+    corners.node_parents.resize(static_cast<size_t>(n0));
+    for (int a = 0; a < n0; ++a) corners.node_parents[static_cast<size_t>(a)] = {a, a};
     edge_keys.reserve(ne * 6);
     for (size_t e = 0; e < ne; ++e)
       for (int k = 0; k < 6; ++k) {
@@ -767,6 +838,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
         prev = key;
         const int a = static_cast<int>(key / n0), b = static_cast<int>(key % n0);
         m.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
+        corners.node_parents.push_back({a, b});
       }
       m.conn[static_cast<size_t>(slot / 6) * 10 + 4 + slot % 6] = id;
     }
@@ -996,33 +1068,8 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
 
   // Upper-triangular CSC pattern of the free-dof stiffness, from node adjacency.
   {
-    std::vector<std::vector<int>> adj(nnode);
-    for (size_t e = 0; e < ne; ++e)
-      for (int a = 0; a < m.nn; ++a)
-        for (int b = 0; b < m.nn; ++b) {
-          const int na = m.conn[e * m.nn + a], nb = m.conn[e * m.nn + b];
-          if (nb <= na) adj[na].push_back(nb);  // column node na, row nodes nb <= na
-        }
-    const int64_t nf = static_cast<int64_t>(m.free_dofs.size());
-    m.colptr.assign(nf + 1, 0);
-    m.rowidx.clear();
-    for (int n = 0; n < nnode; ++n) {
-      auto& v = adj[n];
-      std::sort(v.begin(), v.end());
-      v.erase(std::unique(v.begin(), v.end()), v.end());
-      for (int i = 0; i < 3; ++i) {
-        const int c = m.free_index[3 * n + i];
-        if (c < 0) continue;
-        for (int nb : v)
-          for (int j = 0; j < 3; ++j) {
-            const int r = m.free_index[3 * nb + j];
-            if (r >= 0 && r <= c) m.rowidx.push_back(r);
-          }
-        m.colptr[c + 1] = static_cast<int64_t>(m.rowidx.size());
-      }
-      std::vector<int>().swap(v);
-    }
-    m.values.assign(m.rowidx.size(), 0.0);
+    m.pattern = detail::upper_pattern(m.conn, m.nn, nnode, m.free_index);
+    m.values.assign(m.pattern.row_indices.size(), 0.0);
     check(m.values.size() < static_cast<size_t>(std::numeric_limits<int32_t>::max()),
           "tissue mesh: the stiffness matrix has " + str(m.values.size()) + " entries, more than this solver indexes");
     const int k = 3 * m.nn;
@@ -1031,15 +1078,21 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
       for (int col = 0; col < k; ++col) {
         const int cb = m.free_index[3 * m.conn[e * m.nn + col / 3] + col % 3];
         if (cb < 0) continue;
-        const auto first = m.rowidx.begin() + m.colptr[cb], last = m.rowidx.begin() + m.colptr[cb + 1];
         for (int row = 0; row < k; ++row) {
           const int ra = m.free_index[3 * m.conn[e * m.nn + row / 3] + row % 3];
           if (ra < 0 || ra > cb) continue;
-          m.value_slot[e * k * k + col * k + row] = static_cast<int32_t>(std::lower_bound(first, last, ra) - m.rowidx.begin());
+          m.value_slot[e * k * k + col * k + row] = static_cast<int32_t>(detail::entry_position(m.pattern, ra, cb));
         }
       }
-    m.cholesky = std::make_unique<detail::SparseCholesky>(nf, m.colptr, m.rowidx);
   }
+  m.linear_solver = o.linear_solver;
+  if (m.linear_solver == LinearSolver::Automatic)
+    m.linear_solver = coarse && m.nn == 4 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
+  if (m.linear_solver == LinearSolver::TwoGrid)
+    m.two_grid = std::make_unique<detail::TwoGridPreconditioner>(m.nn == 10 ? corners : *coarse, m.free_index, m.pattern);
+  else
+    m.cholesky = std::make_unique<detail::SparseCholesky>(static_cast<int64_t>(m.free_dofs.size()),
+                                                          m.pattern.column_pointers, m.pattern.row_indices);
 
   m.u = Eigen::VectorXd::Zero(m.ndof);
   m.fint = Eigen::VectorXd::Zero(m.ndof);
@@ -1119,8 +1172,13 @@ const std::vector<int>& QuasiStaticSolver::contact_flag() const { return impl_->
 const std::vector<double>& QuasiStaticSolver::contact_pressure() const { return impl_->contact_pressure; }
 const SolverOptions& QuasiStaticSolver::options() const { return impl_->opt; }
 int QuasiStaticSolver::dof_count() const { return impl_->ndof; }
-double QuasiStaticSolver::factor_nonzeros() const { return impl_->cholesky->factor_nonzeros(); }
-double QuasiStaticSolver::factor_flops() const { return impl_->cholesky->factor_flops(); }
+LinearSolver QuasiStaticSolver::linear_solver() const { return impl_->linear_solver; }
+double QuasiStaticSolver::factor_nonzeros() const {
+  return impl_->two_grid ? impl_->two_grid->coarse_factor_nonzeros() : impl_->cholesky->factor_nonzeros();
+}
+double QuasiStaticSolver::factor_flops() const {
+  return impl_->two_grid ? impl_->two_grid->coarse_factor_flops() : impl_->cholesky->factor_flops();
+}
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->free_dofs.size()); }
 
 ElementFields QuasiStaticSolver::element_fields() const {

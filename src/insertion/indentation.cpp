@@ -139,6 +139,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   };
 
   mesh::TetMesh tissue;
+  std::optional<mesh::CoarseLevel> coarse;  // a split block's coarse level (the two-grid solver)
   if (c.tissue_mesh) {
     tissue = *c.tissue_mesh;
   } else {
@@ -149,6 +150,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     const Clock::time_point mesh_start = Clock::now();
     mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
     tissue = std::move(meshed.mesh);
+    coarse = std::move(meshed.coarse);
     result.quality = std::move(meshed.quality);
     result.mesh_seconds = seconds_since(mesh_start);  // everything: geometry, meshing, quality, conversion
   }
@@ -166,7 +168,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       report("step", (p.target_displacement - lowest) / c.depth - 0.5 / c.steps);
     };
   }
-  fem::QuasiStaticSolver solver(tissue, placed_indenters(c), solver_options);
+  fem::QuasiStaticSolver solver(tissue, placed_indenters(c), solver_options, coarse ? &*coarse : nullptr);
   result.nodes = static_cast<int>(solver.nodes().size());
   result.dofs = solver.free_dof_count();
   result.setup_seconds = seconds_since(setup_start);

@@ -156,8 +156,11 @@ void read_solver(const Section& section, fem::SolverOptions& solver) {
         choice_of<bool>(section, *node, "predictor", {{"secant", true}, {"linearised", false}});
   }
   if (const toml::node* node = section.optional("linear_solver")) {
-    solver.reuse_factorization =
-        choice_of<bool>(section, *node, "linear_solver", {{"cholesky-cg", true}, {"cholesky", false}});
+    solver.linear_solver = choice_of<fem::LinearSolver>(section, *node, "linear_solver",
+                                                        {{"auto", fem::LinearSolver::Automatic},
+                                                         {"cholesky", fem::LinearSolver::Cholesky},
+                                                         {"cholesky-cg", fem::LinearSolver::CholeskyCg},
+                                                         {"two-grid", fem::LinearSolver::TwoGrid}});
   }
   if (const toml::node* node = section.optional("penalty_factor")) {
     const double value = number_at_least(section, *node, "penalty_factor", 0.0);

@@ -97,13 +97,8 @@ void set_field_option(int field, const std::vector<std::string>& names, const Va
   throw std::logic_error("Gmsh field option " + names.front() + " unknown");
 }
 
-}  // namespace
-
-LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
-  const std::vector<TissueLayer> layers = options.layers.empty() ? materials::skin_layers() : options.layers;
-  validate_options(options, layers);
-  const auto start = std::chrono::steady_clock::now();
-
+// The Gmsh part: geometry, size fields, HXT, conversion to a TetMesh (no quality, no timing).
+LayeredBlockResult gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
   const double u = 1 / kModelUnit;  // m -> model units
   const double w = options.width * u, l = options.length * u;
   const double size_site = options.size_at_site * u, size_far = options.size_far * u;
@@ -240,6 +235,28 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
     throw std::runtime_error(fmt::format("layered block: Gmsh failed: {}", detail::gmsh_error_message()));
   }
   reoriented_count(result.mesh);
+  return result;
+}
+
+}  // namespace
+
+LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
+  const std::vector<TissueLayer> layers = options.layers.empty() ? materials::skin_layers() : options.layers;
+  validate_options(options, layers);
+  const auto start = std::chrono::steady_clock::now();
+  LayeredBlockResult result;
+  if (options.split) {
+    LayeredBlockOptions coarse = options;
+    coarse.size_at_site *= 2;
+    coarse.size_far *= 2;
+    coarse.size_gradient *= 2;  // the same grading distances
+    coarse.thin_layer_size_factor *= 2;
+    UniformRefinement refined = refine_uniformly(gmsh_block(coarse, layers).mesh);
+    result.mesh = std::move(refined.mesh);
+    result.coarse = std::move(refined.coarse);
+  } else {
+    result = gmsh_block(options, layers);
+  }
   result.quality = layer_quality(result.mesh);
   result.mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

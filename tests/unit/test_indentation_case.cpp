@@ -116,7 +116,7 @@ TEST(IndentationCase, SolverSection) {
   EXPECT_EQ(c.solver.max_iterations, 40);
   EXPECT_EQ(c.solver.max_cutbacks, 3);
   EXPECT_FALSE(c.solver.extrapolate_predictor);
-  EXPECT_FALSE(c.solver.reuse_factorization);
+  EXPECT_EQ(c.solver.linear_solver, fem::LinearSolver::Cholesky);
   EXPECT_DOUBLE_EQ(c.solver.penalty_factor, 10.0);
   EXPECT_EQ(c.solver.threads, 1);
   EXPECT_THAT(error_of(with_solver("residual_tolerance = 1.5\n")),

@@ -34,6 +34,7 @@
 
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
+#include "needlekit/mesh/uniform_refinement.hpp"
 
 namespace needlekit::fem {
 
@@ -47,6 +48,14 @@ enum class ElementOrder {
   Quadratic,  // 10-node tetrahedra (mid-edge nodes added), 4-point Gauss rule: the locking-free option
 };
 enum class ContactModel { TipNodes, Surface };
+enum class LinearSolver {
+  Automatic,   // TwoGrid for linear elements when the solver is given a coarse level (a split mesh), else CholeskyCg
+  Cholesky,    // a fresh CHOLMOD factorization per Newton iteration
+  CholeskyCg,  // conjugate gradients preconditioned by the last factorization, while cheaper than a new one
+  TwoGrid,     // conjugate gradients preconditioned by a two-grid cycle (Chebyshev smoothing, CHOLMOD on the coarse
+               // level): memory and time per iteration linear in the mesh size. Linear elements need a coarse level;
+               // quadratic ones use their corner nodes as the coarse level
+};
 enum class BoundaryCondition {
   SidesAndBottomFixed,    // §3.4: every node on the four sides and the bottom is fixed; top free
   BottomFixed,            // bottom fixed, sides free
@@ -60,6 +69,7 @@ enum class BoundaryCondition {
 std::string to_string(MaterialLaw law);
 std::string to_string(ElementOrder order);
 std::string to_string(ContactModel contact);
+std::string to_string(LinearSolver solver);
 std::string to_string(BoundaryCondition condition);
 // Parse "svk" | "st-venant-kirchhoff", "neo-hookean"; "linear" | "quadratic"; "tip-nodes" | "surface";
 // "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" |
@@ -67,6 +77,8 @@ std::string to_string(BoundaryCondition condition);
 MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
+// "auto" | "cholesky" | "cholesky-cg" | "two-grid"
+LinearSolver linear_solver_from_string(const std::string& text, const std::string& what = "linear_solver");
 BoundaryCondition boundary_condition_from_string(const std::string& text, const std::string& what = "boundary");
 
 // A rigid needle. `surface` is closed and outward-oriented, already placed in the tissue frame at zero indenter
@@ -114,14 +126,14 @@ struct SolverOptions {
                                          // max(indenter displacement, smallest contact element size)
   int max_augmentations = 6;             // augmented-Lagrangian updates per step, >= 0 (0: pure penalty)
 
-  // Linear solves: a fresh CHOLMOD factorization per Newton iteration, or (reuse_factorization) conjugate gradients
-  // on the current tangent preconditioned by the last factorization (the tangent changes little between iterations
-  // and load steps). A fresh factorization is taken when CG would cost more than one: CG gets at most
-  // (estimated factorization cost / estimated CG iteration cost) iterations, from CHOLMOD's flop count and the
-  // factor's size (not timed: runs do not depend on the machine's load), capped by max_reuse_iterations, and the
-  // factor is renewed at once when the previous CG solve used more than half of that. CG starts from the projection
-  // of the solution on the last 12 solutions (Krylov recycling).
-  bool reuse_factorization = true;       // see above
+  // Linear solves (LinearSolver). CholeskyCg: CG gets at most (estimated factorization cost / estimated CG
+  // iteration cost) iterations on the last factor, from CHOLMOD's flop count and the factor's size (not timed: runs
+  // do not depend on the machine's load), capped by max_reuse_iterations, and the factor is renewed at once when
+  // the previous CG solve used more than half of that. TwoGrid: CG with the two-grid cycle, whose coarse operator
+  // is renewed when a solve needed more than two_grid_refresh_iterations. Both start from the projection of the
+  // solution on the last 12 solutions (Krylov recycling).
+  LinearSolver linear_solver = LinearSolver::Automatic;
+  int two_grid_refresh_iterations = 25;  // >= 1: see above
   int max_reuse_iterations = 40;         // >= 1: cap on the CG iterations of one solve
   double linear_tolerance = 1e-10;       // (0, 1): tightest CG relative residual. Inexact Newton: CG stops at the
                                          // Eisenstat-Walker forcing term (|R_k| / |R_k-1|)^2 (1e-3 in the first
@@ -180,8 +192,10 @@ class QuasiStaticSolver {
 public:
   // Throws InvalidInput for an invalid mesh (empty, inverted or degenerate tetrahedra, a layer index out of range,
   // E <= 0, nu outside (-1, 0.5)), an indenter whose surface is empty or starts inside the tissue (below z = 0 by
-  // more than the tolerance), or invalid options (naming the field).
-  QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options = {});
+  // more than the tolerance), or invalid options (naming the field). `coarse`: the mesh `mesh` was split from
+  // (mesh::refine_uniformly), for the two-grid solver; only read here.
+  QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options = {},
+                    const mesh::CoarseLevel* coarse = nullptr);
   ~QuasiStaticSolver();
   QuasiStaticSolver(QuasiStaticSolver&&) noexcept;
   QuasiStaticSolver& operator=(QuasiStaticSolver&&) noexcept;
@@ -204,8 +218,11 @@ public:
   const SolverOptions& options() const;
   int dof_count() const;        // 3 * nodes
   int free_dof_count() const;   // unknowns of the linear systems
-  double factor_nonzeros() const;  // entries of the Cholesky factor (its memory is about 8 bytes each)
-  double factor_flops() const;     // floating-point operations of one numeric factorization
+  LinearSolver linear_solver() const;  // the one in use (never Automatic)
+  // Of the Cholesky factor in use (TwoGrid: the coarse level's): its entries (about 8 bytes each) and the
+  // floating-point operations of one numeric factorization.
+  double factor_nonzeros() const;
+  double factor_flops() const;
 
 private:
   struct Impl;

@@ -4,9 +4,11 @@
 #pragma once
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "needlekit/mesh/tet_mesh.hpp"
+#include "needlekit/mesh/uniform_refinement.hpp"
 
 namespace needlekit::mesh {
 
@@ -26,6 +28,9 @@ struct LayeredBlockOptions {
                                         // elements; 0 = no cap
   double site_circle_radius = 0;        // m, >= 0: a circle of this radius around each site is embedded in the top
                                         // surface, so that mesh nodes lie on a flat punch's edge; 0 = none
+  bool split = false;                   // mesh at twice the sizes (and size gradient), then split every tet into
+                                        // eight (refine_uniformly): about the same elements, and the coarse level
+                                        // that lets the FE solver use its two-grid solver (fast on large meshes)
 };
 
 struct LayerQuality {
@@ -39,6 +44,7 @@ struct LayerQuality {
 struct LayeredBlockResult {
   TetMesh mesh;                     // layer assignment by the geometric volume (physical group) of each element
   std::vector<LayerQuality> quality;  // one per layer
+  std::optional<CoarseLevel> coarse;  // with split: the mesh `mesh` was split from
   double mesh_seconds = 0;
 };
 

@@ -1,0 +1,69 @@
+// Internal: a two-grid preconditioner for the free-dof stiffness K of a mesh with a coarse level
+// (mesh::CoarseLevel: a split mesh's parent, or the corner nodes of quadratic tetrahedra).
+//
+//   B r = S r + (I - S K) P A_c^-1 P^T (I - K S) r     (symmetric V(1,1) cycle; Trottenberg et al., Multigrid, §2.4)
+//
+// P interpolates coarse displacements linearly (weight 1 at a coarse node, 1/2 and 1/2 at an edge midpoint), the
+// coarse operator is Galerkin's A_c = P^T K P (exact for the coarse level whatever the material jumps or
+// constraints of the fine one), factorized by CHOLMOD, and the smoother S is a Chebyshev polynomial in D^-1 K
+// (D = diag K) on [lambda_max / 10, 1.1 lambda_max] (Adams, Brezina, Hu, Tuminaro 2003, "Parallel multigrid
+// smoothing: polynomial versus Gauss-Seidel", J Comput Phys 188), threaded through K's product alone.
+//
+// Why written here: Debian's algebraic multigrid (hypre, PETSc GAMG, Trilinos ML/MueLu) comes inside MPI stacks
+// that must own the process; the geometric hierarchy makes a two-level method a few hundred lines.
+#pragma once
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "needlekit/mesh/uniform_refinement.hpp"
+#include "sparse_pattern.hpp"
+
+namespace needlekit::fem::detail {
+
+class SparseCholesky;
+
+class TwoGridPreconditioner {
+public:
+  using Multiply = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;  // y = K x
+
+  // `fine`: the pattern of K over the fine free dofs; `free_index`: per fine dof its free index or -1. A coarse dof
+  // is free when the fine dof of the same node and component is.
+  TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index, const UpperPattern& fine,
+                        int chebyshev_degree = 3);
+  ~TwoGridPreconditioner();
+  TwoGridPreconditioner(const TwoGridPreconditioner&) = delete;
+  TwoGridPreconditioner& operator=(const TwoGridPreconditioner&) = delete;
+
+  // Rebuilds the coarse operator from K's values and factorizes it, and bounds the smoother's spectrum. False if
+  // the coarse operator is not positive definite.
+  bool update(const std::vector<double>& values, const Multiply& multiply);
+  // z = B r with the current K (its values give the smoother's diagonal; `multiply` its product).
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z, const std::vector<double>& values,
+             const Multiply& multiply);
+
+  int coarse_dofs() const;
+  double coarse_factor_nonzeros() const;
+  double coarse_factor_flops() const;
+
+private:
+  // Chebyshev smoothing of K x = r from x = 0.
+  void smooth(const Eigen::VectorXd& r, Eigen::VectorXd& x, const Multiply& multiply);
+
+  struct Interpolation {  // one fine free dof: its coarse free dofs (-1: none) and weights
+    std::array<int, 2> coarse{-1, -1};
+    std::array<double, 2> weight{0, 0};
+  };
+  std::vector<Interpolation> interpolation_;  // per fine free dof
+  const UpperPattern& fine_;
+  UpperPattern coarse_pattern_;
+  std::vector<double> coarse_values_;
+  std::unique_ptr<SparseCholesky> coarse_cholesky_;
+  int degree_;
+  double lambda_max_ = 0;                   // of D^-1 K at the last update
+  Eigen::VectorXd inverse_diagonal_, residual_, smoother_residual_, direction_, product_, correction_;
+};
+
+}  // namespace needlekit::fem::detail

@@ -1,0 +1,108 @@
+// The two-grid solver (fem::LinearSolver::TwoGrid): the same converged states as a direct solve, on a split mesh
+// (linear tetrahedra, coarse level = the mesh it was split from) and for quadratic tetrahedra (coarse level = their
+// corner nodes), and CG iterations that do not grow when the mesh is refined (the point of a multigrid method: the
+// cost of a solve stays proportional to the mesh).
+#include <gtest/gtest.h>
+
+#include "fem_test_support.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/core/errors.hpp"
+#include "needlekit/mesh/uniform_refinement.hpp"
+
+using namespace needlekit;
+using namespace needlekit::fem;
+using namespace needlekit::fem::test_support;
+
+namespace {
+
+constexpr double kA = 115e-6;  // m, punch radius
+constexpr double kE = 0.2e6;   // Pa
+
+struct IndentRun {
+  StepResult last;
+  int newton_iterations = 0;
+  int linear_iterations = 0;
+  int factorizations = 0;
+  LinearSolver solver = LinearSolver::Automatic;
+};
+
+IndentRun punch(const mesh::TetMesh& mesh, const mesh::CoarseLevel* coarse, SolverOptions o, double depth, int steps) {
+  o.boundary = BoundaryCondition::QuarterSymmetry;
+  const double corner = -5 * kA;  // quarter_punch_block(kA, 10 kA, ...): axis at the corner
+  QuasiStaticSolver solver(mesh, {{placed_needle(flat_cylinder(kA, 300e-6), corner, corner, 0, 256), {0, 0, -1}}}, o,
+                           coarse);
+  IndentRun run;
+  run.solver = solver.linear_solver();
+  for (int s = 1; s <= steps; ++s) {
+    run.last = solver.advance_to(depth * s / steps);
+    if (!run.last.converged) break;
+    run.newton_iterations += run.last.newton_iterations;
+    run.factorizations += run.last.factorizations;
+    for (const auto& it : run.last.iterations) run.linear_iterations += it.linear_iterations;
+  }
+  return run;
+}
+
+}  // namespace
+
+TEST(TwoGrid, SameAnswerAsTheDirectSolveOnASplitMesh) {
+  // Neo-Hookean to 30 % of the radius in 6 steps on a split quarter block.
+  const auto split = mesh::refine_uniformly(quarter_punch_block(kA, 10 * kA, 2, kE, 0.4));
+  SolverOptions direct, two_grid;
+  direct.law = two_grid.law = MaterialLaw::NeoHookean;
+  direct.linear_solver = LinearSolver::Cholesky;
+  const IndentRun a = punch(split.mesh, &split.coarse, two_grid, 0.3 * kA, 6);
+  const IndentRun b = punch(split.mesh, &split.coarse, direct, 0.3 * kA, 6);
+  ASSERT_TRUE(a.last.converged && b.last.converged) << a.last.reason << b.last.reason;
+  EXPECT_EQ(a.solver, LinearSolver::TwoGrid);  // Automatic picks it when a coarse level is given
+  EXPECT_EQ(b.solver, LinearSolver::Cholesky);
+  EXPECT_NEAR(a.last.indenter_force[0] / b.last.indenter_force[0], 1.0, 1e-5);
+  EXPECT_NEAR(a.last.strain_energy / b.last.strain_energy, 1.0, 1e-5);
+  EXPECT_GT(a.linear_iterations, 0);
+  EXPECT_LT(a.factorizations, a.newton_iterations);  // the coarse operator is reused across solves
+}
+
+TEST(TwoGrid, QuadraticTetrahedraUseTheirCornersAsTheCoarseLevel) {
+  const auto mesh = quarter_punch_block(kA, 10 * kA, 2, kE, 0.45);
+  SolverOptions direct, two_grid;
+  direct.order = two_grid.order = ElementOrder::Quadratic;
+  direct.linear_solver = LinearSolver::Cholesky;
+  two_grid.linear_solver = LinearSolver::TwoGrid;
+  const IndentRun a = punch(mesh, nullptr, two_grid, 0.1 * kA, 3);
+  const IndentRun b = punch(mesh, nullptr, direct, 0.1 * kA, 3);
+  ASSERT_TRUE(a.last.converged && b.last.converged) << a.last.reason << b.last.reason;
+  EXPECT_EQ(a.solver, LinearSolver::TwoGrid);
+  EXPECT_NEAR(a.last.indenter_force[0] / b.last.indenter_force[0], 1.0, 1e-5);
+  EXPECT_NEAR(a.last.strain_energy / b.last.strain_energy, 1.0, 1e-5);
+}
+
+TEST(TwoGrid, IterationsDoNotGrowUnderRefinement) {
+  // The same small indentation on a mesh split once and on that mesh split again (each with its parent as the
+  // coarse level): the mesh width halves, the unknowns grow eightfold, the CG iterations per Newton iteration stay
+  // put. (Diagonally preconditioned CG would need about twice as many per halving.)
+  const auto once = mesh::refine_uniformly(quarter_punch_block(kA, 10 * kA, 2, kE, 0.4));
+  const auto twice = mesh::refine_uniformly(once.mesh);
+  SolverOptions o;
+  o.law = MaterialLaw::NeoHookean;
+  o.two_grid_refresh_iterations = 1000;  // one coarse operator per run: iterations measure the cycle alone
+  const IndentRun a = punch(once.mesh, &once.coarse, o, 0.05 * kA, 2);
+  const IndentRun b = punch(twice.mesh, &twice.coarse, o, 0.05 * kA, 2);
+  ASSERT_TRUE(a.last.converged && b.last.converged) << a.last.reason << b.last.reason;
+  const double per_solve_a = static_cast<double>(a.linear_iterations) / a.newton_iterations;
+  const double per_solve_b = static_cast<double>(b.linear_iterations) / b.newton_iterations;
+  EXPECT_LT(per_solve_b, 1.5 * per_solve_a) << per_solve_a << " -> " << per_solve_b << " iterations per solve";
+  EXPECT_EQ(twice.mesh.tets.size(), 8 * once.mesh.tets.size());
+}
+
+TEST(TwoGrid, NeedsACoarseLevelForLinearElements) {
+  const auto mesh = quarter_punch_block(kA, 10 * kA, 2, kE, 0.4);
+  SolverOptions o;
+  o.boundary = BoundaryCondition::QuarterSymmetry;
+  o.linear_solver = LinearSolver::TwoGrid;
+  try {
+    QuasiStaticSolver solver(mesh, {{placed_needle(flat_cylinder(kA, 300e-6), -5 * kA, -5 * kA, 0, 64), {0, 0, -1}}}, o);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("coarse level"), std::string::npos) << e.what();
+  }
+}
