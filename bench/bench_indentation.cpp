@@ -2,10 +2,13 @@
 // 160 um / DM, 100 MPa / 0.134 MPa / 0.08 MPa, nu = 0.4) indented by a 230 um flat cylinder, 20 load steps to
 // 200 um, linear tetrahedra, neo-Hookean, the dissertation's tip-node contact. The argument is the target number of
 // tetrahedra in thousands (100, 300, 1000).
-// Run one size per process (peak RSS): build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentation/100/'
+// BM_SkinIndentation meshes at the sizes directly (CHOLMOD, CG on reused factorizations); BM_SkinIndentationSplit
+// meshes at twice the sizes and splits every tet into eight (the two-grid solver; factorizations then counts the
+// coarse operator's). Run one size per process (peak RSS):
+//   build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentationSplit/300/'
 // Meshing alone is BM_SkinBlockMesh (bench_tissue_mesh.cpp). Counters: tets, dofs, steps_done, mesh_s, setup_s,
 // newton_iterations, factorizations, cg_iterations, assembly_s_per_iteration, solve_s_per_iteration, total_s,
-// peak_rss_GB.
+// force_N (at the last step), peak_rss_GB.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -38,13 +41,26 @@ mesh::LayeredBlockOptions skin_block(double thousands) {
   return block;
 }
 
-void BM_SkinIndentation(benchmark::State& state) {
+// The same block meshed at twice the sizes and split into eight (mesh::LayeredBlockOptions::split), which gives the
+// solver its two-grid solver. Sizes for about the same element counts: the direct sizes times 1.35 (100k), 1.13
+// (300k), 1.03 (1M), and the thin-layer cap scaled alike.
+mesh::LayeredBlockOptions split_skin_block(double thousands) {
+  mesh::LayeredBlockOptions block = skin_block(thousands);
+  const double scale = thousands <= 100 ? 1.35 : thousands <= 300 ? 1.13 : 1.03;
+  block.size_at_site *= scale;
+  block.size_far *= scale;
+  block.thin_layer_size_factor *= scale;
+  block.split = true;
+  return block;
+}
+
+void skin_indentation(benchmark::State& state, const mesh::LayeredBlockOptions& block) {
   insertion::IndentationCase c;
   c.name = "bench";
   const needle::NeedleGeometry cylinder{needle::Shape::Cylinder, 230e-6, 230e-6, 0, 1000e-6};
   c.geometry = cylinder;
   c.needle = needle::needle_surface_mesh(cylinder);
-  c.block = skin_block(static_cast<double>(state.range(0)));
+  c.block = block;
   c.depth = 200e-6;
   c.steps = 20;
   c.solver.law = fem::MaterialLaw::NeoHookean;
@@ -75,9 +91,18 @@ void BM_SkinIndentation(benchmark::State& state) {
   state.counters["assembly_s_per_iteration"] = iterations ? assembly / iterations : 0.0;
   state.counters["solve_s_per_iteration"] = iterations ? solve / iterations : 0.0;
   state.counters["total_s"] = result.total_seconds;
+  state.counters["force_N"] = result.steps.empty() ? 0.0 : result.steps.back().force;
   state.counters["peak_rss_GB"] = peak_rss_gigabytes();
   if (result.status == insertion::IndentationStatus::SolverFailed) state.SkipWithError(result.reason.c_str());
 }
+
+void BM_SkinIndentation(benchmark::State& state) {
+  skin_indentation(state, skin_block(static_cast<double>(state.range(0))));
+}
+void BM_SkinIndentationSplit(benchmark::State& state) {
+  skin_indentation(state, split_skin_block(static_cast<double>(state.range(0))));
+}
+BENCHMARK(BM_SkinIndentationSplit)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_SkinIndentation)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace

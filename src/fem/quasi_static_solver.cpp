@@ -136,6 +136,7 @@ struct QuasiStaticSolver::Impl {
   std::vector<int> free_dofs;
   std::vector<char> tip_dof;     // per dof: 1 when prescribed by a needle tip (TipNodes)
   detail::UpperPattern pattern;  // of the free-dof stiffness
+  std::vector<int32_t> rows32;   // pattern.row_indices as 32-bit: the product's memory traffic is a quarter less
   std::vector<double> values;
   // Per element, (3N)^2 entries in column-major order of the element matrix: the index into `values` of the entry
   // (row dof, column dof) when both are free and row <= column, else -1. Built once: assembly then adds without
@@ -312,17 +313,14 @@ struct QuasiStaticSolver::Impl {
         };
         const int64_t c0 = std::min(begin_column(part), nc), c1 = part + 1 == parts ? nc : std::min(begin_column(part + 1), nc);
         for (int64_t c = c0; c < c1; ++c) {
-          double acc = 0;
           const double xc = x[c];
-          for (int64_t k = pattern.column_pointers[c]; k < pattern.column_pointers[c + 1]; ++k) {
-            const int64_t r = pattern.row_indices[k];
+          const int64_t diagonal = pattern.column_pointers[c + 1] - 1;  // every column ends with its diagonal
+          double acc = values[static_cast<size_t>(diagonal)] * xc;
+          for (int64_t k = pattern.column_pointers[c]; k < diagonal; ++k) {
+            const int32_t r = rows32[static_cast<size_t>(k)];
             const double v = values[static_cast<size_t>(k)];
-            if (r == c) {
-              acc += v * xc;
-            } else {
-              acc += v * x[r];
-              yp[r] += v * xc;
-            }
+            acc += v * x[r];
+            yp[r] += v * xc;
           }
           yp[c] += acc;
         }
@@ -471,7 +469,9 @@ struct QuasiStaticSolver::Impl {
   }
 
   // CG with the two-grid cycle. The coarse operator (and the smoother's spectral bound) is renewed when missing,
-  // when the last solve needed more than two_grid_refresh_iterations, or when CG fails on the stale one.
+  // when the last solve needed more than two_grid_refresh_iterations, or when CG fails on the stale one. If CG still
+  // fails (K not positive definite: SVK under strong compression), the tangent's diagonal is raised by growing
+  // fractions, as for a failed factorization: a shifted Newton step is still a descent direction.
   static constexpr int kTwoGridMaxIterations = 200;
   bool two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
     const auto multiply_k = [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { multiply(x, y); };
@@ -479,19 +479,35 @@ struct QuasiStaticSolver::Impl {
       two_grid->apply(r, z, values, multiply_k);
     };
     const double tol = std::max(forcing, opt.linear_tolerance);
-    bool refreshed = false;
-    if (!have_factor || last_cg_iterations > opt.two_grid_refresh_iterations) {
-      rec.factorized = refreshed = true;
-      if (!(have_factor = two_grid->update(values, multiply_k))) return false;
-    }
     int its = 0;
-    bool ok = cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
-    rec.linear_iterations = its;
-    if (!ok && !refreshed) {
-      rec.factorized = true;
-      if (!(have_factor = two_grid->update(values, multiply_k))) return false;
-      ok = cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
-      rec.linear_iterations += its;
+    rec.linear_iterations = 0;
+    const bool stale = have_factor && last_cg_iterations <= opt.two_grid_refresh_iterations;
+    if (stale) {
+      if (cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition)) {
+        rec.linear_iterations = last_cg_iterations = its;
+        remember(du);
+        return true;
+      }
+      rec.linear_iterations = its;
+    }
+    rec.factorized = true;
+    bool ok = (have_factor = two_grid->update(values, multiply_k)) &&
+              cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+    rec.linear_iterations += its;
+    if (!ok) {
+      const std::vector<double> unshifted = values;
+      for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
+        for (size_t c = 0; c + 1 < pattern.column_pointers.size(); ++c) {
+          const auto diagonal = static_cast<size_t>(pattern.column_pointers[c + 1] - 1);
+          values[diagonal] = unshifted[diagonal] * (1 + beta);
+        }
+        ok = (have_factor = two_grid->update(values, multiply_k)) &&
+             cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+        rec.linear_iterations += its;
+        if (ok) break;
+      }
+      values = unshifted;
+      have_factor = false;  // the coarse operator was the shifted one's
     }
     last_cg_iterations = its;
     if (ok) remember(du);
@@ -503,7 +519,9 @@ struct QuasiStaticSolver::Impl {
                        StepResult& res, std::string& why) {
     const auto t0 = Clock::now();
     if (!factor_and_solve(rhs, du, rec, forcing)) {
-      why = "the tangent matrix could not be factorized";
+      why = linear_solver == LinearSolver::TwoGrid
+                ? "the tangent system could not be solved (two-grid CG failed, also with a diagonal shift)"
+                : "the tangent matrix could not be factorized";
       return false;
     }
     rec.solve_seconds = seconds_since(t0);
@@ -1070,6 +1088,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   {
     m.pattern = detail::upper_pattern(m.conn, m.nn, nnode, m.free_index);
     m.values.assign(m.pattern.row_indices.size(), 0.0);
+    m.rows32.assign(m.pattern.row_indices.begin(), m.pattern.row_indices.end());
     check(m.values.size() < static_cast<size_t>(std::numeric_limits<int32_t>::max()),
           "tissue mesh: the stiffness matrix has " + str(m.values.size()) + " entries, more than this solver indexes");
     const int k = 3 * m.nn;

@@ -32,7 +32,7 @@ public:
   // `fine`: the pattern of K over the fine free dofs; `free_index`: per fine dof its free index or -1. A coarse dof
   // is free when the fine dof of the same node and component is.
   TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index, const UpperPattern& fine,
-                        int chebyshev_degree = 3);
+                        int chebyshev_degree = 4);
   ~TwoGridPreconditioner();
   TwoGridPreconditioner(const TwoGridPreconditioner&) = delete;
   TwoGridPreconditioner& operator=(const TwoGridPreconditioner&) = delete;

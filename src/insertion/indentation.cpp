@@ -171,6 +171,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   fem::QuasiStaticSolver solver(tissue, placed_indenters(c), solver_options, coarse ? &*coarse : nullptr);
   result.nodes = static_cast<int>(solver.nodes().size());
   result.dofs = solver.free_dof_count();
+  result.linear_solver = solver.linear_solver();
   result.setup_seconds = seconds_since(setup_start);
 
   std::vector<PunctureSample> samples;

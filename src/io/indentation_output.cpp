@@ -146,6 +146,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["elements"] = result.elements;
   json["nodes"] = result.nodes;
   json["dofs"] = result.dofs;
+  json["linear_solver"] = fem::to_string(result.linear_solver);
   json["law"] = to_name(c.solver.law);
   json["element"] = c.solver.order == fem::ElementOrder::Quadratic ? "quadratic" : "linear";
   json["contact"] = c.solver.contact == fem::ContactModel::Surface ? "surface" : "tip-nodes";

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -117,6 +118,29 @@ TEST_F(IndentCli, Section_6_2_ExamplesRunInQuickMode) {
   }
   EXPECT_GT(pressure[0], pressure[1]);
   EXPECT_GT(pressure[1], pressure[2]);
+}
+
+}  // namespace
+
+namespace {
+
+// The benchmark's case file (split mesh, two-grid solver) in a quick mode: coarse sizes, two 10 um steps. The split
+// run agrees with the same case meshed directly at the same sizes to within the discretisation difference.
+TEST_F(IndentCli, SplitSkinExampleUsesTheTwoGridSolver) {
+  const std::string quick = " --json --size-at-tip '40 um' --size-far '600 um' --steps 2 --depth '20 um'";
+  const IndentRun split = run("indent " + kExamples + "indent_skin_300k.toml" + quick);
+  ASSERT_EQ(split.exit_code, 0) << split.err;
+  const nlohmann::json json = nlohmann::json::parse(split.out);
+  EXPECT_EQ(json["linear_solver"], "two-grid");
+  EXPECT_EQ(json["status"], "reached-depth");
+  ASSERT_EQ(json["force_N"].size(), 2u);
+  std::ofstream(dir_ / "direct.toml") << std::regex_replace(slurp(kExamples + "indent_skin_300k.toml"),
+                                                             std::regex("split = true"), "split = false");
+  const IndentRun direct = run("indent direct.toml" + quick);
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  const nlohmann::json reference = nlohmann::json::parse(direct.out);
+  EXPECT_EQ(reference["linear_solver"], "cholesky-cg");
+  EXPECT_NEAR(json["force_N"][1].get<double>() / reference["force_N"][1].get<double>(), 1.0, 0.1);
 }
 
 }  // namespace

@@ -125,6 +125,10 @@ TEST(IndentationCase, SolverSection) {
               HasSubstr("key 'solver.predictor': unknown value 'cubic', expected one of: secant, linearised"));
   EXPECT_THAT(error_of(with_solver("max_iterations = 0\n")),
               HasSubstr("key 'solver.max_iterations': 0 is out of range"));
+  EXPECT_EQ(parse(with_solver("linear_solver = \"two-grid\"\n")).solver.linear_solver, fem::LinearSolver::TwoGrid);
+  EXPECT_EQ(parse(with_solver("linear_solver = \"auto\"\n")).solver.linear_solver, fem::LinearSolver::Automatic);
+  EXPECT_THAT(error_of(with_solver("linear_solver = \"lu\"\n")),
+              HasSubstr("expected one of: auto, cholesky, cholesky-cg, two-grid"));
   EXPECT_THAT(error_of(with_solver("tolerance = 1e-6\n")),
               HasSubstr("unknown key 'solver.tolerance'"));
 }

@@ -186,3 +186,31 @@ TEST(LayeredBlockMesh, SiteCircleGivesNodesOnAFlatPunchEdge) {
   EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
               testing::ThrowsMessage<InvalidInput>(HasSubstr("leaves the top surface")));
 }
+
+TEST(LayeredBlockMesh, SplitMeshesAtTwiceTheSizeAndKeepsTheCoarseLevel) {
+  // split: Gmsh at twice the sizes, then every tet split into eight. About as many elements as meshing at the
+  // sizes directly, exact layer volumes, well-shaped layers, and the coarse level for the two-grid solver.
+  mesh::LayeredBlockOptions o = small_skin_block();
+  const mesh::LayeredBlockResult direct = mesh::layered_block_mesh(o);
+  o.split = true;
+  const mesh::LayeredBlockResult split = mesh::layered_block_mesh(o);
+  EXPECT_FALSE(direct.coarse.has_value());
+  ASSERT_TRUE(split.coarse.has_value());
+  EXPECT_EQ(split.mesh.tets.size(), 8 * split.coarse->tets.size());
+  EXPECT_EQ(split.coarse->node_parents.size(), split.mesh.nodes.size());
+  const double ratio = static_cast<double>(split.mesh.tets.size()) / static_cast<double>(direct.mesh.tets.size());
+  EXPECT_GT(ratio, 0.4);
+  EXPECT_LT(ratio, 2.5);
+  std::vector<double> volume(3, 0.0);
+  for (std::size_t e = 0; e < split.mesh.tets.size(); ++e) {
+    const auto& t = split.mesh.tets[e];
+    const auto& p = split.mesh.nodes;
+    volume[split.mesh.tet_layer[e]] += mesh::signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double expected = o.width * o.length * o.layers[i].thickness;
+    EXPECT_NEAR(volume[i], expected, 1e-9 * expected) << o.layers[i].name;
+    EXPECT_GT(split.quality[i].min_quality, 0.1) << split.quality[i].name;
+  }
+  EXPECT_TRUE(mesh::tet_mesh_check(split.mesh).valid());
+}

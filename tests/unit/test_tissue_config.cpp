@@ -37,6 +37,7 @@ size_at_tip = "15 um"
 size_far = "0.2 mm"
 sites = [["-500 um", "0 um"], ["0.5 mm", "100 um"]]
 site_circle_radius = "115 um"
+split = true
 [needle]
 anything = "is ignored here"
 )";
@@ -59,10 +60,12 @@ TEST(TissueConfig, LayersWithUnitsAndRest) {
   EXPECT_DOUBLE_EQ(o.insertion_sites[1].x(), 500e-6);
   EXPECT_DOUBLE_EQ(o.insertion_sites[1].y(), 100e-6);
   EXPECT_DOUBLE_EQ(o.site_circle_radius, 115e-6);
+  EXPECT_TRUE(o.split);
 }
 
 TEST(TissueConfig, DefaultsAndPresets) {
   const mesh::LayeredBlockOptions o = parse("");
+  EXPECT_FALSE(o.split);
   ASSERT_EQ(o.layers.size(), 3u);
   EXPECT_DOUBLE_EQ(o.layers[1].youngs_modulus, 0.134e6);
   EXPECT_DOUBLE_EQ(o.width, 3000e-6);

@@ -13,7 +13,8 @@
 //   [tissue], [mesh]  as in tissue_config.hpp (shared with `needlekit tissue-mesh`): width, length, height, preset
 //              or [[tissue.layers]] (name, thickness or "rest", youngs_modulus, poisson_ratio); size_at_tip,
 //              size_far, refinement_radius, size_gradient, thin_layer_size_factor, sites (one needle per site when
-//              there is no [[needles]]), or file = "tissue.msh" + unit for a user's tetrahedral mesh
+//              there is no [[needles]]), split (mesh at twice the sizes and split every tet into eight: the
+//              two-grid solver), or file = "tissue.msh" + unit for a user's tetrahedral mesh
 //   [loading]  depth (required), steps (default 20), continue_after_puncture (default false)
 //   [model]    law = "svk" | "neo-hookean" (default "neo-hookean"); contact = "tip-nodes" | "surface" (default
 //              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =
@@ -21,8 +22,10 @@
 //   [solver]   optional Newton settings (fem::SolverOptions): residual_tolerance (default 1e-6),
 //              displacement_tolerance (1e-5), energy_tolerance (1e-8), penetration_tolerance (1e-3), all in (0, 1);
 //              max_iterations (25), max_cutbacks (8); predictor = "secant" (default) | "linearised" (§3.4's
-//              linearised solve before every step); linear_solver = "cholesky-cg" (default: CG on a reused
-//              factorization) | "cholesky" (a factorization per Newton iteration); penalty_factor (100, surface
+//              linearised solve before every step); linear_solver = "auto" (default: "two-grid" for linear
+//              elements on a split mesh, else "cholesky-cg") | "cholesky-cg" (CG on a reused factorization) |
+//              "cholesky" (a factorization per Newton iteration) | "two-grid" (CG with a two-grid cycle; linear
+//              elements need [mesh] split = true, quadratic ones use their corners); penalty_factor (100, surface
 //              contact); threads (0 = all cores)
 //   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
 //              or toughness_from = { first = "first.csv", second = "second.csv", crack_area = "6661 um2",
