@@ -214,3 +214,18 @@ TEST(LayeredBlockMesh, SplitMeshesAtTwiceTheSizeAndKeepsTheCoarseLevel) {
   }
   EXPECT_TRUE(mesh::tet_mesh_check(split.mesh).valid());
 }
+
+TEST(LayeredBlockMesh, NoFlatSliversInAThinLayerWithAlignedFaces) {
+  // The default block with a 40 um tip size: the 20 um stratum corneum is one element thick. When its top and bottom
+  // faces carried the same triangulation, half of the runs had a zero-volume tet spanning a vertical rectangle of
+  // aligned nodes (HXT is not deterministic, hence several runs).
+  mesh::LayeredBlockOptions o;
+  o.size_at_site = 40e-6;
+  o.size_far = 600e-6;
+  for (int run = 0; run < 4; ++run) {
+    const mesh::LayeredBlockResult r = mesh::layered_block_mesh(o);
+    const mesh::TetMeshCheck check = mesh::tet_mesh_check(r.mesh);
+    EXPECT_TRUE(check.degenerate.empty()) << "run " << run << ": " << check.degenerate.size() << " flat tets";
+    EXPECT_GT(r.quality[0].min_quality, 0.1) << "run " << run;
+  }
+}
