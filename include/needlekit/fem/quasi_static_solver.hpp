@@ -49,7 +49,8 @@ enum class ElementOrder {
 };
 enum class ContactModel { TipNodes, Surface };
 enum class LinearSolver {
-  Automatic,   // TwoGrid for linear elements when the solver is given a coarse level (a split mesh), else CholeskyCg
+  Automatic,   // TwoGrid for quadratic elements, and for linear ones on a split mesh (given a coarse level); else
+               // CholeskyCg
   Cholesky,    // a fresh CHOLMOD factorization per Newton iteration
   CholeskyCg,  // conjugate gradients preconditioned by the last factorization, while cheaper than a new one
   TwoGrid,     // conjugate gradients preconditioned by a two-grid cycle (Chebyshev smoothing, CHOLMOD on the coarse

@@ -22,8 +22,8 @@
 //   [solver]   optional Newton settings (fem::SolverOptions): residual_tolerance (default 1e-6),
 //              displacement_tolerance (1e-5), energy_tolerance (1e-8), penetration_tolerance (1e-3), all in (0, 1);
 //              max_iterations (25), max_cutbacks (8); predictor = "secant" (default) | "linearised" (§3.4's
-//              linearised solve before every step); linear_solver = "auto" (default: "two-grid" for linear
-//              elements on a split mesh, else "cholesky-cg") | "cholesky-cg" (CG on a reused factorization) |
+//              linearised solve before every step); linear_solver = "auto" (default: "two-grid" for quadratic
+//              elements and for linear ones on a split mesh, else "cholesky-cg") | "cholesky-cg" (CG on a reused factorization) |
 //              "cholesky" (a factorization per Newton iteration) | "two-grid" (CG with a two-grid cycle; linear
 //              elements need [mesh] split = true, quadratic ones use their corners); penalty_factor (100, surface
 //              contact); threads (0 = all cores)
