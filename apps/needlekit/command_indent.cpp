@@ -25,10 +25,15 @@ constexpr const char* kCaseFileHelp = R"(CASE file (TOML; every dimensional valu
                "silicone-0.2mpa" | ... or [[tissue.layers]] name, thickness (the last may be "rest"),
                youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
   [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
-               (one needle per site without [[needles]]), or file = "tissue.msh" + unit (layers = physical groups)
+               (one needle per site without [[needles]]), split = true (mesh at twice the sizes and split every tet
+               into eight: the two-grid solver, for large meshes), or file = "tissue.msh" + unit (layers = physical
+               groups)
   [loading]    depth = "200 um" (required), steps = 20, continue_after_puncture = false
   [model]      law = "neo-hookean" | "svk", contact = "surface" | "tip-nodes", element = "linear" | "quadratic",
                boundary = "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller"
+  [solver]     optional: residual_tolerance = 1e-6, displacement_tolerance = 1e-5, energy_tolerance = 1e-8,
+               max_iterations = 25, max_cutbacks = 8, predictor = "secant" | "linearised", linear_solver = "auto" |
+               "two-grid" | "cholesky-cg" | "cholesky", penalty_factor = 100, threads = 0
   [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = { first = "a.csv",
                second = "b.csv", crack_area = "6661 um2" } (Eq 3.16 from two insertions; CSV depth_um,force_N))";
 

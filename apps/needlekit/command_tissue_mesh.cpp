@@ -27,6 +27,8 @@ constexpr const char* kTissueFileHelp = R"(CASE file (TOML; other tables such as
   [mesh]    size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um",
             size_gradient = 0.3, thin_layer_size_factor = 2, sites = [["0 um", "0 um"]],
             site_circle_radius = "115 um"   (optional: nodes on a circle around each site, e.g. a punch's edge)
+            split = true   (optional: mesh at twice the sizes, then split every tet into eight; lets `indent`
+                            use its two-grid solver, much faster on large meshes)
             or file = "tissue.msh", unit = "um"  (a tetrahedral Gmsh mesh whose physical volumes are named after
             the layers, top surface at z = 0; layer thicknesses are then not used))";
 

@@ -13,6 +13,7 @@
 // that must own the process; the geometric hierarchy makes a two-level method a few hundred lines.
 #pragma once
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
