@@ -87,6 +87,11 @@ void validate(const IndentationCase& c) {
   if (!std::isfinite(c.depth) || !(c.depth > 0)) {
     throw InvalidInput(fmt::format("loading.depth: {} is not positive, expected a depth > 0", um(c.depth)));
   }
+  if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
+      (c.tissue_mesh || !c.block.split)) {
+    throw InvalidInput("solver.linear_solver: \"two-grid\" with linear elements needs a split block mesh, expected "
+                       "[mesh] split = true (or quadratic elements, or another linear_solver)");
+  }
   if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
   validate(c.puncture);
 }

@@ -93,6 +93,14 @@ TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {
   EXPECT_THAT(r.err, HasSubstr("bad.toml:8: key 'loading.depth': 200 is a bare number without a unit"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "results"));
   EXPECT_TRUE(r.out.empty());
+  // A solver the mesh cannot support is refused before anything is written.
+  std::ofstream(dir_ / "two_grid.toml") << "[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n"
+                                           "[tissue]\npreset = \"silicone-0.2mpa\"\n[loading]\ndepth = \"10 um\"\n"
+                                           "[model]\nelement = \"linear\"\n[solver]\nlinear_solver = \"two-grid\"\n";
+  const IndentRun two_grid = run("indent two_grid.toml --out results");
+  EXPECT_EQ(two_grid.exit_code, 2);
+  EXPECT_THAT(two_grid.err, HasSubstr("needs a split block mesh"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "results"));
 }
 
 }  // namespace
