@@ -2,10 +2,8 @@
 // writes a CSV with units, and bad input exits with code 2, one error line naming the key, and no output file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -17,24 +15,16 @@
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 
+#include "../support/cli_run.hpp"
+
+using needlekit::test::CliRun;
+using needlekit::test::file_text;
+using needlekit::test::run_cli;
 using testing::HasSubstr;
 
 namespace {
 
 const std::string kExamples = std::string(NEEDLEKIT_SOURCE_DIR) + "/examples/";
-
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Each test runs the tool in a fresh temporary directory.
 class Cli : public testing::Test {
@@ -48,16 +38,7 @@ protected:
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  CliRun run(const std::string& arguments) const {
-    const std::string command = "cd '" + dir_.string() + "' && '" + NEEDLEKIT_CLI + "' " + arguments +
-                                " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    CliRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_file(dir_ / "stdout.txt");
-    result.err = read_file(dir_ / "stderr.txt");
-    return result;
-  }
+  CliRun run(const std::string& arguments) const { return run_cli(dir_, arguments); }
 
   std::filesystem::path write(const std::string& name, const std::string& content) const {
     std::ofstream(dir_ / name) << content;
@@ -98,7 +79,7 @@ TEST_F(Cli, EvaluateCylinderIsTooShort) {
   EXPECT_THAT(json["reason"].get<std::string>(), HasSubstr("target depth"));
   expect_relative(json["deformation_um"].get<double>(), 580.0, 1e-3);
   EXPECT_EQ(json["performance_index_per_um"].get<double>(), 0.0);
-  EXPECT_EQ(nlohmann::json::parse(read_file(dir_ / "result.json")), json);  // --out holds the same object
+  EXPECT_EQ(nlohmann::json::parse(file_text(dir_ / "result.json")), json);  // --out holds the same object
 }
 
 TEST_F(Cli, EvaluateTableNamesEveryUnit) {
@@ -151,7 +132,7 @@ TEST_F(Cli, BadInputExitsWithCode2AndWritesNothing) {
 
 TEST_F(Cli, BruteForceRefusesHugeSpaces) {
   // The hollow cone with 1 um steps has 2.1e13 points: brute force refuses, naming the way out.
-  std::string space = read_file(kExamples + "optimize_certified_1um_cone_solid.toml");
+  std::string space = file_text(kExamples + "optimize_certified_1um_cone_solid.toml");
   space.replace(space.find("hollow = false"), 14, "hollow = true");
   space += "bore_diameter = [\"20 um\", \"50 um\", \"1 um\"]\n";
   write("huge.toml", space);
@@ -165,7 +146,7 @@ TEST_F(Cli, SweepWritesCsvWithUnits) {
   const CliRun r = run("sweep " + kExamples + "evaluate_table_6_1_cone.toml --vary base_diameter=50um:300um:10um "
                     "--csv sweep.csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::vector<std::string> lines = lines_of(read_file(dir_ / "sweep.csv"));
+  const std::vector<std::string> lines = lines_of(file_text(dir_ / "sweep.csv"));
   ASSERT_EQ(lines.size(), 1u + 26u);  // header + 50, 60, ..., 300 um
   EXPECT_EQ(lines[0],
             "base_diameter_um,performance_index_per_um,status,deformation_um,cutting_depth_um,Q_um2,"

@@ -1,35 +1,24 @@
 // `needlekit indent` on the flat-punch example (Sneddon's case) in a quick mode, and its bad-input behaviour.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
 #include <string>
 
+#include "../support/cli_run.hpp"
+
+using needlekit::test::CliRun;
+using needlekit::test::file_text;
+using needlekit::test::run_cli;
 using testing::HasSubstr;
 
 namespace {
 
 const std::string kExamples = std::string(NEEDLEKIT_SOURCE_DIR) + "/examples/";
-
-struct IndentRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 class IndentCli : public testing::Test {
 protected:
@@ -42,12 +31,7 @@ protected:
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  IndentRun run(const std::string& arguments) const {
-    const std::string command = "cd '" + dir_.string() + "' && '" + NEEDLEKIT_CLI + "' " + arguments +
-                                " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout.txt"), slurp(dir_ / "stderr.txt")};
-  }
+  CliRun run(const std::string& arguments) const { return run_cli(dir_, arguments); }
 
   std::filesystem::path dir_;
 };
@@ -57,7 +41,7 @@ protected:
 // the example is closer, see docs/indentation.md); the 3000 um block with fixed sides and bottom is slightly stiffer
 // than a half-space.
 TEST_F(IndentCli, FlatPunchExampleMatchesSneddon) {
-  const IndentRun r = run("indent " + kExamples + "indent_flat_punch.toml --json --size-at-tip '50 um' --size-far '800 um' "
+  const CliRun r = run("indent " + kExamples + "indent_flat_punch.toml --json --size-at-tip '50 um' --size-far '800 um' "
                     "--steps 1 --depth '10 um' --out results");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
@@ -79,16 +63,16 @@ TEST_F(IndentCli, FlatPunchExampleMatchesSneddon) {
   // The output directory: ParaView series, CSV with units, puncture JSON.
   EXPECT_TRUE(std::filesystem::exists(dir_ / "results/flat_punch.pvd"));
   EXPECT_TRUE(std::filesystem::exists(dir_ / "results/flat_punch_step_001.vtu"));
-  const std::string csv = slurp(dir_ / "results/flat_punch_force_depth.csv");
+  const std::string csv = file_text(dir_ / "results/flat_punch_force_depth.csv");
   EXPECT_THAT(csv, HasSubstr("depth_um,force_N,contact_area_um2,contact_pressure_MPa"));
-  const nlohmann::json puncture = nlohmann::json::parse(slurp(dir_ / "results/flat_punch_puncture.json"));
+  const nlohmann::json puncture = nlohmann::json::parse(file_text(dir_ / "results/flat_punch_puncture.json"));
   EXPECT_DOUBLE_EQ(puncture["critical_pressure_MPa"].get<double>(), 0.663);
 }
 
 TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {
   std::ofstream(dir_ / "bad.toml") << "[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n"
                                       "[tissue]\npreset = \"silicone-0.2mpa\"\n[loading]\ndepth = 200\n";
-  const IndentRun r = run("indent bad.toml --out results");
+  const CliRun r = run("indent bad.toml --out results");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("bad.toml:8: key 'loading.depth': 200 is a bare number without a unit"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "results"));
@@ -97,7 +81,7 @@ TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {
   std::ofstream(dir_ / "two_grid.toml") << "[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n"
                                            "[tissue]\npreset = \"silicone-0.2mpa\"\n[loading]\ndepth = \"10 um\"\n"
                                            "[model]\nelement = \"linear\"\n[solver]\nlinear_solver = \"two-grid\"\n";
-  const IndentRun two_grid = run("indent two_grid.toml --out results");
+  const CliRun two_grid = run("indent two_grid.toml --out results");
   EXPECT_EQ(two_grid.exit_code, 2);
   EXPECT_THAT(two_grid.err, HasSubstr("needs a split block mesh"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "results"));
@@ -114,7 +98,7 @@ TEST_F(IndentCli, Section_6_2_ExamplesRunInQuickMode) {
   const char* names[3] = {"sharp_bevel", "blunt_bevel", "flat_cylinder"};
   for (int i = 0; i < 3; ++i) {
     SCOPED_TRACE(names[i]);
-    const IndentRun r = run(std::string("indent ") + kExamples + "indent_6_2_" + names[i] +
+    const CliRun r = run(std::string("indent ") + kExamples + "indent_6_2_" + names[i] +
                             ".toml --json --size-at-tip '" + (i == 0 ? "8 um" : "30 um") +
                             "' --size-far '800 um' --steps 1 --depth '10 um'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -136,15 +120,15 @@ namespace {
 // run agrees with the same case meshed directly at the same sizes to within the discretisation difference.
 TEST_F(IndentCli, SplitSkinExampleUsesTheTwoGridSolver) {
   const std::string quick = " --json --size-at-tip '40 um' --size-far '600 um' --steps 2 --depth '20 um'";
-  const IndentRun split = run("indent " + kExamples + "indent_skin_300k.toml" + quick);
+  const CliRun split = run("indent " + kExamples + "indent_skin_300k.toml" + quick);
   ASSERT_EQ(split.exit_code, 0) << split.err;
   const nlohmann::json json = nlohmann::json::parse(split.out);
   EXPECT_EQ(json["linear_solver"], "two-grid");
   EXPECT_EQ(json["status"], "reached-depth");
   ASSERT_EQ(json["force_N"].size(), 2u);
-  std::ofstream(dir_ / "direct.toml") << std::regex_replace(slurp(kExamples + "indent_skin_300k.toml"),
+  std::ofstream(dir_ / "direct.toml") << std::regex_replace(file_text(kExamples + "indent_skin_300k.toml"),
                                                              std::regex("split = true"), "split = false");
-  const IndentRun direct = run("indent direct.toml" + quick);
+  const CliRun direct = run("indent direct.toml" + quick);
   ASSERT_EQ(direct.exit_code, 0) << direct.err;
   const nlohmann::json reference = nlohmann::json::parse(direct.out);
   EXPECT_EQ(reference["linear_solver"], "cholesky-cg");

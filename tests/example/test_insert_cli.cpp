@@ -3,45 +3,28 @@
 // output files).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
+#include "../support/cli_run.hpp"
 
+using needlekit::test::CliRun;
+using needlekit::test::file_text;
+using needlekit::test::run_cli;
 using testing::HasSubstr;
 using namespace needlekit;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-struct CliOutcome {
-  int code = -1;
-  std::string out, err;
-};
-
-// Runs `needlekit ARGS` inside `dir`, capturing stdout and stderr.
-CliOutcome insert_cli(const fs::path& dir, const std::string& args) {
-  const fs::path out = dir / "out.txt", err = dir / "err.txt";
-  const std::string command =
-      "cd '" + dir.string() + "' && '" NEEDLEKIT_CLI "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("needlekit-insert-" + name + "-" + std::to_string(::getpid()));
@@ -80,8 +63,8 @@ TEST(InsertCli, GivenPrePunctureCurveGivesTheCompleteCurveWithPlot) {
   const fs::path dir = fresh_dir("pre");
   put(dir / "pre.csv", experiment_pre_curve());
   put(dir / "case.toml", sharp_bevel_case());
-  const CliOutcome r = insert_cli(dir, "insert case.toml --json --out results");
-  ASSERT_EQ(r.code, 0) << r.err;
+  const CliRun r = run_cli(dir, "insert case.toml --json --out results");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_NEAR(json["puncture_depth_um"].get<double>(), 230, 1e-6);
   EXPECT_NEAR(json["puncture_force_N"].get<double>(), 0.014, 1e-9);
@@ -99,12 +82,12 @@ TEST(InsertCli, GivenPrePunctureCurveGivesTheCompleteCurveWithPlot) {
   EXPECT_GT(json["relaxation_drop_N"].get<double>(), 0.0);  // the cutting force at 0.23 mm is below 0.014 N
   EXPECT_EQ(json["classification"]["alpha"].get<int>() > 0, true);
   // Files: CSV with units and markers, JSON, and a PNG.
-  const std::string csv = slurp(dir / "results/sb_insertion.csv");
+  const std::string csv = file_text(dir / "results/sb_insertion.csv");
   EXPECT_THAT(csv, testing::StartsWith("depth_um,force_N,phase,punctured_needles,marker\n"));
   EXPECT_THAT(csv, HasSubstr(",indentation,0,puncture\n"));
   EXPECT_THAT(csv, HasSubstr(",cutting,1,relaxed\n"));
-  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "results/sb_insertion.json"))["force_N"], force);
-  const std::string png = slurp(dir / "results/sb_insertion.png");
+  EXPECT_EQ(nlohmann::json::parse(file_text(dir / "results/sb_insertion.json"))["force_N"], force);
+  const std::string png = file_text(dir / "results/sb_insertion.png");
   ASSERT_GT(png.size(), 10000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
   fs::remove_all(dir);
@@ -122,8 +105,8 @@ TEST(InsertCli, FitsTheScaleToAMeasuredCurve) {
   put(dir / "measured.csv", measured);
   put(dir / "pre.csv", experiment_pre_curve());
   put(dir / "case.toml", sharp_bevel_case("measured = \"measured.csv\"\n"));
-  const CliOutcome r = insert_cli(dir, "insert case.toml --json --no-plot");
-  ASSERT_EQ(r.code, 0) << r.err;
+  const CliRun r = run_cli(dir, "insert case.toml --json --no-plot");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_NEAR(json["fit"]["scale"].get<double>(), 0.3, 1e-4);  // to the CSV's printed digits
   EXPECT_LT(json["fit"]["relative_rms"].get<double>(), 1e-4);
@@ -136,8 +119,8 @@ TEST(InsertCli, BadInputExitsWith2AndWritesNothing) {
   put(dir / "pre.csv", experiment_pre_curve());
   auto expect_bad = [&](const std::string& case_text, const std::string& fragment) {
     put(dir / "case.toml", case_text);
-    const CliOutcome r = insert_cli(dir, "insert case.toml --out results");
-    EXPECT_EQ(r.code, 2) << r.err;
+    const CliRun r = run_cli(dir, "insert case.toml --out results");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_THAT(r.err, HasSubstr(fragment));
     EXPECT_THAT(r.err, testing::StartsWith("needlekit: error: "));
     EXPECT_FALSE(fs::exists(dir / "results/sb_insertion.csv"));
@@ -172,9 +155,9 @@ TEST(InsertCli, SharpBevelExampleRunsTheFeThenCuts) {
   // examples/insert_sharp_bevel.toml in a quick mode (coarse mesh, 6 load steps): the FE punctures within the first
   // 100 um (the dissertation's simulation: < 20 um; needlekit's default mesh: 34 um), then the cutting phase.
   const fs::path dir = fresh_dir("fe");
-  const CliOutcome r = insert_cli(dir, "insert '" NEEDLEKIT_SOURCE_DIR "/examples/insert_sharp_bevel.toml' --json --no-plot "
+  const CliRun r = run_cli(dir, "insert '" NEEDLEKIT_SOURCE_DIR "/examples/insert_sharp_bevel.toml' --json --no-plot "
                                 "--size-at-tip '40 um' --size-far '600 um' --steps 6");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["pre_puncture_source"], "fe");
   EXPECT_EQ(json["fe"]["status"], "punctured");

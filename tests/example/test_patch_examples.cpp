@@ -2,29 +2,25 @@
 // the per-needle CSV, the ParaView files with the meshes' attribution, the Fig 6.25 sweep, and bad input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "../support/cli_run.hpp"
+
+using needlekit::test::CliRun;
+using needlekit::test::file_text;
+using needlekit::test::run_cli;
 using testing::HasSubstr;
 
 namespace {
 
 const std::filesystem::path kRepository = NEEDLEKIT_SOURCE_DIR;
-
-std::string text_of(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 class PatchCli : public testing::Test {
 protected:
@@ -43,12 +39,10 @@ protected:
   }
   // Runs the tool in the scratch folder; returns the exit code, stdout in out_, stderr in err_.
   int run(const std::string& arguments) {
-    const std::string command = "cd '" + dir_.string() + "' && '" + NEEDLEKIT_CLI + "' patch " + arguments +
-                                " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    out_ = text_of(dir_ / "stdout.txt");
-    err_ = text_of(dir_ / "stderr.txt");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const CliRun r = run_cli(dir_, "patch " + arguments);
+    out_ = r.out;
+    err_ = r.err;
+    return r.exit_code;
   }
   nlohmann::json summary(const std::string& example, const std::string& out) {
     EXPECT_EQ(run((kRepository / "examples" / example).string() + " --json --out " + out), 0) << err_;
@@ -82,15 +76,15 @@ TEST_F(PatchCli, RigidAndFlexiblePatchesOnTheNeck_Section_6_4_1) {
   EXPECT_LT(flexible["fit_ms"].get<double>(), 1000);
 
   // The outputs: one CSV row per needle with units in the header, ParaView files, the mesh attribution.
-  const std::string csv = text_of(dir_ / "flexible/needles.csv");
+  const std::string csv = file_text(dir_ / "flexible/needles.csv");
   EXPECT_THAT(csv, HasSubstr("travel_um,penetration_um,angle_deg,buckling_force_N,bending_force_N"));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 101);
   for (const char* file : {"surface.vtu", "patch.vtu", "needles.vtu", "summary.json"}) {
     EXPECT_GT(std::filesystem::file_size(dir_ / "flexible" / file), 1000u) << file;
   }
-  EXPECT_THAT(text_of(dir_ / "flexible/needles.vtu"), HasSubstr("Name=\"buckling_force_N\""));
-  EXPECT_THAT(text_of(dir_ / "flexible/patch.vtu"), HasSubstr("Name=\"strain_energy_mJ\""));
-  EXPECT_THAT(text_of(dir_ / "flexible/ATTRIBUTION.md"), HasSubstr("CC BY 4.0"));
+  EXPECT_THAT(file_text(dir_ / "flexible/needles.vtu"), HasSubstr("Name=\"buckling_force_N\""));
+  EXPECT_THAT(file_text(dir_ / "flexible/patch.vtu"), HasSubstr("Name=\"strain_energy_mJ\""));
+  EXPECT_THAT(file_text(dir_ / "flexible/ATTRIBUTION.md"), HasSubstr("CC BY 4.0"));
 
   // The static equilibrium of the same patch also conforms (beyond the dissertation).
   const nlohmann::json equilibrium = summary("patch_neck_equilibrium.toml", "equilibrium");
@@ -104,7 +98,7 @@ TEST_F(PatchCli, SpringEnergySweepOnTheNeck_Figure_6_25) {
                 " --sweep max_spring_energy=0.005mJ:0.05mJ:4 --out fig"),
             0)
       << err_;
-  const std::string csv = text_of(dir_ / "fig/sweep.csv");
+  const std::string csv = file_text(dir_ / "fig/sweep.csv");
   std::istringstream lines(csv);
   std::string line;
   std::getline(lines, line);
@@ -132,11 +126,11 @@ TEST_F(PatchCli, ConicNeedlesOnTheSkullNeitherBuckleNorBend_Section_6_4_3) {
     EXPECT_GE(s["buckling_force_N"]["min"].get<double>(), 0.0712);
     EXPECT_LE(s["buckling_force_N"]["max"].get<double>(), 0.0718);
   }
-  EXPECT_THAT(text_of(dir_ / "skull/ATTRIBUTION.md"), HasSubstr("YahooJAPAN"));
+  EXPECT_THAT(file_text(dir_ / "skull/ATTRIBUTION.md"), HasSubstr("YahooJAPAN"));
 }
 
 TEST_F(PatchCli, BadInputExitsWithCode2AndNoOutput) {
-  const std::string base = text_of(kRepository / "examples/patch_neck_flexible.toml");
+  const std::string base = file_text(kRepository / "examples/patch_neck_flexible.toml");
   auto write_case = [&](const std::string& from, const std::string& to) {
     std::string text = base;
     text.replace(text.find(from), from.size(), to);

@@ -9,39 +9,21 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
+#include "../support/cli_run.hpp"
 
+using needlekit::test::CliRun;
+using needlekit::test::file_text;
+using needlekit::test::run_cli;
 using testing::HasSubstr;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-struct CliResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-CliResult run_cli(const fs::path& dir, const std::string& arguments) {
-  const std::string command = "cd '" + dir.string() + "' && '" + NEEDLEKIT_CLI + "' " + arguments +
-                              " > stdout.txt 2> stderr.txt";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stdout.txt"), read_file(dir / "stderr.txt")};
-}
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("needlekit-reproduce-" + name + "-" + std::to_string(::getpid()));
@@ -73,29 +55,29 @@ class Reproduce : public testing::Test {
 protected:
   static void SetUpTestSuite() {
     dir_ = new fs::path(fresh_dir("quick"));
-    run_ = new CliResult(run_cli(*dir_, "reproduce --quick --out out"));
+    run_ = new CliRun(run_cli(*dir_, "reproduce --quick --out out"));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
     delete dir_;
     delete run_;
   }
-  static nlohmann::json results() { return nlohmann::json::parse(read_file(*dir_ / "out" / "results.json")); }
+  static nlohmann::json results() { return nlohmann::json::parse(file_text(*dir_ / "out" / "results.json")); }
   static void report_is_self_contained_with_every_figure();
   static void numbers_agree_to_the_printed_digits();
   static void table_6_3_shows_both_pitches();
 
   static fs::path* dir_;
-  static CliResult* run_;
+  static CliRun* run_;
 };
 fs::path* Reproduce::dir_ = nullptr;
-CliResult* Reproduce::run_ = nullptr;
+CliRun* Reproduce::run_ = nullptr;
 
 void Reproduce::report_is_self_contained_with_every_figure() {
   const fs::path out = *dir_ / "out";
   ASSERT_TRUE(fs::is_regular_file(out / "report.html"));
   EXPECT_FALSE(leaves_staging_behind(out));
-  const std::string report = read_file(out / "report.html");
+  const std::string report = file_text(out / "report.html");
   const nlohmann::json r = results();
   EXPECT_EQ(r["mode"], "quick");
   EXPECT_GT(r["seconds"].get<double>(), 0);
@@ -105,7 +87,7 @@ void Reproduce::report_is_self_contained_with_every_figure() {
       ++figures;
       const fs::path png = out / figure["file"].get<std::string>();
       ASSERT_TRUE(fs::is_regular_file(png)) << png;
-      const std::string bytes = read_file(png);
+      const std::string bytes = file_text(png);
       EXPECT_GT(bytes.size(), 5000u) << png << " is (nearly) empty";
       EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
     }
@@ -130,7 +112,7 @@ void Reproduce::report_is_self_contained_with_every_figure() {
 // determine is within one unit of its last printed digit, checked here against docs/published/chapter6.json.
 void Reproduce::numbers_agree_to_the_printed_digits() {
   const nlohmann::json published =
-      nlohmann::json::parse(read_file(fs::path(NEEDLEKIT_SOURCE_DIR) / "docs" / "published" / "chapter6.json"));
+      nlohmann::json::parse(file_text(fs::path(NEEDLEKIT_SOURCE_DIR) / "docs" / "published" / "chapter6.json"));
   std::map<std::string, nlohmann::json> by_id;
   for (const auto& v : published["values"]) by_id[v["id"]] = v;
 
@@ -173,9 +155,9 @@ void Reproduce::numbers_agree_to_the_printed_digits() {
 // published-compatible optimizer (which reproduces the printed rows).
 void Reproduce::table_6_3_shows_both_pitches() {
   const nlohmann::json compat =
-      nlohmann::json::parse(read_file(*dir_ / "out/section_6_3/table_6_3_hollow_cone_published_compat.json"));
+      nlohmann::json::parse(file_text(*dir_ / "out/section_6_3/table_6_3_hollow_cone_published_compat.json"));
   const nlohmann::json corrected =
-      nlohmann::json::parse(read_file(*dir_ / "out/section_6_3/table_6_3_hollow_cone_corrected_pitch.json"));
+      nlohmann::json::parse(file_text(*dir_ / "out/section_6_3/table_6_3_hollow_cone_corrected_pitch.json"));
   EXPECT_NEAR(compat["best"]["performance_index_per_um"].get<double>(), 0.00061, 0.00001);
   EXPECT_GT(corrected["best"]["performance_index_per_um"].get<double>(),
             1.5 * compat["best"]["performance_index_per_um"].get<double>());
@@ -201,16 +183,16 @@ TEST_F(Reproduce, QuickRunWritesTheReportAndReproducesThePublishedNumbers) {
 TEST(ReproduceBadInput, UnwritableOutputDirectoryExitsWithCode2) {
   const fs::path dir = fresh_dir("unwritable");
   std::ofstream(dir / "a-file") << "not a directory\n";
-  const CliResult run = run_cli(dir, "reproduce --quick --out a-file/out");
+  const CliRun run = run_cli(dir, "reproduce --quick --out a-file/out");
   EXPECT_EQ(run.exit_code, 2) << run.err;
   EXPECT_THAT(run.err, HasSubstr("cannot create the output directory 'a-file/out'"));
-  EXPECT_EQ(read_file(dir / "a-file"), "not a directory\n");
+  EXPECT_EQ(file_text(dir / "a-file"), "not a directory\n");
   fs::remove_all(dir);
 }
 
 TEST(ReproduceBadInput, MissingMeshFolderExitsWithCode2BeforeRunning) {
   const fs::path dir = fresh_dir("nomesh");
-  const CliResult run = run_cli(dir, "reproduce --quick --out out --meshes no-such-folder");
+  const CliRun run = run_cli(dir, "reproduce --quick --out out --meshes no-such-folder");
   EXPECT_EQ(run.exit_code, 2) << run.err;
   EXPECT_THAT(run.err, HasSubstr("no-such-folder"));
   EXPECT_FALSE(fs::exists(dir / "out" / "report.html"));
@@ -245,8 +227,8 @@ TEST(ReproduceBadInput, CtrlCLeavesNoHalfWrittenReport) {
   int status = 0;
   ::waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130) << read_file(dir / "stderr.txt");
-  EXPECT_THAT(read_file(dir / "stderr.txt"), HasSubstr("interrupted"));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << file_text(dir / "stderr.txt");
+  EXPECT_THAT(file_text(dir / "stderr.txt"), HasSubstr("interrupted"));
   EXPECT_FALSE(fs::exists(dir / "out" / "report.html"));
   EXPECT_FALSE(leaves_staging_behind(dir / "out"));
   fs::remove_all(dir);
