@@ -2,7 +2,6 @@
 // writes a CSV with units, and bad input exits with code 2, one error line naming the key, and no output file.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -18,34 +17,21 @@
 #include "../support/cli_run.hpp"
 
 using needlekit::test::CliRun;
+using needlekit::test::kExamples;
 using needlekit::test::file_text;
-using needlekit::test::run_cli;
 using testing::HasSubstr;
 
 namespace {
 
-const std::string kExamples = std::string(NEEDLEKIT_SOURCE_DIR) + "/examples/";
-
 // Each test runs the tool in a fresh temporary directory.
-class Cli : public testing::Test {
+class Cli : public needlekit::test::CliTest {
 protected:
-  void SetUp() override {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           ("needlekit-cli-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  CliRun run(const std::string& arguments) const { return run_cli(dir_, arguments); }
+  Cli() : CliTest("cli") {}
 
   std::filesystem::path write(const std::string& name, const std::string& content) const {
     std::ofstream(dir_ / name) << content;
     return dir_ / name;
   }
-
-  std::filesystem::path dir_;
 };
 
 void expect_relative(double actual, double expected, double tolerance) {

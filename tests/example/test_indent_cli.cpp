@@ -1,7 +1,6 @@
 // `needlekit indent` on the flat-punch example (Sneddon's case) in a quick mode, and its bad-input behaviour.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,28 +11,15 @@
 #include "../support/cli_run.hpp"
 
 using needlekit::test::CliRun;
+using needlekit::test::kExamples;
 using needlekit::test::file_text;
-using needlekit::test::run_cli;
 using testing::HasSubstr;
 
 namespace {
 
-const std::string kExamples = std::string(NEEDLEKIT_SOURCE_DIR) + "/examples/";
-
-class IndentCli : public testing::Test {
+class IndentCli : public needlekit::test::CliTest {
 protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("needlekit-indent-" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  CliRun run(const std::string& arguments) const { return run_cli(dir_, arguments); }
-
-  std::filesystem::path dir_;
+  IndentCli() : CliTest("indent") {}
 };
 
 // Quick mode: a coarse mesh (50 um at the punch, a/2.3; 800 um far) and one 10 um step. Sneddon's half-space force

@@ -2,7 +2,6 @@
 // the per-needle CSV, the ParaView files with the meshes' attribution, the Fig 6.25 sweep, and bad input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -22,33 +21,26 @@ namespace {
 
 const std::filesystem::path kRepository = NEEDLEKIT_SOURCE_DIR;
 
-class PatchCli : public testing::Test {
+class PatchCli : public needlekit::test::CliTest {
 protected:
+  PatchCli() : CliTest("patch") {}
   void SetUp() override {
     if (!std::filesystem::exists(kRepository / "../shared/data/meshes/vh_male_head_neck_loop2.obj")) {
       GTEST_SKIP() << "the shared meshes are not beside the repository (../shared/data/meshes)";
     }
-    dir_ = std::filesystem::temp_directory_path() /
-           ("needlekit-patch-" + std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
+    CliTest::SetUp();
   }
-  void TearDown() override {
-    if (!dir_.empty()) std::filesystem::remove_all(dir_);
-  }
-  // Runs the tool in the scratch folder; returns the exit code, stdout in out_, stderr in err_.
-  int run(const std::string& arguments) {
-    const CliRun r = run_cli(dir_, "patch " + arguments);
+  // Runs `needlekit patch ARGUMENTS` in the scratch folder; returns the exit code, stdout in out_, stderr in err_.
+  int run_patch(const std::string& arguments) {
+    const CliRun r = CliTest::run("patch " + arguments);
     out_ = r.out;
     err_ = r.err;
     return r.exit_code;
   }
   nlohmann::json summary(const std::string& example, const std::string& out) {
-    EXPECT_EQ(run((kRepository / "examples" / example).string() + " --json --out " + out), 0) << err_;
+    EXPECT_EQ(run_patch((kRepository / "examples" / example).string() + " --json --out " + out), 0) << err_;
     return nlohmann::json::parse(out_);
   }
-  std::filesystem::path dir_;
   std::string out_, err_;
 };
 
@@ -94,7 +86,7 @@ TEST_F(PatchCli, RigidAndFlexiblePatchesOnTheNeck_Section_6_4_1) {
 }
 
 TEST_F(PatchCli, SpringEnergySweepOnTheNeck_Figure_6_25) {
-  ASSERT_EQ(run((kRepository / "examples/patch_neck_20mm.toml").string() +
+  ASSERT_EQ(run_patch((kRepository / "examples/patch_neck_20mm.toml").string() +
                 " --sweep max_spring_energy=0.005mJ:0.05mJ:4 --out fig"),
             0)
       << err_;
@@ -139,12 +131,12 @@ TEST_F(PatchCli, BadInputExitsWithCode2AndNoOutput) {
     std::ofstream(dir_ / "case.toml") << text;
   };
   write_case("spring_constant = \"1 N/mm\"", "spring_constant = \"-1 N/mm\"");
-  EXPECT_EQ(run("case.toml --out bad"), 2);
+  EXPECT_EQ(run_patch("case.toml --out bad"), 2);
   EXPECT_THAT(err_, HasSubstr("patch.spring_constant"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad"));
 
   write_case("center_vertex = 2243", "center = [\"0 mm\", \"0 mm\", \"0 mm\"]");
-  EXPECT_EQ(run("case.toml --out bad"), 2);
+  EXPECT_EQ(run_patch("case.toml --out bad"), 2);
   EXPECT_THAT(err_, HasSubstr("from the surface"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad"));
 
@@ -154,11 +146,11 @@ TEST_F(PatchCli, BadInputExitsWithCode2AndNoOutput) {
   const std::string mesh = "../../shared/data/meshes/vh_male_head_neck_loop2.obj";
   text.replace(text.find(mesh), mesh.size(), "fan.obj");
   std::ofstream(dir_ / "case.toml") << text;
-  EXPECT_EQ(run("case.toml --out bad"), 2);
+  EXPECT_EQ(run_patch("case.toml --out bad"), 2);
   EXPECT_THAT(err_, HasSubstr("fan.obj"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad"));
 
-  EXPECT_EQ(run((kRepository / "examples/patch_neck_rigid.toml").string() + " --sweep max_spring_energy=1mJ:2mJ:3"), 2);
+  EXPECT_EQ(run_patch((kRepository / "examples/patch_neck_rigid.toml").string() + " --sweep max_spring_energy=1mJ:2mJ:3"), 2);
   EXPECT_THAT(err_, HasSubstr("needs a flexible patch"));
 }
 

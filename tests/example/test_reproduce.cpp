@@ -25,12 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("needlekit-reproduce-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return needlekit::test::fresh_directory("reproduce-" + name); }
 
 // One unit of the last printed digit, computed here independently of the tool ("42.9" -> 0.1, "1.288e-4" -> 1e-7).
 double last_digit(const std::string& printed) {
