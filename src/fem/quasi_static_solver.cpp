@@ -67,13 +67,6 @@ ContactModel contact_model_from_string(const std::string& t, const std::string& 
   if (t == "surface") return ContactModel::Surface;
   bad_choice(what, t, "\"tip-nodes\" or \"surface\"");
 }
-LinearSolver linear_solver_from_string(const std::string& t, const std::string& what) {
-  if (t == "auto") return LinearSolver::Automatic;
-  if (t == "cholesky") return LinearSolver::Cholesky;
-  if (t == "cholesky-cg") return LinearSolver::CholeskyCg;
-  if (t == "two-grid") return LinearSolver::TwoGrid;
-  bad_choice(what, t, "\"auto\", \"cholesky\", \"cholesky-cg\" or \"two-grid\"");
-}
 BoundaryCondition boundary_condition_from_string(const std::string& t, const std::string& what) {
   if (t == "sides-and-bottom-fixed") return BoundaryCondition::SidesAndBottomFixed;
   if (t == "bottom-fixed") return BoundaryCondition::BottomFixed;
@@ -425,13 +418,22 @@ struct QuasiStaticSolver::Impl {
     return false;
   }
 
+  // `shifted` = `base` with its diagonal raised by the fraction beta (for a tangent that is not positive definite);
+  // the off-diagonal entries of `shifted` are left as they are. The diagonal is the last entry of each column.
+  void shift_diagonal(const std::vector<double>& base, double beta, std::vector<double>& shifted) const {
+    for (size_t c = 0; c + 1 < pattern.column_pointers.size(); ++c) {
+      const auto diagonal = static_cast<size_t>(pattern.column_pointers[c + 1] - 1);
+      shifted[diagonal] = base[diagonal] * (1 + beta);
+    }
+  }
+
   // Solve K du = rhs: CG preconditioned by the last factorization when allowed, else (or on failure) a fresh
   // factorization (with a diagonal shift if K is not positive definite).
   // `forcing`: the relative residual at which CG may stop (inexact Newton); never below linear_tolerance.
   bool factor_and_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
+    if (linear_solver == LinearSolver::TwoGrid) return two_grid_solve(rhs, du, rec, forcing);
     // CG on the old factor, unless the last CG solve cost more than half a factorization: then refactorize now
     // rather than after a failed CG.
-    if (linear_solver == LinearSolver::TwoGrid) return two_grid_solve(rhs, du, rec, forcing);
     const int budget = cg_budget();
     if (linear_solver == LinearSolver::CholeskyCg && have_factor && 2 * last_cg_iterations <= budget) {
       int its = 0;
@@ -452,10 +454,7 @@ struct QuasiStaticSolver::Impl {
       bool ok = false;
       std::vector<double> shifted = values;
       for (double beta : {1e-6, 1e-4, 1e-2, 1e-1, 1.0}) {
-        for (size_t c = 0; c + 1 < pattern.column_pointers.size(); ++c) {
-          const auto pos = static_cast<size_t>(pattern.column_pointers[c + 1] - 1);  // diagonal: last entry of the column
-          shifted[pos] = values[pos] * (1 + beta);
-        }
+        shift_diagonal(values, beta, shifted);
         if (cholesky->factorize(shifted)) {
           ok = true;
           break;
@@ -476,14 +475,13 @@ struct QuasiStaticSolver::Impl {
   static constexpr int kTwoGridMaxIterations = 200;
   bool two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
     const auto multiply_k = [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { multiply(x, y); };
-    const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-      two_grid->apply(r, z, values, multiply_k);
-    };
+    const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { two_grid->apply(r, z, multiply_k); };
     const double tol = std::max(forcing, opt.linear_tolerance);
     int its = 0;
     rec.linear_iterations = 0;
     const bool stale = have_factor && last_cg_iterations <= opt.two_grid_refresh_iterations;
     if (stale) {
+      two_grid->set_smoother_diagonal(values);  // K changed since the last solve; update() sets it itself
       if (cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition)) {
         rec.linear_iterations = last_cg_iterations = its;
         remember(du);
@@ -498,10 +496,7 @@ struct QuasiStaticSolver::Impl {
     if (!ok) {
       const std::vector<double> unshifted = values;
       for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
-        for (size_t c = 0; c + 1 < pattern.column_pointers.size(); ++c) {
-          const auto diagonal = static_cast<size_t>(pattern.column_pointers[c + 1] - 1);
-          values[diagonal] = unshifted[diagonal] * (1 + beta);
-        }
+        shift_diagonal(unshifted, beta, values);
         ok = (have_factor = two_grid->update(values, multiply_k)) &&
              cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
         rec.linear_iterations += its;

@@ -82,8 +82,7 @@ bool TwoGridPreconditioner::update(const std::vector<double>& values, const Mult
   if (!coarse_cholesky_->factorize(coarse_values_)) return false;
 
   // Largest eigenvalue of D^-1 K: Rayleigh quotient after power iterations from a fixed pseudo-random start.
-  inverse_diagonal_.resize(n);
-  for (int64_t c = 0; c < n; ++c) inverse_diagonal_[c] = 1.0 / values[static_cast<size_t>(fine_.column_pointers[static_cast<size_t>(c) + 1] - 1)];
+  set_smoother_diagonal(values);
   Eigen::VectorXd x(n), kx;
   for (int64_t i = 0; i < n; ++i) x[i] = std::sin(1.0 + 12.9898 * static_cast<double>(i));
   double rayleigh = 0;
@@ -115,10 +114,15 @@ void TwoGridPreconditioner::smooth(const Eigen::VectorXd& r, Eigen::VectorXd& x,
   }
 }
 
-void TwoGridPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z, const std::vector<double>& values,
-                                  const Multiply& multiply) {
+void TwoGridPreconditioner::set_smoother_diagonal(const std::vector<double>& values) {
   const int64_t n = static_cast<int64_t>(interpolation_.size());
-  for (int64_t c = 0; c < n; ++c) inverse_diagonal_[c] = 1.0 / values[static_cast<size_t>(fine_.column_pointers[static_cast<size_t>(c) + 1] - 1)];
+  inverse_diagonal_.resize(n);
+  for (int64_t c = 0; c < n; ++c)  // the diagonal is the last entry of each column
+    inverse_diagonal_[c] = 1.0 / values[static_cast<size_t>(fine_.column_pointers[static_cast<size_t>(c) + 1] - 1)];
+}
+
+void TwoGridPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z, const Multiply& multiply) {
+  const int64_t n = static_cast<int64_t>(interpolation_.size());
   // Pre-smoothing.
   smooth(r, z, multiply);
   // Coarse correction of the remaining residual.

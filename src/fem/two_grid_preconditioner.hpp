@@ -41,9 +41,11 @@ public:
   // Rebuilds the coarse operator from K's values and factorizes it, and bounds the smoother's spectrum. False if
   // the coarse operator is not positive definite.
   bool update(const std::vector<double>& values, const Multiply& multiply);
-  // z = B r with the current K (its values give the smoother's diagonal; `multiply` its product).
-  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z, const std::vector<double>& values,
-             const Multiply& multiply);
+  // The smoother's diagonal D from K's values; update() sets it too. Call it when K changed but the coarse operator
+  // is kept.
+  void set_smoother_diagonal(const std::vector<double>& values);
+  // z = B r with the current K (`multiply` its product; the smoother's diagonal as last set).
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z, const Multiply& multiply);
 
   int coarse_dofs() const;
   double coarse_factor_nonzeros() const;

@@ -134,13 +134,13 @@ TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<
 }
 
 // The Gmsh part: geometry, size fields, HXT, conversion to a TetMesh (no quality, no timing).
-LayeredBlockResult gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
+TetMesh gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
   const double u = 1 / kModelUnit;  // m -> model units
   const double w = options.width * u, l = options.length * u;
   const double size_site = options.size_at_site * u, size_far = options.size_far * u;
   const double radius = options.refinement_radius * u;
 
-  LayeredBlockResult result;
+  TetMesh mesh;
   detail::GmshSession session;
   try {
     gmsh::model::add("needlekit_layered_block");
@@ -249,12 +249,12 @@ LayeredBlockResult gmsh_block(const LayeredBlockOptions& options, const std::vec
     detail::GmshSession::set_option({"Mesh.Optimize"}, 1);
     gmsh::model::mesh::generate(3);
 
-    result.mesh = gmsh_tet_mesh(layers, volume_of_layer);
+    mesh = gmsh_tet_mesh(layers, volume_of_layer);
   } catch (...) {
     throw std::runtime_error(fmt::format("layered block: Gmsh failed: {}", detail::gmsh_error_message()));
   }
-  reoriented_count(result.mesh);
-  return result;
+  reoriented_count(mesh);
+  return mesh;
 }
 
 }  // namespace
@@ -270,11 +270,11 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
     coarse.size_far *= 2;
     coarse.size_gradient *= 2;  // the same grading distances
     coarse.thin_layer_size_factor *= 2;
-    UniformRefinement refined = refine_uniformly(gmsh_block(coarse, layers).mesh);
+    UniformRefinement refined = refine_uniformly(gmsh_block(coarse, layers));
     result.mesh = std::move(refined.mesh);
     result.coarse = std::move(refined.coarse);
   } else {
-    result = gmsh_block(options, layers);
+    result.mesh = gmsh_block(options, layers);
   }
   result.quality = layer_quality(result.mesh);
   result.mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

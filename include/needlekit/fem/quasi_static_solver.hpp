@@ -78,8 +78,6 @@ std::string to_string(BoundaryCondition condition);
 MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
-// "auto" | "cholesky" | "cholesky-cg" | "two-grid"
-LinearSolver linear_solver_from_string(const std::string& text, const std::string& what = "linear_solver");
 BoundaryCondition boundary_condition_from_string(const std::string& text, const std::string& what = "boundary");
 
 // A rigid needle. `surface` is closed and outward-oriented, already placed in the tissue frame at zero indenter
