@@ -1,17 +1,11 @@
 #include "needlekit/mesh/uniform_refinement.hpp"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdint>
 
+#include "needlekit/mesh/mesh_validation.hpp"
+
 namespace needlekit::mesh {
-namespace {
-
-double signed_volume(const std::vector<Eigen::Vector3d>& p, const std::array<int, 4>& t) {
-  return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]);
-}
-
-}  // namespace
 
 UniformRefinement refine_uniformly(const TetMesh& coarse) {
   UniformRefinement out;
@@ -76,7 +70,8 @@ UniformRefinement refine_uniformly(const TetMesh& coarse) {
     const auto& o = octahedra[best];
     for (int k = 0; k < 4; ++k) children[4 + k] = {o[0], o[1], o[2 + k], o[2 + (k + 1) % 4]};
     for (auto& child : children) {
-      if (signed_volume(fine.nodes, child) < 0) std::swap(child[2], child[3]);
+      const auto& p = fine.nodes;
+      if (signed_volume(p[child[0]], p[child[1]], p[child[2]], p[child[3]]) < 0) std::swap(child[2], child[3]);
       fine.tets.push_back(child);
       fine.tet_layer.push_back(coarse.tet_layer[e]);
     }

@@ -2,7 +2,6 @@
 // its midpoint, parentage as the two-grid solver reads it, and bounded shape degradation over repeated splitting.
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <set>
 
@@ -16,9 +15,8 @@ using namespace needlekit::mesh;
 namespace {
 
 double volume(const TetMesh& m, size_t e) {
-  const auto& p = m.nodes;
   const auto& t = m.tets[e];
-  return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]) / 6;
+  return signed_volume(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]);
 }
 
 double min_quality(const TetMesh& m) { return tet_mesh_check(m).min_quality; }
