@@ -1,5 +1,5 @@
 // Benchmarks of patch fitting (issue 5, dissertation ch. 5, §6.4) on the 240k-triangle head-and-neck mesh
-// (../shared/data/meshes, Visible Human Male skin, HuBMAP CCF, CC BY 4.0). Run: build/bin/needlekit_bench
+// (data/meshes, Visible Human Male skin, HuBMAP CCF, CC BY 4.0). Run: build/bin/needlekit_bench
 //   --benchmark_filter=Patch
 #include <benchmark/benchmark.h>
 
@@ -15,7 +15,7 @@ using namespace needlekit::patch;
 namespace {
 
 const std::filesystem::path kNeck =
-    std::filesystem::path(NEEDLEKIT_SOURCE_DIR) / "../shared/data/meshes/vh_male_head_neck_loop2.obj";
+    std::filesystem::path(NEEDLEKIT_SOURCE_DIR) / "data/meshes/vh_male_head_neck_loop2.obj";
 constexpr int kAnteriorNeck = 2243;
 
 const geometry::SurfaceMesh* neck() {

@@ -19,7 +19,7 @@ using namespace needlekit::geometry;
 
 namespace {
 
-const std::filesystem::path kNeck = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes/vh_male_head_neck_loop2.obj";
+const std::filesystem::path kNeck = NEEDLEKIT_SOURCE_DIR "/data/meshes/vh_male_head_neck_loop2.obj";
 constexpr int kAnteriorNeck = 2243;  // README's suggested patch centre
 
 const SurfaceMesh* neck() {

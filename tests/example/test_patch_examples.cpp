@@ -25,9 +25,8 @@ class PatchCli : public needlekit::test::CliTest {
 protected:
   PatchCli() : CliTest("patch") {}
   void SetUp() override {
-    if (!std::filesystem::exists(kRepository / "../shared/data/meshes/vh_male_head_neck_loop2.obj")) {
-      GTEST_SKIP() << "the shared meshes are not beside the repository (../shared/data/meshes)";
-    }
+    ASSERT_TRUE(std::filesystem::exists(kRepository / "data/meshes/vh_male_head_neck_loop2.obj"))
+        << "the repository's body meshes (data/meshes) are missing";
     CliTest::SetUp();
   }
   // Runs `needlekit patch ARGUMENTS` in the scratch folder; returns the exit code, stdout in out_, stderr in err_.
@@ -126,8 +125,8 @@ TEST_F(PatchCli, BadInputExitsWithCode2AndNoOutput) {
   auto write_case = [&](const std::string& from, const std::string& to) {
     std::string text = base;
     text.replace(text.find(from), from.size(), to);
-    const std::string mesh = "mesh = \"../../shared/data/meshes/";
-    text.replace(text.find(mesh), mesh.size(), "mesh = \"" + (kRepository / "../shared/data/meshes/").string());
+    const std::string mesh = "mesh = \"../data/meshes/";
+    text.replace(text.find(mesh), mesh.size(), "mesh = \"" + (kRepository / "data/meshes/").string());
     std::ofstream(dir_ / "case.toml") << text;
   };
   write_case("spring_constant = \"1 N/mm\"", "spring_constant = \"-1 N/mm\"");
@@ -143,7 +142,7 @@ TEST_F(PatchCli, BadInputExitsWithCode2AndNoOutput) {
   // A non-manifold surface: three triangles on one edge.
   std::ofstream(dir_ / "fan.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
   std::string text = base;
-  const std::string mesh = "../../shared/data/meshes/vh_male_head_neck_loop2.obj";
+  const std::string mesh = "../data/meshes/vh_male_head_neck_loop2.obj";
   text.replace(text.find(mesh), mesh.size(), "fan.obj");
   std::ofstream(dir_ / "case.toml") << text;
   EXPECT_EQ(run_patch("case.toml --out bad"), 2);

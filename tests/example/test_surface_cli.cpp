@@ -103,8 +103,8 @@ TEST(SurfaceCli, RefusesUnusableMeshesWithOneLineAndExitCode2) {
 }
 
 TEST(SurfaceCli, ReadsTheSkullInItsArbitraryUnits) {
-  const std::filesystem::path file = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes/skull_yahoojapan_10k.obj";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared mesh " << file;
+  const std::filesystem::path file = NEEDLEKIT_SOURCE_DIR "/data/meshes/skull_yahoojapan_10k.obj";
+  ASSERT_TRUE(std::filesystem::exists(file)) << "missing repository mesh " << file;
   const auto [code, out] = run_cli("surface '" + file.string() + "' --unit '15.8 mm' --json");
   ASSERT_EQ(code, 0) << out;
   const auto report = nlohmann::json::parse(out);

@@ -385,8 +385,8 @@ TEST(ReadTriangleMesh, RefusesPolygonsBadIndicesAndUnknownFormatsNamingTheFile) 
 }
 
 TEST(ReadTriangleMesh, RealMeshesHaveTheCountsOfTheirReadme) {
-  const std::filesystem::path dir = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes";
-  if (!std::filesystem::exists(dir / "README.md")) GTEST_SKIP() << "no shared meshes at " << dir;
+  const std::filesystem::path dir = NEEDLEKIT_SOURCE_DIR "/data/meshes";
+  ASSERT_TRUE(std::filesystem::exists(dir / "README.md")) << "missing repository mesh " << dir / "README.md";
   struct Expected {
     const char* file;
     std::size_t triangles, vertices;

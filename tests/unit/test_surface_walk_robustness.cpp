@@ -18,7 +18,7 @@ using geometry::SurfaceMesh;
 
 namespace {
 
-const std::filesystem::path kMeshes = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes";
+const std::filesystem::path kMeshes = NEEDLEKIT_SOURCE_DIR "/data/meshes";
 
 void expect_path_invariants(const SurfaceMesh& s, const geometry::SurfacePath& path, double length) {
   double travelled = 0;
@@ -50,7 +50,7 @@ TEST(SurfaceWalkRobustness, RandomTracesOnTheSkullAndNeckKeepTheirInvariants) {
   for (const auto& [file, unit, length] : {std::tuple{"skull_yahoojapan_10k.obj", 15.8e-3, 0.02},
                                            std::tuple{"vh_male_head_neck_loop2.obj", 1.0, 0.05}}) {
     const auto path = kMeshes / file;
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "no shared mesh " << path;
+    ASSERT_TRUE(std::filesystem::exists(path)) << "missing repository mesh " << path;
     const SurfaceMesh s(geometry::read_triangle_mesh(path, unit));
     std::mt19937 rng(11);
     std::uniform_int_distribution<int> triangle(0, s.triangle_count() - 1);
@@ -77,7 +77,7 @@ TEST(SurfaceWalkRobustness, RandomTracesOnTheSkullAndNeckKeepTheirInvariants) {
 
 TEST(SurfaceWalkRobustness, TracesAlongEdgesAndThroughVerticesOfTheSkull) {
   const auto file = kMeshes / "skull_yahoojapan_10k.obj";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared mesh " << file;
+  ASSERT_TRUE(std::filesystem::exists(file)) << "missing repository mesh " << file;
   const SurfaceMesh s(geometry::read_triangle_mesh(file, 15.8e-3));
   const auto& tris = s.mesh().triangles;
   const auto& v = s.mesh().vertices;
@@ -105,7 +105,7 @@ TEST(SurfaceWalkRobustness, TracesAlongEdgesAndThroughVerticesOfTheSkull) {
 
 TEST(SurfaceWalkRobustness, GeodesicDistancesOnTheSkullConvergeAndAreBounded) {
   const auto file = kMeshes / "skull_yahoojapan_10k.obj";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared mesh " << file;
+  ASSERT_TRUE(std::filesystem::exists(file)) << "missing repository mesh " << file;
   const SurfaceMesh s(geometry::read_triangle_mesh(file, 15.8e-3));
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);

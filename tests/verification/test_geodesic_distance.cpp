@@ -140,8 +140,8 @@ TEST(GeodesicDistance, RunsBesideCubeCornersNotThroughThem) {
 }
 
 TEST(GeodesicDistance, IsSymmetricAndAboveTheChordOnTheNeck) {
-  const std::filesystem::path file = NEEDLEKIT_SOURCE_DIR "/../shared/data/meshes/vh_male_head_neck_loop2.obj";
-  if (!std::filesystem::exists(file)) GTEST_SKIP() << "no shared mesh " << file;
+  const std::filesystem::path file = NEEDLEKIT_SOURCE_DIR "/data/meshes/vh_male_head_neck_loop2.obj";
+  ASSERT_TRUE(std::filesystem::exists(file)) << "missing repository mesh " << file;
   const SurfaceMesh neck(geometry::read_triangle_mesh(file, 1.0));
   const Eigen::Vector3d centre = neck.mesh().vertices[2243];  // anterior neck (README)
   const Eigen::Vector3d n = neck.vertex_normal(2243);
