@@ -3,7 +3,15 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include "needlekit/core/exit_codes.hpp"
+
 namespace needlekit::cli {
+
+// Thrown by a command's callback after it has printed and written everything it kept, to end the process with a
+// non-zero code other than bad input (a numerical failure: 3; interrupted: 130). main() returns exit_code.
+struct CommandOutcome {
+  ExitCode exit_code;
+};
 
 void add_evaluate_command(CLI::App& app);   // command_evaluate.cpp
 void add_optimize_command(CLI::App& app);   // command_optimize.cpp

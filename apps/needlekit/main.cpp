@@ -1,5 +1,7 @@
 // needlekit command-line tool: parses the subcommand and turns library exceptions into messages and exit codes:
-// 0 success, 2 bad input (InvalidInput, IoError, command-line errors), 1 an unexpected internal error.
+// needlekit::ExitCode (core/exit_codes.hpp): 0 success, 2 bad input (InvalidInput, IoError, command-line errors),
+// 3 a numerical failure whose results were kept (a command throws cli::CommandOutcome after writing them),
+// 130 interrupted, 1 an unexpected internal error.
 #include <fmt/format.h>
 
 #include <exception>
@@ -8,6 +10,10 @@
 #include "needlekit/core/errors.hpp"
 
 namespace {
+
+using needlekit::ExitCode;
+
+int code(ExitCode exit_code) { return static_cast<int>(exit_code); }
 
 int report_error(std::string_view kind, std::string_view message, int exit_code) {
   fmt::print(stderr, "needlekit: {}: {}\n", kind, message);
@@ -38,13 +44,15 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     if (error.get_exit_code() == 0) return app.exit(error);  // --help
-    return report_error("error", fmt::format("{} (see needlekit --help)", error.what()), 2);
+    return report_error("error", fmt::format("{} (see needlekit --help)", error.what()), code(ExitCode::InvalidInput));
+  } catch (const needlekit::cli::CommandOutcome& outcome) {
+    return code(outcome.exit_code);
   } catch (const needlekit::InvalidInput& error) {
-    return report_error("error", error.what(), 2);
+    return report_error("error", error.what(), code(ExitCode::InvalidInput));
   } catch (const needlekit::IoError& error) {
-    return report_error("error", error.what(), 2);
+    return report_error("error", error.what(), code(ExitCode::InvalidInput));
   } catch (const std::exception& error) {
-    return report_error("internal error", error.what(), 1);
+    return report_error("internal error", error.what(), code(ExitCode::InternalError));
   }
-  return 0;
+  return code(ExitCode::Success);
 }
