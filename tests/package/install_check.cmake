@@ -1,5 +1,7 @@
 # Installs the built needlekit into a scratch prefix, then configures, builds and runs a consumer project that uses
-# find_package(needlekit). Arguments: -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=...
+# find_package(needlekit) (and meshes, through the installed Gmsh module), and runs the installed tool on a command
+# that meshes: both must open the module installed in the prefix. Arguments: -DBUILD_DIR=... -DSOURCE_DIR=...
+# -DWORK_DIR=...
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
                 RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -16,8 +18,29 @@ execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIAB
 if(rc)
   message(FATAL_ERROR "building the consumer failed:\n${out}\n${err}")
 endif()
-execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE rc)
+# Each program must open the Gmsh module of the prefix (LD_DEBUG=files: the loader names the module that needs
+# libgmsh).
+function(expect_module_from_prefix what log)
+  string(REGEX MATCH "file=libgmsh[^\n]*needed by ([^\n ]*libneedlekit_gmsh[^\n ]*)" found "${log}")
+  if(NOT found OR NOT CMAKE_MATCH_1 MATCHES "^${WORK_DIR}/prefix/")
+    message(FATAL_ERROR "${what} did not open the Gmsh module installed in ${WORK_DIR}/prefix (opened: "
+                        "'${CMAKE_MATCH_1}')")
+  endif()
+endfunction()
+execute_process(COMMAND ${CMAKE_COMMAND} -E env LD_DEBUG=files ${WORK_DIR}/build/consumer
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE log)
 if(rc)
-  message(FATAL_ERROR "the consumer computed a wrong performance index (exit ${rc})")
+  message(FATAL_ERROR "the consumer computed a wrong performance index or mesh (exit ${rc}):\n${out}")
 endif()
-message(STATUS "find_package(needlekit) consumer: ok")
+expect_module_from_prefix("the consumer" "${log}")
+file(WRITE ${WORK_DIR}/block.toml "[tissue]\nwidth = \"1000 um\"\nlength = \"1000 um\"\nheight = \"500 um\"\n"
+     "[[tissue.layers]]\nname = \"silicone\"\nthickness = \"rest\"\nyoungs_modulus = \"0.2 MPa\"\n"
+     "poisson_ratio = 0.45\n[mesh]\nsize_at_tip = \"100 um\"\nsize_far = \"250 um\"\n")
+execute_process(COMMAND ${CMAKE_COMMAND} -E env LD_DEBUG=files ${WORK_DIR}/prefix/bin/needlekit tissue-mesh
+                        ${WORK_DIR}/block.toml --threads 1 --out ${WORK_DIR}/tool_out
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE log)
+if(rc OR NOT EXISTS ${WORK_DIR}/tool_out/tissue.vtu)
+  message(FATAL_ERROR "the installed needlekit tissue-mesh failed (exit ${rc}):\n${out}")
+endif()
+expect_module_from_prefix("the installed needlekit" "${log}")
+message(STATUS "find_package(needlekit) consumer and installed tool (with the Gmsh module): ok")
