@@ -2,10 +2,18 @@
 // material tangent dS/dE as functions of the deformation gradient F, with the strain energy density W.
 #pragma once
 #include <Eigen/Core>
-
-#include "needlekit/fem/quasi_static_solver.hpp"
+#include <string>
 
 namespace needlekit::fem {
+
+enum class MaterialLaw {
+  StVenantKirchhoff,  // S = λ tr(E) I + 2μ E: the dissertation's S = D E (Eqs 3.3-3.5, notes' corrections).
+                      // Softens and can fail under large compression.
+  NeoHookean,         // compressible: W = μ/2 (I1 - 3) - μ ln J + λ/2 (ln J)^2; same small-strain limit.
+};
+std::string to_string(MaterialLaw law);
+// Parse "svk" | "st-venant-kirchhoff", "neo-hookean". Throws InvalidInput naming `what`.
+MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 
 struct LameConstants {
   double lambda = 0;  // Pa

@@ -32,17 +32,13 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/fem/hyperelastic_law.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 #include "needlekit/mesh/uniform_refinement.hpp"
 
 namespace needlekit::fem {
 
-enum class MaterialLaw {
-  StVenantKirchhoff,  // S = λ tr(E) I + 2μ E: the dissertation's S = D E (Eqs 3.3-3.5, notes' corrections).
-                      // Softens and can fail under large compression.
-  NeoHookean,         // compressible: W = μ/2 (I1 - 3) - μ ln J + λ/2 (ln J)^2; same small-strain limit.
-};
 enum class ElementOrder {
   Linear,     // 4-node tetrahedra (the dissertation's); lock for nu -> 0.5
   Quadratic,  // 10-node tetrahedra (mid-edge nodes added), 4-point Gauss rule: the locking-free option
@@ -67,15 +63,13 @@ enum class BoundaryCondition {
                           // x = max, y = max and the bottom fixed: a quarter of a centred §3.4 block
 };
 
-std::string to_string(MaterialLaw law);
 std::string to_string(ElementOrder order);
 std::string to_string(ContactModel contact);
 std::string to_string(LinearSolver solver);
 std::string to_string(BoundaryCondition condition);
-// Parse "svk" | "st-venant-kirchhoff", "neo-hookean"; "linear" | "quadratic"; "tip-nodes" | "surface";
+// Parse "linear" | "quadratic"; "tip-nodes" | "surface";
 // "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" |
 // "quarter-symmetry". Throw InvalidInput naming `what`.
-MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
 BoundaryCondition boundary_condition_from_string(const std::string& text, const std::string& what = "boundary");
@@ -141,6 +135,9 @@ struct SolverOptions {
 
   int threads = 0;                       // TBB threads for assembly, 0 = default
   std::function<void(const SolverProgress&)> progress;  // optional
+
+  // Throws InvalidInput naming the first field outside its range ("solver max_iterations = 0: expected >= 1").
+  void validate() const;
 };
 
 // One Newton iteration.
@@ -156,8 +153,20 @@ struct IterationRecord {
   int linear_iterations = 0;     // preconditioned CG iterations (0: direct solve with a fresh factorization)
 };
 
+// How a load step ended. The numerical failures say which part of the solver gave way.
+enum class StepStatus {
+  Converged,            // the target displacement was reached
+  InvertedElement,      // every cut-back still inverted an element (J <= 0 at a quadrature point)
+  IterationLimit,       // Newton did not reach the tolerances within max_iterations (or the residual was not finite)
+  LinearSolverFailure,  // the tangent system could not be solved (factorization or CG failed, also shifted)
+  ContactCycling,       // Newton did not converge while the set of contact nodes kept changing between iterations
+  InvalidTarget,        // the target displacement is not finite
+};
+std::string to_string(StepStatus status);
+
 struct StepResult {
-  bool converged = false;
+  bool converged = false;                // status == StepStatus::Converged
+  StepStatus status = StepStatus::Converged;
   std::string reason;                    // empty when converged; else what failed and at which displacement
   int newton_iterations = 0;             // total over substeps and augmentations
   int cutbacks = 0;

@@ -1,0 +1,157 @@
+#include "boundary_conditions.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/mesh/tet_adjacency.hpp"
+#include "tet_kernel.hpp"
+
+namespace needlekit::fem::detail {
+
+TopSurface top_surface(const mesh::TetMesh& mesh, const FunctionSpace& space, double tol) {
+  const int nnode = static_cast<int>(space.nodes.size());
+  const int nn = space.nodes_per_element;
+  TopSurface top;
+  top.z = space.box_max.z();
+  top.node_area.assign(static_cast<size_t>(nnode), 0.0);
+  top.node_size.assign(static_cast<size_t>(nnode), std::numeric_limits<double>::infinity());
+  std::vector<char> is_top(static_cast<size_t>(nnode), 0);
+  const mesh::BoundarySurface boundary = mesh::boundary_surface(mesh, mesh::tet_topology(mesh));
+  for (size_t f = 0; f < boundary.triangles.size(); ++f) {
+    const auto& k = boundary.triangles[f];
+    if (std::abs(mesh.nodes[k[0]].z() - top.z) > tol || std::abs(mesh.nodes[k[1]].z() - top.z) > tol ||
+        std::abs(mesh.nodes[k[2]].z() - top.z) > tol)
+      continue;
+    const double area = 0.5 * (mesh.nodes[k[1]] - mesh.nodes[k[0]]).cross(mesh.nodes[k[2]] - mesh.nodes[k[0]]).norm();
+    const double h = std::sqrt(2 * area);
+    const int e = boundary.tets[f];
+    std::vector<int> face_nodes(k.begin(), k.end());
+    if (nn == 10) {
+      for (int c = 0; c < 3; ++c) top.node_area[k[c]] += area / 12;  // T6 face: corners A/12, mid-edges A/4
+      for (int ed = 0; ed < 6; ++ed) {
+        const int a = mesh.tets[e][tet_edges[ed][0]], b = mesh.tets[e][tet_edges[ed][1]];
+        if (std::count(k.begin(), k.end(), a) && std::count(k.begin(), k.end(), b)) {
+          const int mid = space.connectivity[static_cast<size_t>(e) * 10 + 4 + ed];
+          top.node_area[mid] += area / 4;
+          face_nodes.push_back(mid);
+        }
+      }
+    } else {
+      for (int c = 0; c < 3; ++c) top.node_area[k[c]] += area / 3;
+    }
+    for (int n : face_nodes) {
+      is_top[n] = 1;
+      top.node_size[n] = std::min(top.node_size[n], h);
+    }
+  }
+  for (int n = 0; n < nnode; ++n)
+    if (is_top[n]) top.nodes.push_back(n);
+  if (top.nodes.empty()) {
+    std::ostringstream s;
+    s << "tissue mesh: no boundary faces on the top surface z = " << top.z << " m";
+    throw InvalidInput(s.str());
+  }
+  return top;
+}
+
+std::vector<char> fixed_dofs(const FunctionSpace& space, BoundaryCondition condition, double tol) {
+  const Eigen::Vector3d& lo = space.box_min;
+  const Eigen::Vector3d& hi = space.box_max;
+  std::vector<char> fixed(3 * space.nodes.size(), 0);
+  for (size_t n = 0; n < space.nodes.size(); ++n) {
+    const auto& p = space.nodes[n];
+    char* f = &fixed[3 * n];
+    const bool bottom = p.z() < lo.z() + tol;
+    const bool side_x = p.x() < lo.x() + tol || p.x() > hi.x() - tol;
+    const bool side_y = p.y() < lo.y() + tol || p.y() > hi.y() - tol;
+    switch (condition) {
+      case BoundaryCondition::SidesAndBottomFixed:
+        if (bottom || side_x || side_y) f[0] = f[1] = f[2] = 1;
+        break;
+      case BoundaryCondition::BottomFixed:
+        if (bottom) f[0] = f[1] = f[2] = 1;
+        break;
+      case BoundaryCondition::BottomFixedSidesRoller:
+        if (bottom) f[0] = f[1] = f[2] = 1;
+        if (side_x) f[0] = 1;
+        if (side_y) f[1] = 1;
+        break;
+      case BoundaryCondition::SymmetryPlanes:
+        if (p.x() < lo.x() + tol) f[0] = 1;
+        if (p.y() < lo.y() + tol) f[1] = 1;
+        if (bottom) f[2] = 1;
+        break;
+      case BoundaryCondition::QuarterSymmetry:
+        if (p.x() < lo.x() + tol) f[0] = 1;
+        if (p.y() < lo.y() + tol) f[1] = 1;
+        if (bottom || p.x() > hi.x() - tol || p.y() > hi.y() - tol) f[0] = f[1] = f[2] = 1;
+        break;
+    }
+  }
+  return fixed;
+}
+
+std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, const geometry::TriangleMesh& needle,
+                           double ntol) {
+  double zmin = std::numeric_limits<double>::infinity();
+  for (const auto& v : needle.vertices) zmin = std::min(zmin, v.z());
+  // Flat tip face: triangles at the lowest level facing down.
+  std::vector<std::array<Eigen::Vector2d, 3>> tip;
+  for (const auto& t : needle.triangles) {
+    const auto &a = needle.vertices[t[0]], &b = needle.vertices[t[1]], &c = needle.vertices[t[2]];
+    if (a.z() > zmin + ntol || b.z() > zmin + ntol || c.z() > zmin + ntol) continue;
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() == 0 || n.normalized().z() > -0.999) continue;
+    tip.push_back({a.head<2>(), b.head<2>(), c.head<2>()});
+  }
+  std::vector<int> nodes;
+  for (int n : top.nodes) {
+    const Eigen::Vector2d p = space.nodes[n].head<2>();
+    for (const auto& t : tip) {
+      const Eigen::Vector2d e1 = t[1] - t[0], e2 = t[2] - t[0], w = p - t[0];
+      const double det = e1.x() * e2.y() - e1.y() * e2.x();
+      const double s = (w.x() * e2.y() - w.y() * e2.x()) / det, r = (e1.x() * w.y() - e1.y() * w.x()) / det;
+      const double eps = 1e-7;
+      if (s >= -eps && r >= -eps && s + r <= 1 + eps) {
+        nodes.push_back(n);
+        break;
+      }
+    }
+  }
+  if (nodes.empty()) {  // sharp tip: the top node nearest to the apex
+    Eigen::Vector2d apex = Eigen::Vector2d::Zero();
+    for (const auto& v : needle.vertices)
+      if (v.z() <= zmin + ntol) {
+        apex = v.head<2>();
+        break;
+      }
+    int best = top.nodes[0];
+    for (int n : top.nodes)
+      if ((space.nodes[n].head<2>() - apex).norm() < (space.nodes[best].head<2>() - apex).norm()) best = n;
+    nodes.push_back(best);
+  }
+  return nodes;
+}
+
+DofMap dof_map(const std::vector<char>& fixed, const std::vector<std::vector<int>>& tip_nodes_per_needle) {
+  DofMap map;
+  const int ndof = static_cast<int>(fixed.size());
+  map.tip_dof.assign(fixed.size(), 0);
+  for (const auto& nodes : tip_nodes_per_needle)
+    for (int a : nodes)
+      if (!fixed[3 * a + 2]) map.tip_dof[3 * a + 2] = 1;
+  map.free_index.assign(fixed.size(), -1);
+  for (int dof = 0; dof < ndof; ++dof)
+    if (!fixed[dof] && !map.tip_dof[dof]) {
+      map.free_index[dof] = static_cast<int>(map.free_dofs.size());
+      map.free_dofs.push_back(dof);
+    }
+  return map;
+}
+
+}  // namespace needlekit::fem::detail

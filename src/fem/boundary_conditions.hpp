@@ -1,0 +1,44 @@
+// Internal: the tissue block's boundary conditions (dissertation §3.4: sides and bottom fixed, top free, or the
+// variants of BoundaryCondition), its top surface (contact candidates with their lumped areas), the nodes under a
+// needle's flat tip (Eqs 3.9-3.12) and the resulting split of the degrees of freedom into free and prescribed ones.
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+#include "function_space.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::fem::detail {
+
+// The nodes on the top surface z = z_top: the corners and (quadratic) mid-edge nodes of the boundary faces of the
+// corner mesh (mesh::boundary_surface) lying in that plane.
+struct TopSurface {
+  double z = 0;                      // m, the top plane (the mesh's largest z)
+  std::vector<int> nodes;            // ascending
+  std::vector<double> node_area;     // per node of the function space: lumped area, m^2 (linear: A/3 per corner;
+                                     // T6 faces: corners A/12, mid-edges A/4); 0 off the top
+  std::vector<double> node_size;     // per node: smallest sqrt(2 A) of its top faces, m (inf off the top)
+};
+// Throws InvalidInput when no boundary face lies on the top plane. `tolerance`: m, distance from the plane.
+TopSurface top_surface(const mesh::TetMesh& mesh, const FunctionSpace& space, double tolerance);
+
+// Per dof (3 * node + component): 1 when the boundary condition fixes it, on the faces of the bounding box within
+// `tolerance` (m).
+std::vector<char> fixed_dofs(const FunctionSpace& space, BoundaryCondition condition, double tolerance);
+
+// The top nodes under a needle's flat tip (§3.4): those whose (x, y) lie in the needle's outline at its lowest level
+// (the downward-facing triangles there, within `tolerance` in the plane), for a sharp tip the top node nearest the
+// apex. The needle must point along -z.
+std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, const geometry::TriangleMesh& needle,
+                           double tolerance);
+
+// Free degrees of freedom: neither fixed nor prescribed by a needle tip.
+struct DofMap {
+  std::vector<int> free_index;  // per dof: index among the free dofs, or -1
+  std::vector<int> free_dofs;   // ascending
+  std::vector<char> tip_dof;    // per dof: 1 when a needle tip prescribes it (z of a free tip node)
+};
+DofMap dof_map(const std::vector<char>& fixed, const std::vector<std::vector<int>>& tip_nodes_per_needle);
+
+}  // namespace needlekit::fem::detail

@@ -1,0 +1,162 @@
+#include "function_space.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/fem/tet_element.hpp"
+#include "tet_kernel.hpp"
+
+namespace needlekit::fem::detail {
+namespace {
+
+template <class T>
+std::string str(T v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void check(bool ok, const std::string& message) {
+  if (!ok) throw InvalidInput(message);
+}
+
+// Greedy colouring: each element takes the first colour none of its nodes has yet (at most 256).
+std::vector<std::vector<int>> element_colors(const std::vector<int>& connectivity, int nodes_per_element,
+                                             int node_count) {
+  const size_t ne = connectivity.size() / static_cast<size_t>(nodes_per_element);
+  std::vector<std::array<uint64_t, 4>> used(static_cast<size_t>(node_count), {0, 0, 0, 0});
+  std::vector<int> color(ne);
+  int ncolor = 0;
+  for (size_t e = 0; e < ne; ++e) {
+    std::array<uint64_t, 4> mask{0, 0, 0, 0};
+    for (int a = 0; a < nodes_per_element; ++a)
+      for (int w = 0; w < 4; ++w) mask[w] |= used[connectivity[e * nodes_per_element + a]][w];
+    int c = -1;
+    for (int w = 0; w < 4 && c < 0; ++w)
+      if (~mask[w]) c = 64 * w + __builtin_ctzll(~mask[w]);
+    if (c < 0) c = 255;  // cannot happen for valid tetrahedral meshes (< 256 elements per node pair set)
+    color[e] = c;
+    ncolor = std::max(ncolor, c + 1);
+    for (int a = 0; a < nodes_per_element; ++a)
+      used[connectivity[e * nodes_per_element + a]][c / 64] |= uint64_t{1} << (c % 64);
+  }
+  std::vector<std::vector<int>> colors(static_cast<size_t>(ncolor));
+  for (size_t e = 0; e < ne; ++e) colors[static_cast<size_t>(color[e])].push_back(static_cast<int>(e));
+  return colors;
+}
+
+}  // namespace
+
+void validate_tissue_mesh(const mesh::TetMesh& mesh) {
+  check(!mesh.nodes.empty() && !mesh.tets.empty(), "tissue mesh: no nodes or no tetrahedra");
+  check(mesh.tet_layer.size() == mesh.tets.size(), "tissue mesh: tet_layer has " + str(mesh.tet_layer.size()) +
+        " entries for " + str(mesh.tets.size()) + " tetrahedra");
+  for (size_t l = 0; l < mesh.layers.size(); ++l) {
+    const auto& L = mesh.layers[l];
+    check(L.youngs_modulus > 0 && std::isfinite(L.youngs_modulus),
+          "tissue layer \"" + L.name + "\": youngs_modulus = " + str(L.youngs_modulus) + " Pa, expected > 0");
+    check(L.poisson_ratio > -1 && L.poisson_ratio < 0.5,
+          "tissue layer \"" + L.name + "\": poisson_ratio = " + str(L.poisson_ratio) + ", expected (-1, 0.5)");
+  }
+  const int n0 = static_cast<int>(mesh.nodes.size());
+  for (size_t e = 0; e < mesh.tets.size(); ++e) {
+    const auto& t = mesh.tets[e];
+    // (Messages are built only on failure: building them for every element took 2 s at 300k tetrahedra.)
+    for (int a : t)
+      if (a < 0 || a >= n0)
+        throw InvalidInput("tissue mesh: tetrahedron " + str(e) + " has node index " + str(a) + " outside [0, " +
+                           str(n0) + ")");
+    if (mesh.tet_layer[e] < 0 || mesh.tet_layer[e] >= static_cast<int>(mesh.layers.size()))
+      throw InvalidInput("tissue mesh: tetrahedron " + str(e) + " has layer " + str(mesh.tet_layer[e]) +
+                         " but the mesh has " + str(mesh.layers.size()) + " layers");
+    const auto& p = mesh.nodes;
+    const double v = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]) / 6;
+    double lmax = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) lmax = std::max(lmax, (p[t[i]] - p[t[j]]).norm());
+    if (!(v > 1e-10 * lmax * lmax * lmax))
+      throw InvalidInput("tissue mesh: tetrahedron " + str(e) + " is " + (v < 0 ? "inverted" : "degenerate") +
+                         " (volume " + str(v) + " m^3, longest edge " + str(lmax) + " m)");
+  }
+}
+
+FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
+  FunctionSpace fs;
+  const int nn = fs.nodes_per_element = order == ElementOrder::Quadratic ? 10 : 4;
+  const int nq = fs.points = nn == 4 ? 1 : 4;
+  const int n0 = static_cast<int>(mesh.nodes.size());
+  fs.box_min = fs.box_max = mesh.nodes[0];
+  for (const auto& p : mesh.nodes) {
+    fs.box_min = fs.box_min.cwiseMin(p);
+    fs.box_max = fs.box_max.cwiseMax(p);
+  }
+  fs.nodes = mesh.nodes;
+  const size_t ne = mesh.tets.size();
+  fs.connectivity.resize(ne * nn);
+  for (size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 4; ++a) fs.connectivity[e * nn + a] = mesh.tets[e][a];
+  if (nn == 10) {  // one mid-edge node per edge, numbered in the order of the sorted edge keys
+    fs.corners.nodes = n0;
+    fs.corners.tets = mesh.tets;
+    fs.corners.node_parents.resize(static_cast<size_t>(n0));
+    for (int a = 0; a < n0; ++a) fs.corners.node_parents[static_cast<size_t>(a)] = {a, a};
+    std::vector<std::pair<int64_t, int>> edge_keys;  // (key, tet*6+k)
+    edge_keys.reserve(ne * 6);
+    for (size_t e = 0; e < ne; ++e)
+      for (int k = 0; k < 6; ++k) {
+        int a = mesh.tets[e][tet_edges[k][0]], b = mesh.tets[e][tet_edges[k][1]];
+        if (a > b) std::swap(a, b);
+        edge_keys.emplace_back(static_cast<int64_t>(a) * n0 + b, static_cast<int>(e * 6 + k));
+      }
+    std::sort(edge_keys.begin(), edge_keys.end());
+    int64_t prev = -1;
+    int id = n0 - 1;
+    for (const auto& [key, slot] : edge_keys) {
+      if (key != prev) {
+        ++id;
+        prev = key;
+        const int a = static_cast<int>(key / n0), b = static_cast<int>(key % n0);
+        fs.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
+        fs.corners.node_parents.push_back({a, b});
+      }
+      fs.connectivity[static_cast<size_t>(slot / 6) * 10 + 4 + slot % 6] = id;
+    }
+  }
+  const int nnode = static_cast<int>(fs.nodes.size());
+  fs.elements.resize(ne);
+  fs.lame.resize(ne);
+  fs.volumes.resize(ne);
+  fs.gradients.resize(ne * nq * 3 * nn);
+  fs.weights.resize(ne * nq);
+  fs.node_youngs_modulus.assign(static_cast<size_t>(nnode), 0.0);
+  double vol_sum = 0, e_sum = 0;
+  for (size_t e = 0; e < ne; ++e) {
+    std::vector<Eigen::Vector3d> x(static_cast<size_t>(nn));
+    fs.elements[e].assign(fs.connectivity.begin() + e * nn, fs.connectivity.begin() + (e + 1) * nn);
+    for (int a = 0; a < nn; ++a) x[a] = fs.nodes[fs.connectivity[e * nn + a]];
+    const auto geo = element_geometry(x);
+    for (int q = 0; q < nq; ++q) {
+      fs.weights[e * nq + q] = geo.weights[q];
+      std::copy(geo.gradients[q].data(), geo.gradients[q].data() + 3 * nn, &fs.gradients[(e * nq + q) * 3 * nn]);
+    }
+    const auto& layer = mesh.layers[mesh.tet_layer[e]];
+    fs.lame[e] = lame_constants(layer.youngs_modulus, layer.poisson_ratio);
+    fs.volumes[e] = geo.volume;
+    vol_sum += geo.volume;
+    e_sum += layer.youngs_modulus * geo.volume;
+    for (int a = 0; a < nn; ++a) {
+      double& node_e = fs.node_youngs_modulus[fs.connectivity[e * nn + a]];
+      node_e = std::max(node_e, layer.youngs_modulus);
+    }
+  }
+  fs.mean_youngs_modulus = e_sum / vol_sum;
+  fs.mean_element_size = std::cbrt(6 * std::sqrt(2.0) * vol_sum / ne);
+  fs.colors = element_colors(fs.connectivity, nn, nnode);
+  return fs;
+}
+
+}  // namespace needlekit::fem::detail

@@ -1,0 +1,262 @@
+// Load steps of the quasi-static solver: the predictor (linearised elastic solution, §3.4, or the secant
+// extrapolation of the last step), Newton's method with a backtracking line search on the total potential energy,
+// the augmented-Lagrangian loop of surface contact, and the cut-back of failed steps.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "quasi_static_solver_impl.hpp"
+
+namespace needlekit::fem {
+namespace {
+
+// Inexact Newton: CG's relative tolerance for the first Newton iteration of a (sub)step and for the linearised
+// predictor (a looser predictor costs Newton iterations: at 0.1, two-grid CG stopped after one iteration and the
+// first step of a nearly incompressible T10 punch took 6 Newton solves instead of 5), and its upper bound.
+constexpr double kFirstForcing = 1e-3;
+constexpr double kMaxForcing = 1e-1;
+
+std::string fmt_um(double m) {
+  std::ostringstream s;
+  s.precision(6);
+  s << m * 1e6 << " um";
+  return s.str();
+}
+
+// Adds a finished iteration to the step's record.
+void book(const IterationRecord& rec, StepResult& res) {
+  res.iterations.push_back(rec);
+  res.newton_iterations++;
+  res.assembly_seconds += rec.assembly_seconds;
+  res.solve_seconds += rec.solve_seconds;
+}
+
+}  // namespace
+
+// One iteration's linear solve (predictor or Newton), timed and counted into `rec` and `res`.
+bool QuasiStaticSolver::Impl::solve_iteration(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
+                                              double forcing, StepResult& res, Failure& failure) {
+  const auto t0 = Clock::now();
+  if (!system->solve(rhs, du, rec, forcing)) {
+    failure = {StepStatus::LinearSolverFailure,
+               system->solver() == LinearSolver::TwoGrid
+                   ? "the tangent system could not be solved (two-grid CG failed, also with a diagonal shift)"
+                   : "the tangent matrix could not be factorized"};
+    return false;
+  }
+  rec.solve_seconds = seconds_since(t0);
+  rec.increment_norm = du.norm();
+  if (rec.factorized) res.factorizations++;
+  return true;
+}
+
+// Newton with backtracking line search at fixed needle displacement `disp` (and fixed multipliers).
+bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& failure, int cutbacks_so_far) {
+  const double tiny = 1e-14 * space.mean_youngs_modulus * space.mean_element_size * space.mean_element_size;
+  double first_energy_norm = 0, last_du = std::numeric_limits<double>::infinity(), last_en = last_du;
+  // Forces and tangent at u: assembled here for the first iteration, afterwards by the line search's full-step
+  // trial when that step is accepted (the usual case), so an accepted full step costs one assembly, not two.
+  bool assembled = false;
+  double carried_assembly_seconds = 0, previous_residual = 0;
+  // Surface contact: the iteration at which the set of nodes in contact last changed (contact cycling when Newton
+  // fails while it keeps changing).
+  size_t active_set = contact ? contact->active_set_fingerprint() : 0;
+  int last_set_change = 0;
+  Eval ev;
+  for (int it = 1; it <= opt.max_iterations + 1; ++it) {
+    IterationRecord rec;
+    auto t0 = Clock::now();
+    if (!assembled) ev = evaluate(u, disp, true, true);
+    rec.assembly_seconds = assembled ? carried_assembly_seconds : seconds_since(t0);
+    assembled = false;
+    if (!ev.valid) {
+      failure = {StepStatus::InvertedElement, "an element inverted (J <= 0)"};
+      return false;
+    }
+    if (contact) {
+      const size_t now = contact->active_set_fingerprint();
+      if (now != active_set) last_set_change = it;
+      active_set = now;
+    }
+    const Eigen::VectorXd r = free_residual();
+    rec.residual_norm = r.norm();
+    if (!std::isfinite(rec.residual_norm)) {
+      failure = {StepStatus::IterationLimit, "the residual is not finite"};
+      return false;
+    }
+    const double ref = std::max({fint.norm(), opt.contact == ContactModel::Surface ? fcontact.norm() : 0.0, tiny});
+    double unorm = 0;
+    for (int dof : dofs.free_dofs) unorm += u[dof] * u[dof];
+    unorm = std::sqrt(unorm);
+    const bool res_ok = rec.residual_norm <= opt.residual_tolerance * ref;
+    const bool disp_ok = last_du <= opt.displacement_tolerance * std::max(unorm, 1e-300);
+    const bool energy_ok = it > 1 && last_en <= opt.energy_tolerance * first_energy_norm;
+    if (rec.residual_norm <= tiny * 1e-6 || (res_ok && (disp_ok || energy_ok))) return true;
+    if (it > opt.max_iterations) {
+      const std::string residual = "(residual " + std::to_string(rec.residual_norm / ref) + " of the force scale)";
+      if (contact && last_set_change > it - 3)
+        failure = {StepStatus::ContactCycling, "Newton did not converge in " + std::to_string(opt.max_iterations) +
+                                                   " iterations while the contact nodes kept changing " + residual};
+      else
+        failure = {StepStatus::IterationLimit,
+                   "Newton did not converge in " + std::to_string(opt.max_iterations) + " iterations " + residual};
+      return false;
+    }
+    Eigen::VectorXd du;
+    // Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no
+    // tighter than leaving a tenth of the convergence target. Loose while far from the solution, tight near it,
+    // without spoiling Newton's quadratic convergence.
+    // (std::min/max, not std::clamp: the lower bound exceeds kMaxForcing once the residual is below its target
+    // and Newton still iterates for the displacement or energy test.)
+    const double suggested = previous_residual > 0 ? std::pow(rec.residual_norm / previous_residual, 2) : kFirstForcing;
+    const double eta = std::min(kMaxForcing, std::max(suggested, 0.1 * opt.residual_tolerance * ref / rec.residual_norm));
+    previous_residual = rec.residual_norm;
+    if (!solve_iteration(-r, du, rec, eta, res, failure)) return false;
+    const double slope = r.dot(du);
+    rec.energy_norm = std::abs(slope);
+    if (it == 1) first_energy_norm = rec.energy_norm;
+    double alpha = 1;
+    if (opt.line_search && slope < 0) {
+      const double pi0 = ev.potential();
+      const auto sufficient = [&](const Eval& e, double a) {
+        return e.valid && e.potential() <= pi0 + 1e-4 * a * slope + 1e-10 * std::abs(pi0);
+      };
+      Eigen::VectorXd trial = u;
+      add_free(trial, du, 1.0);
+      t0 = Clock::now();
+      const Eval full = evaluate(trial, disp, true, true);  // the next iteration's assembly if accepted
+      carried_assembly_seconds = seconds_since(t0);
+      assembled = sufficient(full, 1.0);
+      if (assembled) ev = full;
+      for (int ls = 1; !assembled; ++ls) {
+        alpha *= 0.5;
+        trial = u;
+        add_free(trial, du, alpha);
+        const Eval et = evaluate(trial, disp, false, false);
+        if (sufficient(et, alpha)) break;
+        if (ls >= 12) {
+          // No sufficient decrease (a kink of the contact energy or round-off): take the full Newton step and let
+          // the convergence test and the iteration limit decide.
+          alpha = 1;
+          rec.line_search_failed = true;
+          break;
+        }
+      }
+    }
+    rec.step_length = alpha;
+    add_free(u, du, alpha);
+    last_du = alpha * rec.increment_norm;
+    last_en = alpha * rec.energy_norm;
+    book(rec, res);
+    if (opt.progress) opt.progress({disp, it, rec.residual_norm, cutbacks_so_far});
+  }
+  return false;
+}
+
+// One substep from the current converged state (u, d) to displacement `target`.
+bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far) {
+  // Secant predictor: the last converged state plus the last step's increment scaled to this step.
+  const bool extrapolate = opt.extrapolate_predictor && last_step != 0 && last_increment.size() == ndof;
+  if (extrapolate) u += ((target - d) / last_step) * last_increment;
+  if (opt.contact == ContactModel::TipNodes) {
+    Eigen::VectorXd dup = Eigen::VectorXd::Zero(ndof);
+    for (const auto& nd : needles)
+      for (int a : nd.tip_nodes) {
+        const int dof = 3 * a + 2;
+        if (dofs.tip_dof[dof]) dup[dof] = tip_value(nd, target) - u[dof];
+      }
+    if (!extrapolate && opt.linear_predictor && dup.squaredNorm() > 0) {
+      // §3.4: first iterate = linear(ised) elastic solution: K_ff du_f = -(R_f + K_fp du_p).
+      IterationRecord rec;
+      auto t0 = Clock::now();
+      Eigen::VectorXd kdup = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.free_dofs.size()));
+      const Eval ev = evaluate(u, target, true, true, &dup, &kdup);
+      rec.assembly_seconds = seconds_since(t0);
+      if (!ev.valid) {
+        failure = {StepStatus::InvertedElement, "an element inverted (J <= 0)"};
+        return false;
+      }
+      const Eigen::VectorXd r = free_residual();
+      rec.residual_norm = r.norm();
+      Eigen::VectorXd du;
+      if (!solve_iteration(-(r + kdup), du, rec, kFirstForcing, res, failure)) return false;
+      add_free(u, du, 1.0);
+      book(rec, res);
+    }
+    u += dup;
+    return newton(target, res, failure, cutbacks_so_far);
+  }
+  // Surface contact: Newton at fixed multipliers, then augmented-Lagrangian updates.
+  for (int aug = 0;; ++aug) {
+    if (!newton(target, res, failure, cutbacks_so_far)) return false;
+    const double pen = contact->max_penetration();
+    if (pen <= opt.penetration_tolerance * std::max(std::abs(target), contact->smallest_size()) ||
+        aug >= opt.max_augmentations) {
+      contact->update_ahead(space.nodes, u, target);
+      return true;
+    }
+    contact->augment();
+  }
+}
+
+StepResult QuasiStaticSolver::advance_to(double target) {
+  auto& m = *impl_;
+  const auto t0 = Impl::Clock::now();
+  StepResult res;
+  if (!std::isfinite(target)) {
+    res.status = StepStatus::InvalidTarget;
+    res.reason = "the target displacement is not finite";
+    res.indenter_displacement = m.d;
+    return res;
+  }
+  double step = target - m.d;
+  int streak = 0;
+  bool ok = true;
+  while (ok && m.d != target) {
+    const double next = std::abs(target - m.d) <= std::abs(step) * (1 + 1e-12) ? target : m.d + step;
+    const Eigen::VectorXd u_saved = m.u;
+    const auto multipliers_saved = m.contact ? m.contact->multipliers() : std::vector<std::vector<double>>{};
+    Impl::Failure failure;
+    if (m.substep(next, res, failure, res.cutbacks)) {
+      const double previous = m.d;
+      m.d = next;
+      m.last_increment = m.u - u_saved;
+      m.last_step = next - previous;
+      StepResult probe;
+      m.measure(probe);
+      for (size_t k = 0; k < m.needles.size(); ++k)
+        m.external_work += 0.5 * (m.last_force[k] + probe.indenter_force[k]) * (next - previous);  // trapezoid
+      m.last_force = probe.indenter_force;
+      res.substeps++;
+      if (++streak >= 2 && std::abs(step) < std::abs(target - m.d)) step *= 2, streak = 0;  // recover after cut-back
+      if (std::abs(step) > std::abs(target - m.d) && m.d != target) step = target - m.d;
+      continue;
+    }
+    m.u = u_saved;
+    if (m.contact) m.contact->set_multipliers(multipliers_saved);
+    streak = 0;
+    if (res.cutbacks >= m.opt.max_cutbacks) {
+      res.status = failure.status;
+      res.reason = "stopped at " + fmt_um(m.d) + " (target " + fmt_um(target) + "): step to " + fmt_um(next) +
+                   " failed after " + std::to_string(res.cutbacks) + " cut-backs: " + failure.why;
+      ok = false;
+      break;
+    }
+    res.cutbacks++;
+    step *= 0.5;
+  }
+  // Re-evaluate the converged state for the outputs.
+  const auto ev = m.evaluate(m.u, m.d, true, false);
+  m.measure(res);
+  res.converged = ok;
+  if (ok) res.status = StepStatus::Converged;
+  res.indenter_displacement = m.d;
+  res.strain_energy = ev.strain_energy;
+  res.external_work = m.external_work;
+  for (int n = 0; n < static_cast<int>(m.u_nodes.size()); ++n) m.u_nodes[n] = m.u.segment<3>(3 * n);
+  res.total_seconds = Impl::seconds_since(t0);
+  return res;
+}
+
+}  // namespace needlekit::fem

@@ -1,0 +1,86 @@
+// Internal: the state of QuasiStaticSolver, shared by quasi_static_solver.cpp (construction, assembly, outputs) and
+// newton_step.cpp (load steps: predictor, Newton with line search, augmentations, cut-back).
+#pragma once
+#include <tbb/task_arena.h>
+
+#include <Eigen/Core>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "boundary_conditions.hpp"
+#include "function_space.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "surface_contact.hpp"
+#include "tangent_system.hpp"
+
+namespace needlekit::fem {
+
+struct QuasiStaticSolver::Impl {
+  using Clock = std::chrono::steady_clock;
+  static double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+  struct Needle {
+    Indenter indenter;
+    Eigen::Vector3d direction;  // unit
+    double gap = 0;             // m, TipNodes: distance the needle travels before its tip touches the top surface
+    std::vector<int> tip_nodes; // TipNodes
+  };
+
+  // Why a substep failed.
+  struct Failure {
+    StepStatus status = StepStatus::IterationLimit;
+    std::string why;
+  };
+
+  SolverOptions opt;
+  detail::FunctionSpace space;
+  detail::TopSurface top;
+  detail::DofMap dofs;
+  std::vector<Needle> needles;
+  std::unique_ptr<detail::SurfaceContact> contact;  // Surface
+  tbb::task_arena arena;
+  std::unique_ptr<detail::TangentSystem> system;
+  int ndof = 0;
+
+  Eigen::VectorXd u, fint, fcontact;  // per dof: displacement, internal force, contact force
+  std::vector<Eigen::Vector3d> u_nodes;
+  double d = 0;                    // m, needle displacement of the converged state
+  double external_work = 0;        // J
+  std::vector<double> last_force;  // N, per needle at the converged state
+  std::vector<int> contact_flag;
+  std::vector<double> contact_pressure;
+  Eigen::VectorXd last_increment;  // u change of the last converged substep (for the secant predictor)
+  double last_step = 0;            // m, its needle displacement change
+
+  // ---- assembly (quasi_static_solver.cpp) ----
+  struct Eval {
+    double strain_energy = 0;
+    double contact_energy = 0;
+    bool valid = true;
+    double potential() const { return strain_energy + contact_energy; }
+  };
+  template <int N>
+  Eval element_pass(const Eigen::VectorXd& uu, bool want_force, bool want_tangent, const Eigen::VectorXd* dup,
+                    Eigen::VectorXd* kdup);
+  // Energy; with want_force the internal and contact forces (fint, fcontact); with want_tangent the tangent into
+  // the system's values; with dup the product K_fp dup of the prescribed dofs into kdup (the linear predictor).
+  Eval evaluate(const Eigen::VectorXd& uu, double disp, bool want_force, bool want_tangent,
+                const Eigen::VectorXd* dup = nullptr, Eigen::VectorXd* kdup = nullptr);
+  Eigen::VectorXd free_residual() const;
+  double tip_value(const Needle& nd, double disp) const { return -std::max(0.0, disp - nd.gap); }
+  void add_free(Eigen::VectorXd& uu, const Eigen::VectorXd& du, double alpha) const;
+  // Forces, pressures and flags of the converged state (fint/fcontact of the last evaluation).
+  void measure(StepResult& res);
+
+  // ---- load steps (newton_step.cpp) ----
+  bool solve_iteration(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing,
+                       StepResult& res, Failure& failure);
+  bool newton(double disp, StepResult& res, Failure& failure, int cutbacks_so_far);
+  bool substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far);
+};
+
+}  // namespace needlekit::fem

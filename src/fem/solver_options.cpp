@@ -1,0 +1,100 @@
+// Names of the solver's enums and the validation of its options.
+#include <sstream>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+
+namespace needlekit::fem {
+
+std::string to_string(MaterialLaw law) { return law == MaterialLaw::NeoHookean ? "neo-hookean" : "svk"; }
+std::string to_string(ElementOrder order) { return order == ElementOrder::Quadratic ? "quadratic" : "linear"; }
+std::string to_string(ContactModel contact) { return contact == ContactModel::Surface ? "surface" : "tip-nodes"; }
+std::string to_string(LinearSolver solver) {
+  switch (solver) {
+    case LinearSolver::Cholesky: return "cholesky";
+    case LinearSolver::CholeskyCg: return "cholesky-cg";
+    case LinearSolver::TwoGrid: return "two-grid";
+    default: return "auto";
+  }
+}
+std::string to_string(BoundaryCondition c) {
+  switch (c) {
+    case BoundaryCondition::BottomFixed: return "bottom-fixed";
+    case BoundaryCondition::BottomFixedSidesRoller: return "bottom-fixed-sides-roller";
+    case BoundaryCondition::SymmetryPlanes: return "symmetry-planes";
+    case BoundaryCondition::QuarterSymmetry: return "quarter-symmetry";
+    default: return "sides-and-bottom-fixed";
+  }
+}
+std::string to_string(StepStatus status) {
+  switch (status) {
+    case StepStatus::Converged: return "converged";
+    case StepStatus::InvertedElement: return "inverted-element";
+    case StepStatus::IterationLimit: return "newton-iteration-limit";
+    case StepStatus::LinearSolverFailure: return "linear-solver-failure";
+    case StepStatus::ContactCycling: return "contact-cycling";
+    case StepStatus::InvalidTarget: return "invalid-target";
+  }
+  return "unknown";
+}
+
+namespace {
+[[noreturn]] void bad_choice(const std::string& what, const std::string& text, const std::string& expected) {
+  throw InvalidInput(what + " = \"" + text + "\": expected " + expected);
+}
+}  // namespace
+MaterialLaw material_law_from_string(const std::string& t, const std::string& what) {
+  if (t == "svk" || t == "st-venant-kirchhoff") return MaterialLaw::StVenantKirchhoff;
+  if (t == "neo-hookean") return MaterialLaw::NeoHookean;
+  bad_choice(what, t, "\"svk\" or \"neo-hookean\"");
+}
+ElementOrder element_order_from_string(const std::string& t, const std::string& what) {
+  if (t == "linear") return ElementOrder::Linear;
+  if (t == "quadratic") return ElementOrder::Quadratic;
+  bad_choice(what, t, "\"linear\" or \"quadratic\"");
+}
+ContactModel contact_model_from_string(const std::string& t, const std::string& what) {
+  if (t == "tip-nodes") return ContactModel::TipNodes;
+  if (t == "surface") return ContactModel::Surface;
+  bad_choice(what, t, "\"tip-nodes\" or \"surface\"");
+}
+BoundaryCondition boundary_condition_from_string(const std::string& t, const std::string& what) {
+  if (t == "sides-and-bottom-fixed") return BoundaryCondition::SidesAndBottomFixed;
+  if (t == "bottom-fixed") return BoundaryCondition::BottomFixed;
+  if (t == "bottom-fixed-sides-roller") return BoundaryCondition::BottomFixedSidesRoller;
+  if (t == "symmetry-planes") return BoundaryCondition::SymmetryPlanes;
+  if (t == "quarter-symmetry") return BoundaryCondition::QuarterSymmetry;
+  bad_choice(what, t,
+             "\"sides-and-bottom-fixed\", \"bottom-fixed\", \"bottom-fixed-sides-roller\", \"symmetry-planes\" or "
+             "\"quarter-symmetry\"");
+}
+
+namespace {
+template <class T>
+void check(bool ok, const char* field, T value, const char* expected) {
+  if (ok) return;
+  std::ostringstream s;
+  s << "solver " << field << " = " << value << ": expected " << expected;
+  throw InvalidInput(s.str());
+}
+}  // namespace
+
+void SolverOptions::validate() const {
+  check(residual_tolerance > 0 && residual_tolerance < 1, "residual_tolerance", residual_tolerance, "(0, 1)");
+  check(displacement_tolerance > 0 && displacement_tolerance < 1, "displacement_tolerance", displacement_tolerance,
+        "(0, 1)");
+  check(energy_tolerance > 0 && energy_tolerance < 1, "energy_tolerance", energy_tolerance, "(0, 1)");
+  check(max_iterations >= 1, "max_iterations", max_iterations, ">= 1");
+  check(max_cutbacks >= 0, "max_cutbacks", max_cutbacks, ">= 0");
+  check(penalty_factor > 0, "penalty_factor", penalty_factor, "> 0");
+  check(penetration_tolerance > 0 && penetration_tolerance < 1, "penetration_tolerance", penetration_tolerance,
+        "(0, 1)");
+  check(max_augmentations >= 0, "max_augmentations", max_augmentations, ">= 0");
+  check(boundary_tolerance >= 0, "boundary_tolerance", boundary_tolerance, ">= 0");
+  check(max_reuse_iterations >= 1, "max_reuse_iterations", max_reuse_iterations, ">= 1");
+  check(linear_tolerance > 0 && linear_tolerance < 1, "linear_tolerance", linear_tolerance, "(0, 1)");
+  check(threads >= 0, "threads", threads, ">= 0");
+  check(two_grid_refresh_iterations >= 1, "two_grid_refresh_iterations", two_grid_refresh_iterations, ">= 1");
+}
+
+}  // namespace needlekit::fem

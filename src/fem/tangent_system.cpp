@@ -1,0 +1,282 @@
+#include "tangent_system.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <limits>
+#include <string>
+
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::fem::detail {
+namespace {
+
+// Cost balance of the reused factorization: CG on the last factor is worth it while its iterations cost less than
+// a fresh factorization. The costs are estimated from the pattern, not timed, so that a run does not depend on the
+// machine's load: a factorization takes CHOLMOD's flop count, a CG iteration 4 (nnz(L) + nnz(K)) flops (two
+// triangular solves and the symmetric product), and a factorization's flops run kFactorFlopSpeedup times faster
+// (dense BLAS-3 kernels against memory-bound triangular solves; measured 6.6 and 7.5 on the 100k- and 300k-tet
+// skin blocks of BENCHMARKS.md).
+constexpr double kFactorFlopSpeedup = 7.0;
+// Krylov recycling: the last solutions span most of the next one (successive Newton corrections and load steps
+// deform the tissue alike).
+constexpr int kRecycled = 12;
+constexpr int kTwoGridMaxIterations = 200;
+
+}  // namespace
+
+TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_count, const std::vector<int>& free_index,
+                             LinearSolver solver, const mesh::CoarseLevel* coarse, const SolverOptions& options,
+                             tbb::task_arena& arena)
+    : options_(options), arena_(arena), solver_(solver) {
+  pattern_ = upper_pattern(conn, nn, node_count, free_index);
+  values_.assign(pattern_.row_indices.size(), 0.0);
+  rows32_.assign(pattern_.row_indices.begin(), pattern_.row_indices.end());
+  if (values_.size() >= static_cast<size_t>(std::numeric_limits<int32_t>::max()))
+    throw InvalidInput("tissue mesh: the stiffness matrix has " + std::to_string(values_.size()) +
+                       " entries, more than this solver indexes");
+  const int k = 3 * nn;
+  const size_t ne = conn.size() / static_cast<size_t>(nn);
+  slots_per_element_ = static_cast<size_t>(k * k);
+  value_slot_.assign(ne * slots_per_element_, -1);
+  arena_.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 1024), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t e = range.begin(); e < range.end(); ++e)
+        for (int col = 0; col < k; ++col) {
+          const int cb = free_index[3 * conn[e * nn + col / 3] + col % 3];
+          if (cb < 0) continue;
+          for (int row = 0; row < k; ++row) {
+            const int ra = free_index[3 * conn[e * nn + row / 3] + row % 3];
+            if (ra < 0 || ra > cb) continue;
+            value_slot_[e * k * k + col * k + row] = static_cast<int32_t>(entry_position(pattern_, ra, cb));
+          }
+        }
+    });
+  });
+  const int64_t free_count = static_cast<int64_t>(pattern_.column_pointers.size()) - 1;
+  if (solver_ == LinearSolver::TwoGrid)
+    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_);
+  else
+    cholesky_ = std::make_unique<SparseCholesky>(free_count, pattern_.column_pointers, pattern_.row_indices);
+}
+
+// Threaded over column ranges; each range scatters its transposed part into its own vector (the symmetric product
+// writes rows above the range), summed at the end in a fixed order.
+void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const UpperPattern& pattern = pattern_;
+  const int64_t nc = static_cast<int64_t>(pattern.column_pointers.size()) - 1;
+  const int parts = std::max(1, arena_.max_concurrency());
+  partial_.resize(static_cast<size_t>(parts));
+  arena_.execute([&] {
+    tbb::parallel_for(0, parts, [&](int part) {
+      Eigen::VectorXd& yp = partial_[static_cast<size_t>(part)];
+      yp.setZero(x.size());
+      // Equal shares of the stored entries, not of the columns (columns grow longer towards the end).
+      const auto begin_column = [&](int q) {
+        const int64_t target = pattern.column_pointers.back() * q / parts;
+        return static_cast<int64_t>(std::lower_bound(pattern.column_pointers.begin(), pattern.column_pointers.end(),
+                                                     target) -
+                                    pattern.column_pointers.begin());
+      };
+      const int64_t c0 = std::min(begin_column(part), nc),
+                    c1 = part + 1 == parts ? nc : std::min(begin_column(part + 1), nc);
+      for (int64_t c = c0; c < c1; ++c) {
+        const double xc = x[c];
+        const int64_t diagonal = pattern.column_pointers[c + 1] - 1;  // every column ends with its diagonal
+        double acc = values_[static_cast<size_t>(diagonal)] * xc;
+        for (int64_t k = pattern.column_pointers[c]; k < diagonal; ++k) {
+          const int32_t r = rows32_[static_cast<size_t>(k)];
+          const double v = values_[static_cast<size_t>(k)];
+          acc += v * x[r];
+          yp[r] += v * xc;
+        }
+        yp[c] += acc;
+      }
+    });
+  });
+  y = partial_[0];
+  for (size_t p = 1; p < partial_.size(); ++p) y += partial_[p];
+}
+
+// CG iterations worth trying before a factorization is cheaper, within [1, max_reuse_iterations].
+int TangentSystem::cg_budget() const {
+  const double cg_flops = 4.0 * (cholesky_->factor_nonzeros() + static_cast<double>(values_.size()));
+  return static_cast<int>(std::clamp(cholesky_->factor_flops() / (kFactorFlopSpeedup * cg_flops), 1.0,
+                                     static_cast<double>(options_.max_reuse_iterations)));
+}
+
+Eigen::VectorXd TangentSystem::apply_factor(const Eigen::VectorXd& r) {
+  const std::vector<double> b(r.data(), r.data() + r.size());
+  const auto x = cholesky_->solve(b);
+  return Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+}
+
+void TangentSystem::remember(const Eigen::VectorXd& solution) {
+  const double n = solution.norm();
+  if (!(n > 0) || !solution.allFinite()) return;
+  if (static_cast<int>(recycled_.size()) == kRecycled) recycled_.erase(recycled_.begin());
+  recycled_.push_back(solution / n);
+}
+
+// CG starts from the Galerkin projection of the solution onto the recycled vectors W, x0 = W (W^T K W)^-1 W^T b,
+// and only has to resolve what they miss.
+void TangentSystem::recycled_start(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, Eigen::VectorXd& r) {
+  const int m = static_cast<int>(recycled_.size());
+  if (m == 0) return;
+  std::vector<Eigen::VectorXd>& kw = recycled_products_;
+  kw.resize(static_cast<size_t>(m));
+  Eigen::MatrixXd g(m, m);
+  Eigen::VectorXd wb(m);
+  for (int i = 0; i < m; ++i) multiply(recycled_[static_cast<size_t>(i)], kw[static_cast<size_t>(i)]);
+  for (int i = 0; i < m; ++i) {
+    wb[i] = recycled_[static_cast<size_t>(i)].dot(rhs);
+    for (int j = 0; j < m; ++j) g(i, j) = recycled_[static_cast<size_t>(i)].dot(kw[static_cast<size_t>(j)]);
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(g);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
+  const Eigen::VectorXd y = ldlt.solve(wb);
+  if (!y.allFinite()) return;
+  for (int i = 0; i < m; ++i) {
+    x += y[i] * recycled_[static_cast<size_t>(i)];
+    r -= y[i] * kw[static_cast<size_t>(i)];
+  }
+}
+
+// Preconditioned CG on the current values; false if it does not converge in `budget` iterations.
+template <class Preconditioner>
+bool TangentSystem::cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance,
+                             int budget, Preconditioner&& precondition) {
+  const double bnorm = rhs.norm();
+  x = Eigen::VectorXd::Zero(rhs.size());
+  if (bnorm == 0) return true;
+  Eigen::VectorXd r = rhs;
+  recycled_start(rhs, x, r);
+  if (r.norm() <= tolerance * bnorm) {
+    iterations = 0;
+    return x.allFinite();
+  }
+  Eigen::VectorXd z, p, q;
+  precondition(r, z);
+  p = z;
+  double rz = r.dot(z);
+  for (iterations = 1; iterations <= budget; ++iterations) {
+    multiply(p, q);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) return false;  // not positive definite along p
+    const double alpha = rz / pq;
+    x += alpha * p;
+    r -= alpha * q;
+    if (r.norm() <= tolerance * bnorm) return x.allFinite();
+    precondition(r, z);
+    const double rz_new = r.dot(z);
+    p = z + (rz_new / rz) * p;
+    rz = rz_new;
+  }
+  return false;
+}
+
+// `shifted` = `base` with its diagonal raised by the fraction beta (for a tangent that is not positive definite);
+// the off-diagonal entries of `shifted` are left as they are. The diagonal is the last entry of each column.
+void TangentSystem::shift_diagonal(const std::vector<double>& base, double beta, std::vector<double>& shifted) const {
+  for (size_t c = 0; c + 1 < pattern_.column_pointers.size(); ++c) {
+    const auto diagonal = static_cast<size_t>(pattern_.column_pointers[c + 1] - 1);
+    shifted[diagonal] = base[diagonal] * (1 + beta);
+  }
+}
+
+bool TangentSystem::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
+  return solver_ == LinearSolver::TwoGrid ? two_grid_solve(rhs, du, rec, forcing)
+                                          : cholesky_solve(rhs, du, rec, forcing);
+}
+
+// CG preconditioned by the last factorization when allowed, else (or on failure) a fresh factorization (with a
+// diagonal shift if K is not positive definite).
+bool TangentSystem::cholesky_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
+                                   double forcing) {
+  // CG on the old factor, unless the last CG solve cost more than half a factorization: then refactorize now
+  // rather than after a failed CG.
+  const int budget = cg_budget();
+  if (solver_ == LinearSolver::CholeskyCg && have_factor_ && 2 * last_cg_iterations_ <= budget) {
+    int its = 0;
+    const double tol = std::max(forcing, options_.linear_tolerance);
+    const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = apply_factor(r); };
+    if (cg_solve(rhs, du, its, tol, budget, precondition)) {
+      last_cg_iterations_ = its;
+      rec.linear_iterations = its;
+      remember(du);
+      return true;
+    }
+  }
+  last_cg_iterations_ = 0;
+  rec.factorized = true;
+  rec.linear_iterations = 0;
+  have_factor_ = false;
+  if (!cholesky_->factorize(values_)) {
+    bool ok = false;
+    std::vector<double> shifted = values_;
+    for (double beta : {1e-6, 1e-4, 1e-2, 1e-1, 1.0}) {
+      shift_diagonal(values_, beta, shifted);
+      if (cholesky_->factorize(shifted)) {
+        ok = true;
+        break;
+      }
+    }
+    if (!ok) return false;
+  }
+  have_factor_ = true;
+  du = apply_factor(rhs);
+  remember(du);
+  return du.allFinite();
+}
+
+// CG with the two-grid cycle. The coarse operator (and the smoother's spectral bound) is renewed when missing, when
+// the last solve needed more than two_grid_refresh_iterations, or when CG fails on the stale one. If CG still fails
+// (K not positive definite: SVK under strong compression), the tangent's diagonal is raised by growing fractions, as
+// for a failed factorization: a shifted Newton step is still a descent direction.
+bool TangentSystem::two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
+                                   double forcing) {
+  const auto multiply_k = [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { multiply(x, y); };
+  const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { two_grid_->apply(r, z, multiply_k); };
+  const double tol = std::max(forcing, options_.linear_tolerance);
+  int its = 0;
+  rec.linear_iterations = 0;
+  const bool stale = have_factor_ && last_cg_iterations_ <= options_.two_grid_refresh_iterations;
+  if (stale) {
+    two_grid_->set_smoother_diagonal(values_);  // K changed since the last solve; update() sets it itself
+    if (cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition)) {
+      rec.linear_iterations = last_cg_iterations_ = its;
+      remember(du);
+      return true;
+    }
+    rec.linear_iterations = its;
+  }
+  rec.factorized = true;
+  bool ok = (have_factor_ = two_grid_->update(values_, multiply_k)) &&
+            cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+  rec.linear_iterations += its;
+  if (!ok) {
+    const std::vector<double> unshifted = values_;
+    for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
+      shift_diagonal(unshifted, beta, values_);
+      ok = (have_factor_ = two_grid_->update(values_, multiply_k)) &&
+           cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+      rec.linear_iterations += its;
+      if (ok) break;
+    }
+    values_ = unshifted;
+    have_factor_ = false;  // the coarse operator was the shifted one's
+  }
+  last_cg_iterations_ = its;
+  if (ok) remember(du);
+  return ok;
+}
+
+double TangentSystem::factor_nonzeros() const {
+  return two_grid_ ? two_grid_->coarse_factor_nonzeros() : cholesky_->factor_nonzeros();
+}
+double TangentSystem::factor_flops() const {
+  return two_grid_ ? two_grid_->coarse_factor_flops() : cholesky_->factor_flops();
+}
+
+}  // namespace needlekit::fem::detail

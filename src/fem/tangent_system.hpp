@@ -1,0 +1,76 @@
+// Internal: the free-dof tangent stiffness K of the quasi-static solver and the solution of K du = rhs — its
+// symmetric sparse product (upper-triangular CSC, threaded), preconditioned conjugate gradients with Krylov
+// recycling, and the choice between a fresh CHOLMOD factorization, CG on the last one (Cholesky-CG) and CG with the
+// two-grid cycle.
+#pragma once
+#include <tbb/task_arena.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/mesh/uniform_refinement.hpp"
+#include "sparse_cholesky.hpp"
+#include "sparse_pattern.hpp"
+#include "two_grid_preconditioner.hpp"
+
+namespace needlekit::fem::detail {
+
+class TangentSystem {
+public:
+  // `connectivity`: nodes_per_element node indices per element; `free_index`: per dof its free index or -1;
+  // `solver`: resolved (not Automatic); `coarse`: the two-grid solver's coarse level (TwoGrid only).
+  TangentSystem(const std::vector<int>& connectivity, int nodes_per_element, int node_count,
+                const std::vector<int>& free_index, LinearSolver solver, const mesh::CoarseLevel* coarse,
+                const SolverOptions& options, tbb::task_arena& arena);
+
+  // The stored upper-triangle entries; assembly adds into them (zero() first).
+  std::vector<double>& values() { return values_; }
+  void zero() { std::fill(values_.begin(), values_.end(), 0.0); }
+  const UpperPattern& pattern() const { return pattern_; }
+  // Per element, (3N)^2 entries in column-major order of the element matrix: the index into values() of the entry
+  // (row dof, column dof) when both are free and row <= column, else -1. Assembly adds without searching.
+  const int32_t* element_slots(size_t element) const { return &value_slot_[element * slots_per_element_]; }
+
+  // y = K x.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y);
+  // Solves K du = rhs to the relative residual `forcing` (inexact Newton; never tighter than linear_tolerance).
+  // Records CG iterations and whether a factorization was taken in `record`. False if K could not be solved.
+  bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double forcing);
+
+  LinearSolver solver() const { return solver_; }
+  double factor_nonzeros() const;
+  double factor_flops() const;
+
+private:
+  bool cholesky_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing);
+  bool two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing);
+  int cg_budget() const;
+  Eigen::VectorXd apply_factor(const Eigen::VectorXd& r);
+  void remember(const Eigen::VectorXd& solution);
+  void recycled_start(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, Eigen::VectorXd& r);
+  template <class Preconditioner>
+  bool cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget,
+                Preconditioner&& precondition);
+  void shift_diagonal(const std::vector<double>& base, double beta, std::vector<double>& shifted) const;
+
+  const SolverOptions& options_;
+  tbb::task_arena& arena_;
+  LinearSolver solver_;
+  UpperPattern pattern_;
+  std::vector<int32_t> rows32_;  // pattern_.row_indices as 32-bit: the product's memory traffic is a quarter less
+  std::vector<double> values_;
+  size_t slots_per_element_ = 0;
+  std::vector<int32_t> value_slot_;
+  std::unique_ptr<SparseCholesky> cholesky_;         // Cholesky, CholeskyCg
+  std::unique_ptr<TwoGridPreconditioner> two_grid_;  // TwoGrid
+  std::vector<Eigen::VectorXd> partial_;  // multiply's per-range products, kept between calls (CG's hot path)
+  bool have_factor_ = false;
+  int last_cg_iterations_ = 0;  // of the last CG solve
+  // Krylov recycling: unit vectors of the last solutions (newest last) and K times each (recomputed per solve).
+  std::vector<Eigen::VectorXd> recycled_, recycled_products_;
+};
+
+}  // namespace needlekit::fem::detail
