@@ -173,11 +173,16 @@ DesignFile parse_design_toml(std::string_view text, std::string_view source_name
   return read_needle_tables(root, top, file, true);
 }
 
-DesignFile parse_needle_tables(std::string_view text, std::string_view source_name,
-                               std::initializer_list<std::string_view> other_tables) {
+namespace {
+
+// The design tables of a file that also holds `other_tables` (read by the caller); any other table is an error.
+DesignFile parse_tables(std::string_view text, std::string_view source_name,
+                        std::initializer_list<std::string_view> other_tables, bool with_array) {
   const std::string file(source_name);
   const toml::table root = parse_toml(text, file);
-  std::vector<std::string_view> allowed{"needle", "tissue", "insertion"};
+  std::vector<std::string_view> own_tables{"needle", "tissue", "insertion"};
+  if (with_array) own_tables.push_back("array");
+  std::vector<std::string_view> allowed = own_tables;
   allowed.insert(allowed.end(), other_tables.begin(), other_tables.end());
   for (auto&& [key, node] : root) {
     if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end()) {
@@ -186,11 +191,23 @@ DesignFile parse_needle_tables(std::string_view text, std::string_view source_na
     }
   }
   toml::table own;
-  for (std::string_view name : {"needle", "tissue", "insertion"}) {
+  for (std::string_view name : own_tables) {
     if (const toml::node* node = root.get(name)) own.insert(name, *node);
   }
-  const Section top(own, "", file, {"needle", "tissue", "insertion"});
-  return read_needle_tables(root, top, file, false);
+  const Section top(own, "", file, {"needle", "tissue", "insertion", "array"});
+  return read_needle_tables(root, top, file, with_array);
+}
+
+}  // namespace
+
+DesignFile parse_needle_tables(std::string_view text, std::string_view source_name,
+                               std::initializer_list<std::string_view> other_tables) {
+  return parse_tables(text, source_name, other_tables, false);
+}
+
+DesignFile parse_design_tables(std::string_view text, std::string_view source_name,
+                               std::initializer_list<std::string_view> other_tables) {
+  return parse_tables(text, source_name, other_tables, true);
 }
 
 DesignFile read_design_file(const std::filesystem::path& path) {

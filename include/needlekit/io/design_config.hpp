@@ -47,6 +47,11 @@ DesignFile parse_design_toml(std::string_view text, std::string_view source_name
 DesignFile parse_needle_tables(std::string_view text, std::string_view source_name,
                                std::initializer_list<std::string_view> other_tables);
 
+// A design file's tables ([needle], [array], [tissue], [insertion]) in a file that also holds `other_tables` (e.g. an
+// uncertainty file's [uncertain] and [sampling]), which the caller reads; any other table is an error.
+DesignFile parse_design_tables(std::string_view text, std::string_view source_name,
+                               std::initializer_list<std::string_view> other_tables);
+
 struct SpaceFile {
   analysis::DesignSpace space;
 };

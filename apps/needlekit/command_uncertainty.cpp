@@ -1,0 +1,112 @@
+// `needlekit uncertainty UQ.toml`: the probability that a design works when its inputs are uncertain (sampling with
+// Sobol' indices). Parses, calls uncertainty::design_uncertainty(), presents.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "file_format_help.hpp"
+#include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/uncertainty_config.hpp"
+#include "needlekit/io/uncertainty_output.hpp"
+
+namespace needlekit::cli {
+namespace {
+
+struct UncertaintyArguments {
+  std::string path;
+  bool json = false;
+  std::string out_dir;
+  int threads = 0;
+};
+
+std::string number(const nlohmann::json& value, std::string_view format = "{:.4g}") {
+  return value.is_null() ? "-" : fmt::format(fmt::runtime(format), value.get<double>());
+}
+
+void print_table(const nlohmann::json& json) {
+  fmt::print("{} samples ({}, seed {}), {} evaluations: {}\n", json["samples"].get<std::size_t>(),
+             json["method"].get<std::string>(), json["seed"].get<std::uint64_t>(),
+             json["evaluations"].get<std::size_t>(), json["status"].get<std::string>());
+  if (!json["reason"].get<std::string>().empty()) fmt::print("{}\n", json["reason"].get<std::string>());
+  for (const auto& input : json["inputs"]) {
+    fmt::print("  {:<34}{}\n", input["key"].get<std::string>(), input["distribution"].get<std::string>());
+  }
+  fmt::print("\n  {:<18}{:>10}   {}\n", "event", "P", "95 % interval");
+  for (const auto& [event, p] : json["probabilities"].items()) {
+    fmt::print("  {:<18}{:>10}   [{}, {}]\n", event, number(p["value"], "{:.6f}"), number(p["ci95"][0], "{:.6f}"),
+               number(p["ci95"][1], "{:.6f}"));
+  }
+  const auto& index = json["performance_index_per_um"];
+  fmt::print("\n  performance index (1/um): mean {} (nominal {}), sd {}, q05 {}, q50 {}, q95 {}\n",
+             number(index["mean"]), number(json["nominal"]["performance_index_per_um"]), number(index["sd"]),
+             number(index["q05"]), number(index["q50"]), number(index["q95"]));
+  if (!json["sobol"].is_null()) {
+    fmt::print("\n  {:<34}{:>10}{:>10}{:>14}{:>14}   (performance index)\n", "input", "S_i", "ST_i", "success S_i",
+               "success ST_i");
+    const auto& sobol = json["sobol"];
+    const auto& success = sobol["events"]["success"];
+    for (const auto& input : json["inputs"]) {
+      const std::string key = input["key"].get<std::string>();
+      fmt::print("  {:<34}{:>10}{:>10}{:>14}{:>14}\n", key, number(sobol["first"][key], "{:.3f}"),
+                 number(sobol["total"][key], "{:.3f}"), number(success["first"][key], "{:.3f}"),
+                 number(success["total"][key], "{:.3f}"));
+    }
+  }
+  fmt::print("\n  one at a time (Fig 6.18): index at the input's 5 % and 95 % quantiles, others nominal\n");
+  for (const auto& [key, o] : json["one_at_a_time"].items()) {
+    fmt::print("  {:<34}{:.6g} {} -> {:.4g} 1/um, {:.6g} {} -> {:.4g} 1/um\n", key, o["low"].get<double>(),
+               o["unit"].get<std::string>(), o["performance_index_low_per_um"].get<double>(), o["high"].get<double>(),
+               o["unit"].get<std::string>(), o["performance_index_high_per_um"].get<double>());
+  }
+  for (const auto& note : json["notes"]) fmt::print("note: {}\n", note.get<std::string>());
+}
+
+void run_uncertainty(const UncertaintyArguments& arguments) {
+  io::UncertaintyFile file = io::read_uncertainty_file(arguments.path);
+  file.sampling.threads = arguments.threads;
+  uncertainty::DesignUncertaintyOptions options;
+  options.sampling = file.sampling;
+  const uncertainty::DesignUncertaintyResult result =
+      uncertainty::design_uncertainty(file.design, file.inputs, file.correlations, options);
+  const nlohmann::json json = io::uncertainty_json(file, result);
+  if (!arguments.out_dir.empty()) {
+    const std::filesystem::path dir(arguments.out_dir);
+    std::filesystem::create_directories(dir);
+    io::write_text_file_atomically(dir / "performance_index_histogram.csv", io::index_histogram_csv(result));
+    io::write_text_file_atomically(dir / "sobol_indices.csv", io::sobol_csv(result));
+    io::write_text_file_atomically(dir / "uncertainty.json", json.dump(2) + "\n");
+  }
+  if (arguments.json) {
+    fmt::print("{}\n", json.dump(2));
+  } else {
+    print_table(json);
+  }
+}
+
+}  // namespace
+
+void add_uncertainty_command(CLI::App& app) {
+  auto arguments = std::make_shared<UncertaintyArguments>();
+  CLI::App* command = app.add_subcommand(
+      "uncertainty",
+      "Probability that a design punctures, does not buckle or bend, and reaches its target when its inputs are "
+      "uncertain; distribution of the performance index; Sobol' indices");
+  command->add_option("UQ", arguments->path, "uncertainty file (TOML): a design file plus [uncertain], [sampling]")
+      ->required();
+  command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
+  command->add_option("--out", arguments->out_dir,
+                      "also write uncertainty.json, performance_index_histogram.csv and sobol_indices.csv to DIR")
+      ->type_name("DIR");
+  command->add_option("--threads", arguments->threads,
+                      "worker threads, >= 0 (0: all hardware threads); the result does not depend on it")
+      ->type_name("N")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->footer(std::string(kUncertaintyFileHelp) + "\n\n" + kDesignFileHelp);
+  command->callback([arguments] { run_uncertainty(*arguments); });
+}
+
+}  // namespace needlekit::cli

@@ -1,0 +1,27 @@
+// The results of `needlekit uncertainty`: one JSON object (units in the key names; NaN, i.e. undefined, as null)
+// and the CSV tables written with --out.
+//   {"samples", "method", "seed", "evaluations", "status", "reason",
+//    "inputs": [{"key", "distribution"}],
+//    "probabilities": {EVENT: {"value", "ci95": [lo, hi], "samples_defined"}},
+//    "performance_index_per_um": {"mean", "ci95_mean", "sd", "q05", "q50", "q95", "histogram": {"edges", "counts"}},
+//    "nominal": {"performance_index_per_um", "status"},
+//    "sobol": {"first": {INPUT: S}, "total": {INPUT: ST}, "first_ci95": {INPUT: [lo, hi]}, "total_ci95": {...},
+//              "events": {EVENT: {"first": {...}, "total": {...}}}},
+//    "one_at_a_time": {INPUT: {"low", "high", "unit", "performance_index_low_per_um", "performance_index_high_per_um"}},
+//    "notes": [...]}
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "needlekit/io/uncertainty_config.hpp"
+
+namespace needlekit::io {
+
+nlohmann::json uncertainty_json(const UncertaintyFile& file, const uncertainty::DesignUncertaintyResult& result);
+
+// "performance_index_low_per_um,performance_index_high_per_um,count" rows of the index histogram.
+std::string index_histogram_csv(const uncertainty::DesignUncertaintyResult& result);
+// "output,input,first,first_lo,first_hi,total,total_lo,total_hi" rows (output: performance_index or an event).
+std::string sobol_csv(const uncertainty::DesignUncertaintyResult& result);
+
+}  // namespace needlekit::io

@@ -1,0 +1,38 @@
+#include "needlekit/io/uncertainty_config.hpp"
+
+#include "toml_config.hpp"
+#include "uncertainty_tables.hpp"
+
+namespace needlekit::io {
+
+UncertaintyFile parse_uncertainty_toml(std::string_view text, std::string_view source_name) {
+  const std::string file(source_name);
+  const DesignFile design = parse_design_tables(text, file, {"uncertain", "sampling", "correlation"});
+  const toml::table root = config::parse_toml(text, file);
+  config::UncertaintyTables tables = config::read_uncertainty_tables(root, file);
+  UncertaintyFile result{{design.design, design.conditions, design.options}, std::move(tables.inputs),
+                         std::move(tables.correlations), tables.sampling};
+  // Resolve the keys against this design now, so that a key the design lacks or a non-physical spread is bad
+  // input before anything runs.
+  const toml::node& uncertain = *root.get("uncertain");
+  std::vector<std::string> notes;
+  try {
+    uncertainty::design_input_transform(result.design, result.inputs, result.correlations, notes);
+  } catch (const InvalidInput& error) {
+    const std::string_view message = error.what();
+    const toml::node* at = &uncertain;
+    for (const auto& input : result.inputs) {
+      if (message.find(fmt::format("\"{}\"", input.key)) != std::string_view::npos) {
+        if (const toml::node* node = uncertain.as_table()->get(input.key)) at = node;
+      }
+    }
+    throw InvalidInput(fmt::format("{} {}", config::location(file, at->source()), message));
+  }
+  return result;
+}
+
+UncertaintyFile read_uncertainty_file(const std::filesystem::path& path) {
+  return parse_uncertainty_toml(config::read_text(path), path.string());
+}
+
+}  // namespace needlekit::io

@@ -1,0 +1,189 @@
+#include "uncertainty_tables.hpp"
+
+#include "toml_config.hpp"
+
+namespace needlekit::io::config {
+namespace {
+
+using uncertainty::DistributionKind;
+
+constexpr std::string_view kLeafKeys[] = {"distribution", "mean", "sd", "median", "sigma_log", "min", "max", "mode"};
+
+// The parameters each distribution takes (the others are errors) and which of them are required.
+struct Parameters {
+  std::vector<std::string_view> allowed, required;
+};
+Parameters parameters_of(DistributionKind kind) {
+  switch (kind) {
+    case DistributionKind::Normal: return {{"mean", "sd"}, {"sd"}};
+    case DistributionKind::TruncatedNormal: return {{"mean", "sd", "min", "max"}, {"sd", "min", "max"}};
+    case DistributionKind::Lognormal: return {{"median", "sigma_log"}, {"sigma_log"}};
+    case DistributionKind::Uniform: return {{"min", "max"}, {"min", "max"}};
+    case DistributionKind::Triangular: return {{"min", "max", "mode"}, {"min", "max"}};
+  }
+  return {};
+}
+
+uncertainty::DesignUncertainInput uncertain_input(const toml::table& table, const std::string& key,
+                                                  std::string_view file) {
+  const std::string path = fmt::format("uncertain.\"{}\"", key);
+  const Section section(table, path, file,
+                        {"distribution", "mean", "sd", "median", "sigma_log", "min", "max", "mode"});
+  std::vector<std::string_view> names;
+  for (const auto& info : uncertainty::distribution_kinds()) names.push_back(info.name);
+  const toml::node& kind_node =
+      section.required("distribution", fmt::format("one of: {}", fmt::join(names, ", ")));
+  const std::string kind_text = text_of(section, kind_node, "distribution", fmt::format("one of: {}", fmt::join(names, ", ")));
+  uncertainty::DesignUncertainInput input;
+  input.key = key;
+  input.distribution.kind =
+      section.at(kind_node, [&] { return uncertainty::distribution_kind_from_string(kind_text, section.what("distribution")); });
+
+  const uncertainty::DesignInput which =
+      section.at(table, [&] { return uncertainty::design_input_from_key(key, fmt::format("key '{}'", path)); });
+  const uncertainty::DesignInputInfo& info = uncertainty::info(which);
+  const Parameters parameters = parameters_of(input.distribution.kind);
+  for (std::string_view name : kLeafKeys) {
+    if (name == "distribution" || !section.optional(name)) continue;
+    if (std::find(parameters.allowed.begin(), parameters.allowed.end(), name) == parameters.allowed.end()) {
+      section.fail(*section.optional(name), name,
+                   fmt::format("does not apply to a {} distribution, expected only: {}", kind_text,
+                               fmt::join(parameters.allowed, ", ")));
+    }
+  }
+  for (std::string_view name : parameters.required) {
+    section.required(name, name == "sigma_log" ? "a number >= 0" : expected_quantity(info.dimension));
+  }
+  const auto value = [&](std::string_view name) { return quantity_of(section, *section.optional(name), name, info.dimension); };
+  uncertainty::Distribution& d = input.distribution;
+  const bool has_centre = section.optional("mean") || section.optional("median") || section.optional("mode");
+  if (section.optional("mean")) d.mean = value("mean");
+  if (section.optional("sd")) d.sd = value("sd");
+  if (section.optional("median")) d.median = value("median");
+  if (section.optional("sigma_log")) {
+    const toml::node& node = *section.optional("sigma_log");
+    if (!node.is_number()) section.fail(node, "sigma_log", fmt::format("{} is not a number, expected a number >= 0 (the sd of ln x, no unit)", describe(node)));
+    d.sigma_log = *node.value<double>();
+  }
+  if (section.optional("min")) d.min = value("min");
+  if (section.optional("max")) d.max = value("max");
+  if (section.optional("mode")) d.mode = value("mode");
+  if (d.kind == DistributionKind::Triangular) {
+    if (!section.optional("mode")) d.mode = 0.5 * (d.min + d.max);
+  } else {
+    input.centred_on_nominal = !has_centre && d.kind != DistributionKind::Uniform;
+  }
+  section.at(table, [&] {
+    uncertainty::Distribution check = d;
+    if (input.centred_on_nominal) check.mean = check.median = 1;  // a placeholder: the nominal comes later
+    uncertainty::validate(check, fmt::format("key '{}'", path));
+    return 0;
+  });
+  return input;
+}
+
+// An input with where it was written (toml++ keeps keys sorted; the file's order is restored from the positions).
+struct PlacedInput {
+  toml::source_position at;
+  uncertainty::DesignUncertainInput input;
+};
+
+// [uncertain] entries: inline tables with a `distribution`; dotted keys written bare (needle.tip_diameter = {...})
+// arrive as nested tables and are flattened back to their dotted key.
+void collect_inputs(const toml::table& table, const std::string& prefix, std::string_view file,
+                    std::vector<PlacedInput>& inputs) {
+  for (auto&& [key, node] : table) {
+    const std::string name = prefix.empty() ? std::string(key.str()) : fmt::format("{}.{}", prefix, key.str());
+    if (!node.is_table()) {
+      throw InvalidInput(fmt::format("{} key 'uncertain.\"{}\"': {} is not a distribution, expected an inline table "
+                                     "{{ distribution = \"normal\", mean = ..., sd = ... }}",
+                                     location(file, node.source()), name, describe(node)));
+    }
+    const toml::table& child = *node.as_table();
+    if (child.contains("distribution")) {
+      inputs.push_back({key.source().begin, uncertain_input(child, name, file)});
+    } else {
+      collect_inputs(child, name, file, inputs);
+    }
+  }
+}
+
+void read_sampling(const Section& sampling, uncertainty::PropagationOptions& options) {
+  if (const toml::node* node = sampling.optional("samples")) {
+    const std::int64_t samples = integer_of(sampling, *node, "samples");
+    if (samples < 2 || samples > 100'000'000) {
+      sampling.fail(*node, "samples", fmt::format("{} is out of range, expected an integer in [2, 1e8]", samples));
+    }
+    options.samples = static_cast<std::size_t>(samples);
+  }
+  if (const toml::node* node = sampling.optional("method")) {
+    std::vector<std::string_view> names;
+    for (const auto& info : uncertainty::sampling_methods()) names.push_back(info.name);
+    const std::string text = text_of(sampling, *node, "method", fmt::format("one of: {}", fmt::join(names, ", ")));
+    options.method = sampling.at(*node, [&] { return uncertainty::sampling_method_from_string(text, sampling.what("method")); });
+  }
+  if (const toml::node* node = sampling.optional("seed")) {
+    const std::int64_t seed = integer_of(sampling, *node, "seed");
+    if (seed < 0) sampling.fail(*node, "seed", fmt::format("{} is negative, expected an integer >= 0", seed));
+    options.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (const toml::node* node = sampling.optional("sobol_indices")) {
+    options.sobol_indices = boolean_of(sampling, *node, "sobol_indices");
+  }
+}
+
+}  // namespace
+
+UncertaintyTables read_uncertainty_tables(const toml::table& root, std::string_view file) {
+  UncertaintyTables tables;
+  const toml::node* uncertain = root.get("uncertain");
+  if (!uncertain || !uncertain->is_table() || uncertain->as_table()->empty()) {
+    throw InvalidInput(fmt::format("{} table [uncertain]: missing or empty, expected at least one uncertain input "
+                                   "such as \"tissue.alpha\" = {{ distribution = \"lognormal\", sigma_log = 0.2 }}",
+                                   location(file, uncertain ? uncertain->source() : root.source())));
+  }
+  std::vector<PlacedInput> placed;
+  collect_inputs(*uncertain->as_table(), "", file, placed);
+  std::sort(placed.begin(), placed.end(), [](const PlacedInput& a, const PlacedInput& b) {
+    return a.at.line != b.at.line ? a.at.line < b.at.line : a.at.column < b.at.column;
+  });
+  for (PlacedInput& p : placed) tables.inputs.push_back(std::move(p.input));
+  if (const toml::node* node = root.get("sampling")) {
+    read_sampling(Section(*node->as_table(), "sampling", file, {"samples", "method", "seed", "sobol_indices"}),
+                  tables.sampling);
+  }
+  if (const toml::node* node = root.get("correlation")) {
+    if (!node->is_array_of_tables()) {
+      throw InvalidInput(fmt::format("{} key 'correlation': expected [[correlation]] tables with inputs = [\"a\", "
+                                     "\"b\"] and rho",
+                                     location(file, node->source())));
+    }
+    for (const toml::node& entry : *node->as_array()) {
+      const Section c(*entry.as_table(), "correlation", file, {"inputs", "rho"});
+      const toml::node& pair = c.required("inputs", "two uncertain keys [\"a\", \"b\"]");
+      if (!pair.is_array() || pair.as_array()->size() != 2 || !pair.as_array()->get(0)->is_string() ||
+          !pair.as_array()->get(1)->is_string()) {
+        c.fail(pair, "inputs", "expected two uncertain keys [\"a\", \"b\"]");
+      }
+      uncertainty::Correlation correlation;
+      for (int side = 0; side < 2; ++side) {
+        const std::string key = pair.as_array()->get(static_cast<std::size_t>(side))->as_string()->get();
+        const auto found = std::find_if(tables.inputs.begin(), tables.inputs.end(),
+                                        [&](const auto& input) { return input.key == key; });
+        if (found == tables.inputs.end()) {
+          c.fail(pair, "inputs", fmt::format("'{}' is not in [uncertain], expected keys of uncertain inputs", key));
+        }
+        (side == 0 ? correlation.first : correlation.second) = static_cast<std::size_t>(found - tables.inputs.begin());
+      }
+      const toml::node& rho = c.required("rho", "a number in (-1, 1)");
+      if (!rho.is_number() || !(*rho.value<double>() > -1 && *rho.value<double>() < 1)) {
+        c.fail(rho, "rho", fmt::format("{} is not a number in (-1, 1)", describe(rho)));
+      }
+      correlation.rho = *rho.value<double>();
+      tables.correlations.push_back(correlation);
+    }
+  }
+  return tables;
+}
+
+}  // namespace needlekit::io::config

@@ -1,0 +1,172 @@
+#include "needlekit/uncertainty/design_uncertainty.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/uncertainty/design_outcome.hpp"
+#include "name_table.hpp"
+
+namespace needlekit::uncertainty {
+namespace {
+// Mass outside the physical range too small to mention (one sample in 10^9).
+constexpr double kNegligibleMass = 1e-9;
+}  // namespace
+
+const std::vector<DesignEventInfo>& design_events() {
+  static const std::vector<DesignEventInfo> events{
+      {DesignEvent::Puncture, "puncture", "the needle punctures: |F(A)| > 0 and cutting depth L - d > 0"},
+      {DesignEvent::BucklingFailure, "buckling_failure", "phi = 0: the axial force reaches the critical buckling load"},
+      {DesignEvent::BendingFailure, "bending_failure",
+       "omega = 0: the lateral force reaches the critical bending load (undefined where not assessed)"},
+      {DesignEvent::ReachesTarget, "reaches_target", "L - d >= T: the tip reaches the target depth"},
+      {DesignEvent::Success, "success", "punctures, neither buckles nor bends, and reaches the target"},
+      {DesignEvent::InvalidSample, "invalid_sample", "the sampled values make no valid needle (counted as failure)"},
+  };
+  return events;
+}
+
+std::string_view to_string(DesignEvent event) { return detail::name_of(design_events(), &DesignEventInfo::event, event); }
+
+std::string_view to_string(UncertaintyStatus status) {
+  switch (status) {
+    case UncertaintyStatus::Ok: return "ok";
+    case UncertaintyStatus::InvalidSamples: return "invalid_samples";
+  }
+  return "?";
+}
+
+struct DesignModel::Impl {
+  DesignOutcomeEvaluator evaluator;
+  std::vector<DesignInput> inputs;
+  std::vector<OutputSpec> outputs;
+};
+
+DesignModel::DesignModel(const DesignCase& nominal, std::vector<DesignInput> inputs)
+    : impl_(new Impl{DesignOutcomeEvaluator(nominal), std::move(inputs), {}}) {
+  impl_->outputs.push_back({std::string(kPerformanceIndexOutput), OutputKind::Continuous});
+  for (const DesignEventInfo& event : design_events()) {
+    impl_->outputs.push_back({std::string(event.name), OutputKind::Indicator});
+  }
+}
+
+DesignModel::~DesignModel() = default;
+
+const std::vector<OutputSpec>& DesignModel::outputs() const { return impl_->outputs; }
+
+void DesignModel::evaluate(const double* x, double* y) const {
+  DesignValues values = impl_->evaluator.nominal();
+  for (std::size_t i = 0; i < impl_->inputs.size(); ++i) set_value(impl_->inputs[i], x[i], values);
+  const DesignOutcome r = impl_->evaluator(values);
+  const auto flag = [](bool b) { return b ? 1.0 : 0.0; };
+  if (!r.valid) {
+    for (int o = 0; o < 6; ++o) y[o] = 0;
+    y[1 + static_cast<int>(DesignEvent::InvalidSample)] = 1;
+    return;
+  }
+  y[0] = r.performance_index;
+  y[1 + static_cast<int>(DesignEvent::Puncture)] = flag(r.punctures);
+  y[1 + static_cast<int>(DesignEvent::BucklingFailure)] = flag(r.buckles);
+  y[1 + static_cast<int>(DesignEvent::BendingFailure)] =
+      r.bends ? flag(*r.bends) : std::numeric_limits<double>::quiet_NaN();
+  y[1 + static_cast<int>(DesignEvent::ReachesTarget)] = flag(r.reaches_target);
+  y[1 + static_cast<int>(DesignEvent::Success)] =
+      flag(r.punctures && !r.buckles && r.bends != true && r.reaches_target);
+  y[1 + static_cast<int>(DesignEvent::InvalidSample)] = 0;
+}
+
+InputTransform design_input_transform(const DesignCase& nominal, const std::vector<DesignUncertainInput>& inputs,
+                                      const std::vector<Correlation>& correlations, std::vector<std::string>& notes) {
+  const DesignValues values = design_values(nominal);
+  std::vector<UncertainInput> resolved;
+  std::vector<DesignInput> seen;
+  for (const DesignUncertainInput& input : inputs) {
+    const std::string what = fmt::format("uncertain.\"{}\"", input.key);
+    DesignInput which = design_input_from_key(input.key, what);
+    nominal_value(which, values, what);
+    if (values.needle.shape == needle::Shape::Cylinder && which == DesignInput::BaseDiameter) {
+      which = DesignInput::TipDiameter;  // one diameter for a cylinder
+    }
+    if (std::find(seen.begin(), seen.end(), which) != seen.end()) {
+      throw InvalidInput(fmt::format("{}: given twice (a cylinder's tip and base diameter are one input), expected "
+                                     "each input once",
+                                     what));
+    }
+    seen.push_back(which);
+    const DesignInputInfo& entry = info(which);
+    UncertainInput u{input.key, input.distribution, entry.lower, entry.upper};
+    if (input.centred_on_nominal) {
+      const double value = nominal_value(which, values, what);
+      u.distribution.mean = u.distribution.median = u.distribution.mode = value;
+    }
+    validate(u.distribution, what);
+    const double outside = mass_outside_window(u);
+    const double factor = units::unit_factor(entry.unit, entry.dimension, what);
+    if (outside > kMaxTruncatedMass) {
+      throw InvalidInput(fmt::format(
+          "{}: {} puts {:.3g} % of its samples outside the physical range [{:g}, {:g}) {} ({}), expected at most "
+          "{:g} %: use truncated-normal with min and max, or a smaller spread",
+          what, describe(u.distribution, factor, entry.unit), 100 * outside, entry.lower / factor,
+          entry.upper / factor, entry.unit, entry.meaning, 100 * kMaxTruncatedMass));
+    }
+    if (outside > kNegligibleMass) {
+      notes.push_back(fmt::format("{}: {:.3g} % of {} lies outside the physical range and is truncated", input.key,
+                                  100 * outside, describe(u.distribution, factor, entry.unit)));
+    }
+    resolved.push_back(std::move(u));
+  }
+  InputTransform transform(std::move(resolved), correlations);
+  if (transform.correlated()) {
+    notes.push_back("correlated inputs: the Sobol' indices are those of the independent normal scores in the order "
+                    "the inputs are given (the first input of a correlated pair carries the shared part)");
+  }
+  return transform;
+}
+
+DesignUncertaintyResult design_uncertainty(const DesignCase& nominal, const std::vector<DesignUncertainInput>& inputs,
+                                           const std::vector<Correlation>& correlations,
+                                           const DesignUncertaintyOptions& options) {
+  DesignUncertaintyResult result;
+  result.nominal = analysis::performance_index(nominal.design, nominal.conditions, nominal.options);
+  const InputTransform transform = design_input_transform(nominal, inputs, correlations, result.notes);
+  std::vector<DesignInput> which;
+  for (const DesignUncertainInput& input : inputs) {
+    result.keys.push_back(input.key);
+    which.push_back(design_input_from_key(input.key, input.key));
+  }
+  const DesignModel model(nominal, which);
+  result.propagation = propagate(transform, model, options.sampling);
+
+  const DesignValues values = design_values(nominal);
+  std::vector<double> x(which.size()), y(model.outputs().size());
+  for (std::size_t i = 0; i < which.size(); ++i) x[i] = nominal_value(which[i], values, inputs[i].key);
+  for (std::size_t i = 0; i < which.size(); ++i) {
+    OneAtATime oat{inputs[i].key, transform.value(i, 0.05), transform.value(i, 0.95), 0, 0};
+    std::vector<double> varied = x;
+    varied[i] = oat.low;
+    model.evaluate(varied.data(), y.data());
+    oat.index_low = y[0];
+    varied[i] = oat.high;
+    model.evaluate(varied.data(), y.data());
+    oat.index_high = y[0];
+    result.one_at_a_time.push_back(oat);
+  }
+
+  const OutputSummary& invalid = result.event(DesignEvent::InvalidSample);
+  if (invalid.mean > 0) {
+    result.status = UncertaintyStatus::InvalidSamples;
+    result.reason = fmt::format("{} of {} samples made no valid needle (e.g. tip diameter above base diameter); they "
+                                "count as failures with index 0",
+                                std::llround(invalid.mean * static_cast<double>(invalid.defined)), invalid.defined);
+  }
+  const OutputSummary& bending = result.event(DesignEvent::BendingFailure);
+  if (bending.defined < result.propagation.samples) {
+    result.notes.push_back(fmt::format("bending_failure not assessed in {} of {} samples (the material has no "
+                                       "allowable_stress and the angle is > 0); success counts them as not bending",
+                                       result.propagation.samples - bending.defined, result.propagation.samples));
+  }
+  return result;
+}
+
+}  // namespace needlekit::uncertainty
