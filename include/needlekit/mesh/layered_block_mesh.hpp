@@ -1,6 +1,7 @@
 // A parametric layered tissue block (dissertation §3.3, default 3000 x 3000 x 1150 um: stratum corneum 20 um,
 // epidermis to 160 um, dermis below) meshed into linear tetrahedra with the Gmsh C++ API: conforming layer
-// interfaces and size fields refined around each insertion site. Gmsh stays inside layered_block_mesh.cpp.
+// interfaces and size fields refined around each insertion site. Gmsh stays in the Gmsh module
+// (src/mesh/gmsh/, opened on the first call: src/mesh/gmsh_module.hpp).
 #pragma once
 #include <Eigen/Core>
 #include <functional>

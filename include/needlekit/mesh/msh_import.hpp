@@ -1,5 +1,6 @@
 // Import of a user's tetrahedral Gmsh mesh (.msh, any version Gmsh reads): its physical volume groups become the
-// tissue layers. Gmsh stays inside msh_import.cpp.
+// tissue layers. Gmsh stays in the Gmsh module (src/mesh/gmsh/,
+// opened on the first call).
 #pragma once
 #include <filesystem>
 #include <vector>
