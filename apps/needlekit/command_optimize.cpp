@@ -10,6 +10,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/uncertainty_output.hpp"
 #include "progress_bar.hpp"
 
 namespace needlekit::cli {
@@ -45,13 +46,66 @@ void print_table(const analysis::DesignSpace& space, const analysis::OptimizerRe
              result.seconds);
 }
 
+void print_robust(const nlohmann::json& robust) {
+  fmt::print("robust design, P(success) >= {:g} ({} samples, {}): {}\n", robust["min_success_probability"].get<double>(),
+             robust["samples"].get<std::size_t>(), robust["method"].get<std::string>(), robust["status"].get<std::string>());
+  if (!robust["reason"].get<std::string>().empty()) fmt::print("{}\n", robust["reason"].get<std::string>());
+  for (const char* which : {"nominal_optimum", "design"}) {
+    const nlohmann::json& d = robust[which];
+    if (d.is_null()) continue;
+    fmt::print("  {:<16} n {}, D1 {:.6g} um, D2 {:.6g} um, w {:.6g} um, L {:.6g} um: PI {:.6e} 1/um, P(success) "
+               "{:.4f} [{:.4f}, {:.4f}]\n",
+               which, d["needles_per_row"].get<int>(), d["tip_diameter_um"].get<double>(),
+               d["base_diameter_um"].get<double>(), d["width_um"].get<double>(), d["length_um"].get<double>(),
+               d["performance_index_per_um"].get<double>(), d["success_probability"].get<double>(),
+               d["success_ci95"][0].get<double>(), d["success_ci95"][1].get<double>());
+  }
+  if (!robust["index_cost_per_um"].is_null()) {
+    fmt::print("  robustness costs {:.4g} 1/um of index ({:.3g} %), {} candidates checked\n",
+               robust["index_cost_per_um"].get<double>(), robust["index_cost_percent"].get<double>(),
+               robust["candidates_checked"].get<std::size_t>());
+  }
+}
+
+// min_success_probability: the best nominal design that works on at least that fraction of the skin.
+void run_robust(const OptimizeArguments& arguments, const io::SpaceFile& file, analysis::OptimizerOptions optimizer) {
+  if (arguments.certified) {
+    throw InvalidInput(fmt::format("{}: --certified does not apply with min_success_probability (robust design ranks "
+                                   "the grid by brute force)",
+                                   arguments.space_path));
+  }
+  uncertainty::RobustDesignOptions options;
+  options.min_success_probability = file.robust->min_success_probability;
+  options.sampling = file.robust->sampling;
+  options.sampling.threads = arguments.threads;
+  options.optimizer = optimizer;
+  options.optimizer.progress = nullptr;
+  uncertainty::RobustDesignResult result;
+  try {
+    result = uncertainty::robust_design(file.space, file.robust->inputs, file.robust->correlations, options);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("{}: {}", arguments.space_path, error.what()));
+  }
+  nlohmann::json json = io::robust_design_json(file.space, options, result);
+  json["top"].erase(json["top"].begin() + std::min<std::ptrdiff_t>(arguments.top, std::ssize(json["top"])),
+                    json["top"].end());  // the listing keeps --top designs; all were candidates
+  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
+  if (arguments.json) {
+    fmt::print("{}\n", json.dump(2));
+  } else {
+    print_robust(json["robust"]);
+  }
+}
+
 void run_optimize(const OptimizeArguments& arguments) {
-  const analysis::DesignSpace space = io::read_space_file(arguments.space_path).space;
+  const io::SpaceFile file = io::read_space_file(arguments.space_path);
+  const analysis::DesignSpace& space = file.space;
   analysis::OptimizerOptions options;
   options.method = arguments.certified ? analysis::SearchMethod::Certified : analysis::SearchMethod::BruteForce;
   options.top = arguments.top;
   options.published_compat = arguments.published_compat;
   options.threads = arguments.threads;
+  if (file.robust) return run_robust(arguments, file, options);
   ProgressBar progress("optimize");
   options.progress = [&progress](double fraction) {
     progress.update(fraction);
@@ -97,7 +151,7 @@ void add_optimize_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--out", arguments->out_path, "also write the JSON result to FILE (written only on success)")
       ->type_name("FILE");
-  command->footer(kSpaceFileHelp);
+  command->footer(std::string(kSpaceFileHelp) + "\n" + kRobustSpaceHelp);
   command->callback([arguments] { run_optimize(*arguments); });
 }
 

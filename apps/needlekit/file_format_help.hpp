@@ -38,6 +38,12 @@ inline constexpr const char* kSpaceFileHelp = R"(SPACE file (TOML; every dimensi
   width = ["5000 um", "10000 um", "1000 um"]
   length = ["300 um", "500 um", "50 um"])";
 
+inline constexpr const char* kRobustSpaceHelp = R"(Robust design (optional): add
+  min_success_probability = 0.99 the best nominal design whose P(success) under [uncertain] is at least this
+  [uncertain], [sampling], [[correlation]]   as in `needlekit uncertainty --help`; a design variable (tip_diameter,
+                                 base_diameter, bore_diameter, length, width) takes no mean: its spread is centred
+                                 on every candidate. The best max 2000 nominal designs are checked, best first.)";
+
 inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (below) plus
   [uncertain]    one inline table per uncertain input, keyed by its design-file key, values with the input's unit:
                  "needle.tip_diameter" = { distribution = "normal", mean = "30 um", sd = "2 um" }

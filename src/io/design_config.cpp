@@ -1,6 +1,7 @@
 #include "needlekit/io/design_config.hpp"
 
 #include "toml_config.hpp"
+#include "uncertainty_tables.hpp"
 
 #include <algorithm>
 #include <initializer_list>
@@ -125,6 +126,60 @@ void read_ranges(const Section& ranges, analysis::DesignSpace& space) {
   space.length = range_of(ranges, "length", Dimension::Length);
 }
 
+// A design of the space at the smallest value of every range: the spreads of the design variables are checked
+// against it (the smallest sizes are the first to go non-physical).
+uncertainty::DesignCase smallest_design(const analysis::DesignSpace& space) {
+  uncertainty::DesignCase c;
+  c.design.needle = {space.shape, space.tip_diameter.min,
+                     space.shape == needle::Shape::Cylinder ? space.tip_diameter.min : space.base_diameter.min,
+                     space.hollow ? space.bore_diameter.min : 0.0, space.length.min};
+  c.design.material = space.material;
+  c.design.width = space.width.min;
+  c.conditions = space.conditions;
+  return c;
+}
+
+std::optional<RobustSpec> robust_spec_of(const toml::table& root, const Section& top, const std::string& file,
+                                         const analysis::DesignSpace& space) {
+  const toml::node* level = top.optional("min_success_probability");
+  if (!level) {
+    for (std::string_view table : {"uncertain", "sampling", "correlation"}) {
+      if (const toml::node* node = top.optional(table)) {
+        top.fail(*node, table, "given without min_success_probability, expected both (robust design) or neither");
+      }
+    }
+    return std::nullopt;
+  }
+  RobustSpec spec;
+  if (!level->is_number() || !(*level->value<double>() > 0 && *level->value<double>() <= 1)) {
+    top.fail(*level, "min_success_probability", fmt::format("{} is not a probability in (0, 1]", describe(*level)));
+  }
+  spec.min_success_probability = *level->value<double>();
+  UncertaintyTables tables = read_uncertainty_tables(root, file);
+  spec.inputs = std::move(tables.inputs);
+  spec.correlations = std::move(tables.correlations);
+  spec.sampling = tables.sampling;
+  const toml::table& uncertain = *root.get("uncertain")->as_table();
+  for (const uncertainty::DesignUncertainInput& input : spec.inputs) {
+    const uncertainty::DesignInput which = uncertainty::design_input_from_key(input.key, input.key);
+    const bool design_variable = which == uncertainty::DesignInput::TipDiameter ||
+                                 which == uncertainty::DesignInput::BaseDiameter ||
+                                 which == uncertainty::DesignInput::BoreDiameter ||
+                                 which == uncertainty::DesignInput::Length || which == uncertainty::DesignInput::Width;
+    if (design_variable && !input.centred_on_nominal) {
+      const toml::node* node = uncertain.get(input.key);
+      throw InvalidInput(fmt::format("{} key 'uncertain.\"{}\"': a design variable's spread is centred on every "
+                                     "candidate, expected a normal, truncated-normal or lognormal without mean or median",
+                                     location(file, (node ? node : &uncertain)->source()), input.key));
+    }
+  }
+  std::vector<std::string> notes;
+  validate_at_keys(root, file, uncertain, [&] {
+    uncertainty::design_input_transform(smallest_design(space), spec.inputs, spec.correlations, notes);
+  });
+  return spec;
+}
+
 }  // namespace
 
 namespace {
@@ -218,7 +273,8 @@ SpaceFile parse_space_toml(std::string_view text, std::string_view source_name) 
   const std::string file(source_name);
   const toml::table root = parse_toml(text, file);
   const Section top(root, "", file,
-                    {"shape", "hollow", "material", "tissue", "target_depth", "spacing_factor", "ranges"});
+                    {"shape", "hollow", "material", "tissue", "target_depth", "spacing_factor", "ranges",
+                     "min_success_probability", "uncertain", "sampling", "correlation"});
 
   SpaceFile result;
   analysis::DesignSpace& space = result.space;
@@ -241,6 +297,7 @@ SpaceFile parse_space_toml(std::string_view text, std::string_view source_name) 
     analysis::validate(space.conditions.tissue, "tissue");
     analysis::design_space_size(space);
   });
+  result.robust = robust_spec_of(root, top, file, space);
   return result;
 }
 

@@ -27,18 +27,6 @@ nlohmann::json optional_json(const std::optional<Value>& value, Convert&& conver
   return value ? nlohmann::json(convert(*value)) : nlohmann::json(nullptr);
 }
 
-nlohmann::json candidate_json(const analysis::DesignCandidate& candidate) {
-  return {
-      {"needles_per_row", candidate.needles_per_row},
-      {"tip_diameter_um", um(candidate.tip_diameter)},
-      {"base_diameter_um", um(candidate.base_diameter)},
-      {"bore_diameter_um", um(candidate.bore_diameter)},
-      {"width_um", um(candidate.width)},
-      {"length_um", um(candidate.length)},
-      {"performance_index_per_um", per_um(candidate.performance_index)},
-  };
-}
-
 // CSV field quoting (RFC 4180): quoted when it holds a comma, a quote or a line break.
 std::string csv_field(std::string_view text) {
   if (text.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(text);
@@ -57,6 +45,18 @@ double report_value(analysis::SweepParameter parameter, double value) {
 }
 
 }  // namespace
+
+nlohmann::json candidate_json(const analysis::DesignCandidate& candidate) {
+  return {
+      {"needles_per_row", candidate.needles_per_row},
+      {"tip_diameter_um", um(candidate.tip_diameter)},
+      {"base_diameter_um", um(candidate.base_diameter)},
+      {"bore_diameter_um", um(candidate.bore_diameter)},
+      {"width_um", um(candidate.width)},
+      {"length_um", um(candidate.length)},
+      {"performance_index_per_um", per_um(candidate.performance_index)},
+  };
+}
 
 nlohmann::json performance_json(const analysis::ArrayDesign& design, const analysis::PerformanceIndexResult& r) {
   const needle::NeedleGeometry& n = design.needle;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "needlekit/io/result_writers.hpp"
+
 namespace needlekit::io {
 namespace {
 
@@ -94,6 +96,32 @@ nlohmann::json uncertainty_json(const UncertaintyFile& file, const uncertainty::
   }
   json["one_at_a_time"] = oat;
   json["notes"] = r.notes;
+  return json;
+}
+
+nlohmann::json robust_design_json(const analysis::DesignSpace& space, const uncertainty::RobustDesignOptions& options,
+                                  const uncertainty::RobustDesignResult& r) {
+  nlohmann::json json = optimizer_json(space, r.nominal);
+  const auto check_json = [](const uncertainty::CandidateCheck& c) {
+    nlohmann::json entry = candidate_json(c.candidate);
+    entry["success_probability"] = c.success_probability;
+    entry["success_ci95"] = interval(c.ci95);
+    return entry;
+  };
+  nlohmann::json robust = {
+      {"min_success_probability", r.min_success_probability},
+      {"status", uncertainty::to_string(r.status)},
+      {"reason", r.reason},
+      {"samples", options.sampling.samples},
+      {"method", uncertainty::to_string(options.sampling.method)},
+      {"seed", options.sampling.seed},
+      {"candidates_checked", r.checked.size()},
+      {"design", r.robust ? check_json(*r.robust) : nlohmann::json(nullptr)},
+      {"nominal_optimum", r.checked.empty() ? nlohmann::json(nullptr) : check_json(r.checked.front())},
+      {"index_cost_per_um", r.robust ? nlohmann::json(r.index_cost * kPerUm) : nlohmann::json(nullptr)},
+      {"index_cost_percent", r.robust ? nlohmann::json(100 * r.index_cost_fraction) : nlohmann::json(nullptr)},
+  };
+  json["robust"] = robust;
   return json;
 }
 

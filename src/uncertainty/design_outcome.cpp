@@ -37,7 +37,9 @@ DesignOutcomeEvaluator::DesignOutcomeEvaluator(const DesignCase& nominal)
     : nominal_(design_values(nominal)), options_(nominal.options) {
   analysis::performance_index(nominal.design, nominal.conditions, nominal.options);  // validates the nominal case
   const needle::NeedleGeometry& n = nominal_.needle;
-  const double i2 = needle::section_at(n, n.length).second_moment_min;
+  tip_area_ = needle::tip_area(n);
+  base_section_ = needle::section_at(n, n.length);
+  const double i2 = base_section_.second_moment_min;
   if (n.shape != needle::Shape::Cylinder) {
     const materials::NeedleMaterial material = material_of(nominal_);
     tapered_factor_ = analysis::critical_buckling_load(n, material, options_.buckling).critical_load * n.length *
@@ -54,7 +56,9 @@ bool DesignOutcomeEvaluator::nominal_section(const needle::NeedleGeometry& n) co
 double DesignOutcomeEvaluator::critical_buckling_load(const DesignValues& v) const {
   const needle::NeedleGeometry& n = v.needle;
   const double e = v.youngs_modulus;
-  const needle::SectionProperties base = needle::section_at(n, n.length);
+  const bool nominal = nominal_section(n);
+  // The base section depends on the diameters only (at s = L the bevel is the full circle).
+  const needle::SectionProperties base = nominal ? base_section_ : needle::section_at(n, n.length);
   if (n.shape == needle::Shape::Cylinder) {  // as analysis::critical_buckling_load(): Euler, or Johnson if short
     const double k = analysis::effective_length_factor(options_.buckling.end_condition, options_.buckling.effective_length);
     const double slenderness = k * n.length / std::sqrt(base.second_moment_min / base.area);  // Eq 2.33
@@ -64,8 +68,25 @@ double DesignOutcomeEvaluator::critical_buckling_load(const DesignValues& v) con
     }
     return analysis::euler_critical_load(e, base.second_moment_min, n.length, k);  // Eq 2.28
   }
-  if (nominal_section(n)) return tapered_factor_ * e * base.second_moment_min / (n.length * n.length);  // Eq 2.36
+  if (nominal) return tapered_factor_ * e * base.second_moment_min / (n.length * n.length);  // Eq 2.36
   return analysis::critical_buckling_load(n, material_of(v), options_.buckling).critical_load;
+}
+
+bool DesignOutcomeEvaluator::buckles(const DesignValues& v, double demand) const {
+  const needle::NeedleGeometry& n = v.needle;
+  if (n.shape == needle::Shape::Cylinder || nominal_section(n) ||
+      options_.buckling.end_condition != analysis::EndCondition::FixedFree) {
+    return !(demand < critical_buckling_load(v));
+  }
+  // A new tapered section, fixed-free: P_cr = m·E·I2/L² with π²/4·I_tip/I2 <= m <= π²/4 (the column lies between
+  // uniform columns of its weakest and strongest sections; Sturm comparison, as in DesignPointEvaluator), so most
+  // samples need no eigenvalue.
+  const double i2 = needle::section_at(n, n.length).second_moment_min;
+  const double scale = v.youngs_modulus * i2 / (n.length * n.length);
+  const double m_max = M_PI * M_PI / 4;
+  if (demand >= m_max * scale) return true;
+  if (demand < m_max * (needle::section_at(n, 0.0).second_moment_min / i2) * scale) return false;
+  return !(demand < critical_buckling_load(v));
 }
 
 double DesignOutcomeEvaluator::critical_bending_load(const DesignValues& v) const {
@@ -80,7 +101,7 @@ DesignOutcome DesignOutcomeEvaluator::operator()(const DesignValues& v) const {
     return r;
   }
   const needle::NeedleGeometry& n = v.needle;
-  const double area = needle::tip_area(n);
+  const double area = nominal_section(n) ? tip_area_ : needle::tip_area(n);
   const double force = analysis::puncture_force(area, v.tissue);                        // Eq 4.2
   const double d = analysis::skin_deformation(area, v.tissue).depth;                    // Eq 4.3
   const double h = analysis::cutting_depth(n.length, d);                                // Eq 4.4
@@ -90,7 +111,7 @@ DesignOutcome DesignOutcomeEvaluator::operator()(const DesignValues& v) const {
   const double permeation = analysis::ideal_permeation_depth(n.hollow(), n.length, d, v.target_depth);  // Eq 4.23
   r.reaches_target = permeation > 0;
   const double buckling_force = analysis::angled_buckling_force(force, v.angle);       // Eq 5.3
-  r.buckles = !(options_.buckling_safety_factor * buckling_force < critical_buckling_load(v));  // Eq 4.5
+  r.buckles = buckles(v, options_.buckling_safety_factor * buckling_force);  // Eq 4.5
   const double bending_force = analysis::angled_bending_force(force, v.angle);         // Eq 5.4
   if (v.allowable_stress) {
     r.bends = !(options_.bending_safety_factor * bending_force < critical_bending_load(v));

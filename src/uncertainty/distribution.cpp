@@ -15,8 +15,11 @@ namespace needlekit::uncertainty {
 namespace {
 
 // Domain errors are checked by validate(); Boost.Math must not throw or print on them.
+// Double precision throughout (Boost.Math would otherwise evaluate in long double, 3x slower, for no gain in the
+// 53-bit results sampling needs).
 using Policy = boost::math::policies::policy<boost::math::policies::domain_error<boost::math::policies::ignore_error>,
-                                             boost::math::policies::overflow_error<boost::math::policies::ignore_error>>;
+                                             boost::math::policies::overflow_error<boost::math::policies::ignore_error>,
+                                             boost::math::policies::promote_double<false>>;
 using Normal = boost::math::normal_distribution<double, Policy>;
 
 double standard_normal_cdf(double z) { return boost::math::cdf(Normal(0, 1), z); }

@@ -238,7 +238,13 @@ PropagationResult propagate(const InputTransform& inputs, const Model& model, co
         summary.ci95 = {summary.mean - half, summary.mean + half};
       } else {
         summary.ci95 = replicate_interval(summary.mean, replicate_means);
-        if (indicator) summary.ci95 = {std::max(0.0, summary.ci95.lo), std::min(1.0, summary.ci95.hi)};
+        if (indicator) {
+          // A replicate's estimate is a multiple of 1/n_g: identical replicates only show an error below that
+          // resolution, so the interval is never narrower than ±1/n_g.
+          const double resolution = static_cast<double>(groups) / rows;
+          summary.ci95 = {std::max(0.0, std::min(summary.ci95.lo, summary.mean - resolution)),
+                          std::min(1.0, std::max(summary.ci95.hi, summary.mean + resolution))};
+        }
       }
     } else {
       summary.mean = summary.sd = nan;

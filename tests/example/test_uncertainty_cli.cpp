@@ -121,3 +121,35 @@ TEST_F(UncertaintyCli, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
     EXPECT_FALSE(std::filesystem::exists(dir_ / "result"));
   }
 }
+
+TEST_F(UncertaintyCli, RobustOptimizeFindsTheBestDesignThatMeetsTheLevelAndItsCost) {
+  const CliRun r = run("optimize " + kExamples + "optimize_robust_cone_su8.toml --json --top 3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  const auto& robust = json["robust"];
+  EXPECT_EQ(robust["status"], "found");
+  EXPECT_EQ(robust["min_success_probability"], 0.99);
+  EXPECT_GE(robust["design"]["success_probability"].get<double>(), 0.99);
+  // The deterministic optimum is the nominal ranking's best, and it is not robust: it bends at an angle.
+  EXPECT_EQ(robust["nominal_optimum"]["performance_index_per_um"], json["best"]["performance_index_per_um"]);
+  EXPECT_LT(robust["nominal_optimum"]["success_probability"].get<double>(), 0.5);
+  const double cost = robust["index_cost_per_um"].get<double>();
+  EXPECT_NEAR(cost, json["best"]["performance_index_per_um"].get<double>() -
+                        robust["design"]["performance_index_per_um"].get<double>(), 1e-15);
+  EXPECT_GT(robust["index_cost_percent"].get<double>(), 10.0);
+  EXPECT_GT(robust["candidates_checked"].get<int>(), 1);
+  EXPECT_EQ(json["top"].size(), 3u);
+}
+
+TEST_F(UncertaintyCli, RobustOptimizeRefusesADesignVariableWithAMeanAndCertified) {
+  std::string text = file_text(kExamples + "optimize_robust_cone_su8.toml");
+  text.insert(text.find("[sampling]"), "\"needle.length\" = { distribution = \"normal\", mean = \"500 um\", sd = \"5 um\" }\n");
+  std::ofstream(dir_ / "space.toml") << text;
+  CliRun r = run("optimize space.toml --out result.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("key 'uncertain.\"needle.length\"': a design variable's spread is centred"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "result.json"));
+  r = run("optimize " + kExamples + "optimize_robust_cone_su8.toml --certified");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--certified does not apply with min_success_probability"));
+}

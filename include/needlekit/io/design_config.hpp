@@ -23,10 +23,13 @@
 #pragma once
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
+#include <vector>
 #include <string_view>
 
 #include "needlekit/analysis/design_space.hpp"
 #include "needlekit/analysis/performance_index.hpp"
+#include "needlekit/uncertainty/design_uncertainty.hpp"
 
 namespace needlekit::io {
 
@@ -52,8 +55,21 @@ DesignFile parse_needle_tables(std::string_view text, std::string_view source_na
 DesignFile parse_design_tables(std::string_view text, std::string_view source_name,
                                std::initializer_list<std::string_view> other_tables);
 
+// Robust design (uncertainty/robust_design.hpp): a design-space file may add min_success_probability = 0.99 (top
+// level) with the [uncertain], [sampling] and [[correlation]] tables of an uncertainty file
+// (io/uncertainty_config.hpp). The spread of a design variable (needle.tip_diameter, base_diameter, bore_diameter,
+// length, array.width) is centred on every candidate, so it takes no mean or median and must be normal,
+// truncated-normal or lognormal; tissue and material inputs are absolute.
+struct RobustSpec {
+  double min_success_probability = 0.99;
+  std::vector<uncertainty::DesignUncertainInput> inputs;
+  std::vector<uncertainty::Correlation> correlations;
+  uncertainty::PropagationOptions sampling;
+};
+
 struct SpaceFile {
   analysis::DesignSpace space;
+  std::optional<RobustSpec> robust;  // when min_success_probability is given
 };
 
 // Throws IoError (unreadable file, TOML syntax) or InvalidInput (a missing, unknown or invalid key or range).

@@ -16,6 +16,9 @@ namespace needlekit::io {
 // Keys that were not assessed (critical_bending_load_N, bending_ok without an allowable stress) are null.
 nlohmann::json performance_json(const analysis::ArrayDesign& design, const analysis::PerformanceIndexResult& result);
 
+// {"needles_per_row", "tip_diameter_um", ..., "performance_index_per_um"} of one optimizer candidate.
+nlohmann::json candidate_json(const analysis::DesignCandidate& candidate);
+
 // {"shape", "hollow", "material", "best", "evaluated", "feasible", "grid_points", "seconds", "status", "reason",
 //  "top": [... + "details"]}; "best" is null when no design is feasible. The space supplies the needle type and
 // the material of the candidates' details.

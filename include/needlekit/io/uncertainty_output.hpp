@@ -13,11 +13,20 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "needlekit/analysis/design_space.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
+#include "needlekit/uncertainty/robust_design.hpp"
 
 namespace needlekit::io {
 
 nlohmann::json uncertainty_json(const UncertaintyFile& file, const uncertainty::DesignUncertaintyResult& result);
+
+// `optimize` with min_success_probability: optimizer_json of the nominal ranking plus
+//   "robust": {"min_success_probability", "status", "reason", "samples", "method", "seed",
+//              "design": {candidate, "success_probability", "success_ci95"}, "nominal_optimum": {... the same},
+//              "index_cost_per_um", "index_cost_percent", "candidates_checked"}
+nlohmann::json robust_design_json(const analysis::DesignSpace& space, const uncertainty::RobustDesignOptions& options,
+                                  const uncertainty::RobustDesignResult& result);
 
 // "performance_index_low_per_um,performance_index_high_per_um,count" rows of the index histogram.
 std::string index_histogram_csv(const uncertainty::DesignUncertaintyResult& result);

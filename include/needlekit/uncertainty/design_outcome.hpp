@@ -8,6 +8,7 @@
 #pragma once
 #include <optional>
 
+#include "needlekit/needle/section_properties.hpp"
 #include "needlekit/uncertainty/design_inputs.hpp"
 
 namespace needlekit::uncertainty {
@@ -34,10 +35,13 @@ public:
 private:
   bool nominal_section(const needle::NeedleGeometry& needle) const;
   double critical_buckling_load(const DesignValues& values) const;
+  bool buckles(const DesignValues& values, double demand) const;  // demand >= P_cr, by bounds where they decide
   double critical_bending_load(const DesignValues& values) const;
 
   DesignValues nominal_;
   analysis::PerformanceIndexOptions options_;
+  double tip_area_ = 0;          // A of the nominal section
+  needle::SectionProperties base_section_;  // at the base, of the nominal section
   double tapered_factor_ = 0;    // m of the nominal section (cones, bevels)
   double bending_factor_ = 0;    // P_Be·L/σ of the nominal section
 };

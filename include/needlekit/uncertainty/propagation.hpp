@@ -6,7 +6,8 @@
 // independently scrambled Sobol' sequence, with monte-carlo independent pseudo-random streams. Output statistics
 // use the N rows of matrix A; the Sobol' indices also run B and the k matrices AB_i (N·(k + 2) runs). Intervals:
 // Wilson for Monte Carlo probabilities, the normal approximation for Monte Carlo means, and the Student-t spread
-// of the G replicates for quasi-Monte Carlo estimates and all Sobol' indices. Work is cut into blocks addressed by
+// of the G replicates for quasi-Monte Carlo estimates (a probability's never narrower than ±G/N, the resolution of
+// one replicate) and all Sobol' indices. Work is cut into blocks addressed by
 // (group, block) and reduced in a fixed order, so the result is bit-for-bit the same on any number of threads.
 #pragma once
 #include <cstddef>
