@@ -2,6 +2,8 @@
 // with the nonlinear FE solver and report the force-depth curve and the puncture point (dissertation §3.4-3.5, 6.2).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -79,9 +81,15 @@ void run_indent(const IndentArguments& arguments) {
   const insertion::IndentationResult result = insertion::run_indentation(indentation_case, options);
   progress.finish();
   if (writer) writer->finish(result);
+  // A run that stopped on a numerical failure ends with its own exit code, after everything it kept is written and
+  // printed.
+  const auto outcome = [&result] {
+    if (result.status == insertion::IndentationStatus::SolverFailed) throw CommandOutcome{ExitCode::NumericalFailure};
+  };
 
   if (arguments.json) {
     fmt::print("{}\n", io::indentation_json(indentation_case, result).dump(2));
+    outcome();
     return;
   }
   fmt::print("{}: {} tetrahedra, {} nodes, {} unknowns ({} solver); mesh {:.2f} s, total {:.2f} s\n",
@@ -100,9 +108,14 @@ void run_indent(const IndentArguments& arguments) {
   }
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
-    fmt::print("wrote {} files to {} (open {}.pvd in ParaView)\n", writer->files().size(), arguments.out_dir,
-               indentation_case.name);
+    // Name the ParaView series only when it was written (a run that fails in its first step writes no step).
+    const std::filesystem::path series = std::filesystem::path(arguments.out_dir) / (indentation_case.name + ".pvd");
+    const auto& files = writer->files();
+    const bool has_series = std::find(files.begin(), files.end(), series) != files.end();
+    fmt::print("wrote {} files to {}{}\n", files.size(), arguments.out_dir,
+               has_series ? fmt::format(" (open {} in ParaView)", series.filename().string()) : std::string());
   }
+  outcome();
 }
 
 }  // namespace

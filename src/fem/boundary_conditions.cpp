@@ -96,34 +96,116 @@ std::vector<char> fixed_dofs(const FunctionSpace& space, BoundaryCondition condi
   return fixed;
 }
 
-std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, const geometry::TriangleMesh& needle,
-                           double ntol) {
+namespace {
+
+// The flat tip face of a needle seen from below: its triangles in the (x, y) plane, and the circular segments
+// between the face's boundary edges (the mesh's inscribed polygon) and the needle's true outline.
+struct TipOutline {
+  std::vector<std::array<Eigen::Vector2d, 3>> triangles;
+  struct Segment {             // the part of the circle through the edge's ends outside the chord p-q
+    Eigen::Vector2d p = Eigen::Vector2d::Zero(), q = Eigen::Vector2d::Zero(), centre = Eigen::Vector2d::Zero();
+    Eigen::Vector2d outward = Eigen::Vector2d::Zero();  // normal of the chord, away from the face
+    double radius = 0;
+  };
+  std::vector<Segment> segments;
+
+  bool contains(const Eigen::Vector2d& x) const {
+    for (const auto& t : triangles) {
+      const Eigen::Vector2d e1 = t[1] - t[0], e2 = t[2] - t[0], w = x - t[0];
+      const double det = e1.x() * e2.y() - e1.y() * e2.x();
+      const double s = (w.x() * e2.y() - w.y() * e2.x()) / det, r = (e1.x() * w.y() - e1.y() * w.x()) / det;
+      const double eps = 1e-7;
+      if (s >= -eps && r >= -eps && s + r <= 1 + eps) return true;
+    }
+    for (const auto& g : segments) {
+      const Eigen::Vector2d chord = g.q - g.p;
+      const double along = (x - g.p).dot(chord) / chord.squaredNorm();
+      if (along < 0 || along > 1 || (x - g.p).dot(g.outward) < 0) continue;
+      if ((x - g.centre).norm() <= g.radius * (1 + 1e-9)) return true;  // on the outline counts as under the tip
+    }
+    return false;
+  }
+};
+
+// Circle through three points in the plane; radius 0 when they are collinear.
+std::pair<Eigen::Vector2d, double> circumcircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                                const Eigen::Vector2d& c) {
+  const Eigen::Vector2d ab = b - a, ac = c - a;
+  const double det = 2 * (ab.x() * ac.y() - ab.y() * ac.x());
+  if (!(std::abs(det) > 1e-9 * ab.norm() * ac.norm())) return {a, 0.0};  // collinear (or repeated) points
+  const Eigen::Vector2d centre =
+      a + Eigen::Vector2d(ac.y() * ab.squaredNorm() - ab.y() * ac.squaredNorm(),
+                          ab.x() * ac.squaredNorm() - ac.x() * ab.squaredNorm()) / det;
+  return {centre, (centre - a).norm()};
+}
+
+// The tip face: triangles at the needle's lowest level facing down (within `ntol` of it). Their boundary, ordered
+// into loops, is the mesh's polygon of the outline; a curved outline (a cylinder's circle, a bevel's elliptical
+// arc) has its vertices on the true curve, so each boundary edge gets the circular segment of the circle through it
+// and its neighbour vertex (of the two neighbours, the larger circle: a straight run, such as a bevel face's chord,
+// gives none). A node on the true outline is then under the tip (Eq 3.9's nodes on the tip's edge), not only the
+// nodes inside the inscribed polygon.
+TipOutline tip_outline(const geometry::TriangleMesh& needle, double ntol) {
   double zmin = std::numeric_limits<double>::infinity();
   for (const auto& v : needle.vertices) zmin = std::min(zmin, v.z());
-  // Flat tip face: triangles at the lowest level facing down.
-  std::vector<std::array<Eigen::Vector2d, 3>> tip;
+  TipOutline outline;
+  std::map<std::pair<int, int>, int> edge_count;  // undirected edge -> uses
+  std::map<int, std::pair<int, int>> next;        // boundary vertex -> (next vertex, opposite vertex of its triangle)
+  std::vector<std::array<int, 3>> tip;
   for (const auto& t : needle.triangles) {
     const auto &a = needle.vertices[t[0]], &b = needle.vertices[t[1]], &c = needle.vertices[t[2]];
     if (a.z() > zmin + ntol || b.z() > zmin + ntol || c.z() > zmin + ntol) continue;
     const Eigen::Vector3d n = (b - a).cross(c - a);
     if (n.norm() == 0 || n.normalized().z() > -0.999) continue;
-    tip.push_back({a.head<2>(), b.head<2>(), c.head<2>()});
+    outline.triangles.push_back({a.head<2>(), b.head<2>(), c.head<2>()});
+    tip.push_back(t);
+    for (int k = 0; k < 3; ++k) edge_count[std::minmax(t[k], t[(k + 1) % 3])]++;
   }
-  std::vector<int> nodes;
-  for (int n : top.nodes) {
-    const Eigen::Vector2d p = space.nodes[n].head<2>();
-    for (const auto& t : tip) {
-      const Eigen::Vector2d e1 = t[1] - t[0], e2 = t[2] - t[0], w = p - t[0];
-      const double det = e1.x() * e2.y() - e1.y() * e2.x();
-      const double s = (w.x() * e2.y() - w.y() * e2.x()) / det, r = (e1.x() * w.y() - e1.y() * w.x()) / det;
-      const double eps = 1e-7;
-      if (s >= -eps && r >= -eps && s + r <= 1 + eps) {
-        nodes.push_back(n);
-        break;
-      }
+  bool manifold = true;
+  for (const auto& t : tip)
+    for (int k = 0; k < 3; ++k)
+      if (edge_count[std::minmax(t[k], t[(k + 1) % 3])] == 1)
+        manifold = next.emplace(t[k], std::make_pair(t[(k + 1) % 3], t[(k + 2) % 3])).second && manifold;
+  if (!manifold) return outline;  // a boundary vertex with two outgoing edges: keep the polygon alone
+  std::map<int, int> previous;
+  for (const auto& [from, to] : next) previous[to.first] = from;
+  const auto xy = [&](int v) -> Eigen::Vector2d { return needle.vertices[v].head<2>(); };
+  for (const auto& [p, to] : next) {
+    const int q = to.first, opposite = to.second;
+    const auto before = previous.find(p);
+    const auto after = next.find(q);
+    if (before == previous.end() || after == next.end()) continue;
+    TipOutline::Segment best;
+    for (const auto& [centre, radius] :
+         {circumcircle(xy(before->second), xy(p), xy(q)), circumcircle(xy(p), xy(q), xy(after->second.first))}) {
+      if (radius == 0) continue;
+      // Convex there: the centre on the face's side of the chord (the side of the triangle's third vertex).
+      const Eigen::Vector2d chord = xy(q) - xy(p);
+      const auto side = [&](const Eigen::Vector2d& x) {
+        const Eigen::Vector2d w = x - xy(p);
+        return chord.x() * w.y() - chord.y() * w.x();
+      };
+      if (side(centre) * side(xy(opposite)) <= 0) continue;
+      const Eigen::Vector2d normal = Eigen::Vector2d(chord.y(), -chord.x()) * (side(xy(opposite)) > 0 ? 1 : -1);
+      if (best.radius == 0 || radius > best.radius) best = {xy(p), xy(q), centre, normal, radius};
     }
+    if (best.radius > 0) outline.segments.push_back(best);
   }
+  return outline;
+}
+
+}  // namespace
+
+std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, const geometry::TriangleMesh& needle,
+                           double ntol) {
+  const TipOutline outline = tip_outline(needle, ntol);
+  std::vector<int> nodes;
+  if (!outline.triangles.empty())
+    for (int n : top.nodes)
+      if (outline.contains(space.nodes[n].head<2>())) nodes.push_back(n);
   if (nodes.empty()) {  // sharp tip: the top node nearest to the apex
+    double zmin = std::numeric_limits<double>::infinity();
+    for (const auto& v : needle.vertices) zmin = std::min(zmin, v.z());
     Eigen::Vector2d apex = Eigen::Vector2d::Zero();
     for (const auto& v : needle.vertices)
       if (v.z() <= zmin + ntol) {

@@ -27,9 +27,10 @@ TopSurface top_surface(const mesh::TetMesh& mesh, const FunctionSpace& space, do
 // `tolerance` (m).
 std::vector<char> fixed_dofs(const FunctionSpace& space, BoundaryCondition condition, double tolerance);
 
-// The top nodes under a needle's flat tip (§3.4): those whose (x, y) lie in the needle's outline at its lowest level
-// (the downward-facing triangles there, within `tolerance` in the plane), for a sharp tip the top node nearest the
-// apex. The needle must point along -z.
+// The top nodes under a needle's flat tip (§3.4): those whose (x, y) lie in the needle's true outline at its lowest
+// level — the downward-facing triangles there (within `tolerance` of that level) plus, over each boundary edge of
+// that polygon, the circular segment up to the curve through its vertices — on the outline included; for a sharp tip
+// the top node nearest the apex. The needle must point along -z.
 std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, const geometry::TriangleMesh& needle,
                            double tolerance);
 

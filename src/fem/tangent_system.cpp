@@ -23,6 +23,9 @@ constexpr double kFactorFlopSpeedup = 7.0;
 // deform the tissue alike).
 constexpr int kRecycled = 12;
 constexpr int kTwoGridMaxIterations = 200;
+// Column ranges of the symmetric product: enough for the cores of a workstation; each costs one vector of partial
+// sums per product.
+constexpr int kProductParts = 8;
 
 }  // namespace
 
@@ -62,11 +65,13 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
 }
 
 // Threaded over column ranges; each range scatters its transposed part into its own vector (the symmetric product
-// writes rows above the range), summed at the end in a fixed order.
+// writes rows above the range), summed at the end in a fixed order. The number of ranges is fixed (kProductParts),
+// not the number of threads, so that the product, and with it every solve, is bitwise the same whatever the number
+// of threads.
 void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const UpperPattern& pattern = pattern_;
   const int64_t nc = static_cast<int64_t>(pattern.column_pointers.size()) - 1;
-  const int parts = std::max(1, arena_.max_concurrency());
+  const int parts = kProductParts;
   partial_.resize(static_cast<size_t>(parts));
   arena_.execute([&] {
     tbb::parallel_for(0, parts, [&](int part) {

@@ -50,6 +50,28 @@ IndentationStep step_of(const fem::StepResult& solved, double depth) {
   return step;
 }
 
+// A criterion that fires at the first step has no earlier step to interpolate from: bisect the step from the
+// undeformed state (no force, no contact: no criterion met) so that the point is located inside it, as between later
+// steps. kFirstStepBisections halvings leave a bracket of 1/16 of the step, interpolated linearly. The solver is left
+// in the state of the last bisection.
+constexpr int kFirstStepBisections = 4;
+
+PuncturePoint puncture_in_first_step(fem::QuasiStaticSolver& solver, const IndentationCase& c, double lowest,
+                                     const PunctureSample& first, const PuncturePoint& fired) {
+  PunctureSample below{0.0, 0.0, 0.0, 0.0};
+  PunctureSample above = first;
+  for (int i = 0; i < kFirstStepBisections; ++i) {
+    const double middle = 0.5 * (below.depth + above.depth);
+    const fem::StepResult solved = solver.advance_to(lowest + middle);
+    if (!solved.converged) break;  // keep the bracket found so far
+    const IndentationStep step = step_of(solved, middle);
+    const PunctureSample sample{middle, step.force, step.contact_area, step.strain_energy};
+    (puncture_point({sample}, c.puncture) ? above : below) = sample;
+  }
+  const std::optional<PuncturePoint> located = puncture_point({below, above}, c.puncture);
+  return located ? *located : fired;
+}
+
 }  // namespace
 
 std::string to_string(IndentationStatus status) {
@@ -205,7 +227,11 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     if (options.on_step) options.on_step(step, solver);
     report("step", static_cast<double>(k) / c.steps);
     samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});
-    if (!result.puncture) result.puncture = puncture_point(samples, c.puncture);
+    if (!result.puncture) {
+      result.puncture = puncture_point(samples, c.puncture);
+      if (result.puncture && samples.size() == 1)
+        result.puncture = puncture_in_first_step(solver, c, lowest, samples.front(), *result.puncture);
+    }
     if (result.puncture && c.stop_at_puncture) break;
   }
   if (!failed) {

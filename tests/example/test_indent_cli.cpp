@@ -14,6 +14,7 @@ using needlekit::test::CliRun;
 using needlekit::test::kExamples;
 using needlekit::test::file_text;
 using testing::HasSubstr;
+using testing::Not;
 
 namespace {
 
@@ -53,6 +54,28 @@ TEST_F(IndentCli, FlatPunchExampleMatchesSneddon) {
   EXPECT_THAT(csv, HasSubstr("depth_um,force_N,contact_area_um2,contact_pressure_MPa"));
   const nlohmann::json puncture = nlohmann::json::parse(file_text(dir_ / "results/flat_punch_puncture.json"));
   EXPECT_DOUBLE_EQ(puncture["critical_pressure_MPa"].get<double>(), 0.663);
+}
+
+TEST_F(IndentCli, NumericalFailureExitsWithCode3AndNamesOnlyWrittenFiles) {
+  // St Venant-Kirchhoff, 280 um into a 300 um block in one step with no cut-back: the first step fails. The run ends
+  // with exit code 3 (not 0, not bad input's 2), keeps what it has (the curves, the puncture JSON) and does not point
+  // to a ParaView series that was never written.
+  std::ofstream(dir_ / "fails.toml")
+      << "name = \"fails\"\n[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n"
+         "[tissue]\nwidth = \"1500 um\"\nlength = \"1500 um\"\n[[tissue.layers]]\nname = \"gel\"\n"
+         "thickness = \"300 um\"\nyoungs_modulus = \"0.2 MPa\"\npoisson_ratio = 0.3\n"
+         "[mesh]\nsize_at_tip = \"60 um\"\nsize_far = \"600 um\"\nrefinement_radius = \"200 um\"\n"
+         "[loading]\ndepth = \"280 um\"\nsteps = 1\n[model]\nlaw = \"svk\"\ncontact = \"tip-nodes\"\n"
+         "element = \"linear\"\n[solver]\nmax_cutbacks = 0\n";
+  const CliRun r = run("indent fails.toml --out results");
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("status: solver-failed"));
+  EXPECT_THAT(r.out, Not(HasSubstr(".pvd")));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "results/fails.pvd"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "results/fails_force_depth.csv"));
+  const CliRun json = run("indent fails.toml --json");
+  EXPECT_EQ(json.exit_code, 3) << json.err;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["status"], "solver-failed");
 }
 
 TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {

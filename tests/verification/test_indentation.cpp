@@ -93,6 +93,22 @@ TEST(Indentation, FlatPunchFollowsSneddonAndStoresTheWork) {
   EXPECT_FALSE(curve.puncture.has_value());
 }
 
+TEST(Indentation, APunctureInTheFirstStepIsLocatedInsideIt) {
+  // Two steps of 20 um; P_c at 30 % of the first step's mean tip pressure. The pressure under a flat punch grows
+  // linearly with depth, so the crossing is at about 6 um: found by bisecting the first step from the undeformed
+  // state, not reported at the step's end (20 um).
+  insertion::IndentationCase c = flat_punch_case(1150e-6, 40e-6, 2, 0.3);
+  const insertion::IndentationResult reference = insertion::run_indentation(c);
+  ASSERT_EQ(reference.status, insertion::IndentationStatus::ReachedDepth) << reference.reason;
+  const insertion::IndentationStep& first = reference.steps.front();
+  c.puncture.critical_pressure = 0.3 * first.contact_pressure;
+  const insertion::IndentationResult result = insertion::run_indentation(c);
+  ASSERT_EQ(result.status, insertion::IndentationStatus::Punctured) << result.reason;
+  ASSERT_EQ(result.steps.size(), 1u);
+  EXPECT_NEAR(result.puncture->depth / first.depth, 0.3, 0.02);
+  EXPECT_NEAR(result.puncture->force / first.force, 0.3, 0.02);
+}
+
 TEST(Indentation, StopsAtTheStepThatCrossesTheCriticalPressure) {
   insertion::IndentationCase c = flat_punch_case(1150e-6, 40e-6, 8);
   // P = F/A grows about linearly; pick P_c at 60 % of the Sneddon pressure at full depth.
