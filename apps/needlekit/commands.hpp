@@ -24,5 +24,6 @@ void add_patch_command(CLI::App& app);      // command_patch.cpp
 void add_reproduce_command(CLI::App& app);  // command_reproduce.cpp
 void add_indent_command(CLI::App& app);     // command_indent.cpp
 void add_insert_command(CLI::App& app);     // command_insert.cpp
+void add_calibrate_command(CLI::App& app);  // command_calibrate.cpp
 
 }  // namespace needlekit::cli
