@@ -4,7 +4,7 @@
 //   2 % noise, fitted on a 44 um mesh). Counters: coverage_E, coverage_Pc (fraction of the seeds whose 95 % interval
 //   holds the truth), max_error_E, max_error_Pc (largest relative error), within_3pct (seeds with both within 3 %).
 //     build/bin/needlekit_bench --benchmark_filter=BM_CalibrationCoverage
-// BM_CalibrateInsertion: E and P_c fitted to one complete insertion curve (the sharp bevel of §6.2 into the phantom,
+// BM_CalibrateInsertion: E and P_c fitted to one complete insertion curve (the blunt bevel of §6.2 into the phantom (a sharp tip punctures at its first step whatever P_c is, so P_c would not be identifiable),
 //   FE to puncture + cutting force) on a mesh of about 10k tetrahedra, from 50 % / 30 % off; the curve is the
 //   model's own at E = 0.2 MPa, P_c = 0.663 MPa on the same mesh. Counters: tets, fe_runs, iterations, seconds,
 //   error_E, error_Pc.
@@ -46,10 +46,10 @@ void BM_CalibrationCoverage(benchmark::State& state) {
 }
 BENCHMARK(BM_CalibrationCoverage)->Arg(20)->Unit(benchmark::kSecond)->Iterations(1);
 
-const char* kInsertCase = R"(name = "sharp_bevel"
+const char* kInsertCase = R"(name = "blunt_bevel"
 [needle]
 shape = "bevel"
-tip_diameter = "10 um"
+tip_diameter = "50 um"
 base_diameter = "230 um"
 length = "1000 um"
 [tissue]
@@ -97,7 +97,7 @@ void BM_CalibrateInsertion(benchmark::State& state) {
     if (p.curve.depth[i] > p.curve.depth[i - 1]) csv += fmt::format("{:.9g},{:.9g}\n", p.curve.depth[i] * 1e6, p.curve.force[i]);
   std::ofstream(dir / "curve.csv") << csv;
   std::ofstream(dir / "fit.toml") << test::kModulusAndPressure << R"([[experiments]]
-name = "sharp bevel"
+name = "blunt bevel"
 case = "case.toml"
 measured = "curve.csv"
 )";
