@@ -43,7 +43,10 @@ void print_table(const io::DesignFile& file, const analysis::PerformanceIndexRes
                                      file.conditions.target_depth * 1e6));
   fmt::print("\n");
   print_row("tip area A", fmt::format("{:.6g} um^2", r.tip_area * 1e12));
-  print_row("puncture force F(A) (Eq 4.2)", fmt::format("{:.6g} N", r.puncture_force));
+  print_row("puncture force law", fmt::format("{} ({})", analysis::to_string(r.puncture_force_law),
+                                              analysis::puncture_force_law_info(r.puncture_force_law).source));
+  print_row("puncture force F(A)", fmt::format("{:.6g} N{}", r.puncture_force,
+                                               r.puncture_force_in_range ? "" : "  (outside the law's range: note)"));
   print_row("deformation d (Eq 4.3)", fmt::format("{:.6g} um{}", r.deformation * 1e6,
                                                   r.small_tip_branch ? " (small-tip line d = K*A)" : ""));
   print_row("cutting depth h = L - d (Eq 4.4)", fmt::format("{:.6g} um", r.cutting_depth * 1e6));
@@ -55,8 +58,10 @@ void print_table(const io::DesignFile& file, const analysis::PerformanceIndexRes
             fmt::format("{:.6g} um^3 / {:.6g} um^3", r.hole_volume * 1e18, r.gap_volume * 1e18));
   print_row("fractional skin volume f_v", fmt::format("{:.6g}", r.fractional_skin_volume));
   print_row("needle volume", fmt::format("{:.6g} um^3", r.needle_volume * 1e18));
-  print_row("critical buckling load P_cr", fmt::format("{:.6g} N ({}{})", r.buckling.critical_load,
+  print_row("critical buckling load P_cr", fmt::format("{:.6g} N ({}, {}, K = {:g}{})", r.buckling.critical_load,
                                                         analysis::to_string(r.buckling.method),
+                                                        analysis::to_string(r.buckling.end_condition),
+                                                        r.buckling.effective_length_factor,
                                                         r.buckling.method == analysis::BucklingMethod::TaperedEigenvalue
                                                             ? fmt::format(", m = {:.6g}", r.buckling.tapered_factor)
                                                             : ""));
@@ -95,7 +100,7 @@ void add_evaluate_command(CLI::App& app) {
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_option("--out", arguments->out_path, "also write the JSON result to FILE (written only on success)")
       ->type_name("FILE");
-  command->footer(kDesignFileHelp);
+  command->footer(design_file_help());
   command->callback([arguments] { run_evaluate(*arguments); });
 }
 

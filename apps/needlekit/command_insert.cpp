@@ -16,6 +16,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
+#include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
 #include "needlekit/io/result_writers.hpp"
@@ -100,7 +101,8 @@ void run_insert(const InsertArguments& arguments) {
   json["pre_puncture_source"] = fe ? "fe" : "csv";
   if (fe) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
-                  {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds}};
+                  {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds},
+                  {"models", io::fe_models_json(indentation_case.solver)}};
   }
   const auto& loads = result.loads;
   const auto& classes = loads.classification;
@@ -158,7 +160,9 @@ void run_insert(const InsertArguments& arguments) {
     fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
                indentation_case.name, count, classes.alpha.size(), classes.beta.size(), classes.side, classes.back,
                classes.channel, classes.occluded);
-    if (fe) fmt::print("FE indentation: {}: {}\n", insertion::to_string(fe->status), fe->reason);
+    if (fe)
+      fmt::print("FE indentation ({}): {}: {}\n", io::fe_models_text(indentation_case.solver),
+                 insertion::to_string(fe->status), fe->reason);
     for (const auto& event : curve.punctures)
       fmt::print("needle {} punctures at {:.4g} um: force {:.5g} N before, {:.5g} N after (relaxation drop {:.5g} N)\n",
                  event.needle + 1, event.displacement * 1e6, event.force_before, event.force_after, event.drop);

@@ -41,6 +41,19 @@ void print_table(const analysis::DesignSpace& space, const analysis::OptimizerRe
                  c.length * 1e6, c.performance_index * 1e-6);
     }
   }
+  const analysis::PunctureForceLawKind law = space.conditions.tissue.force_law.kind;
+  fmt::print("models: puncture force law {} ({}){}\n", analysis::to_string(law),
+             analysis::puncture_force_law_info(law).source,
+             result.top.empty() ? ""
+                                : fmt::format("; buckling {} ({}, K = {:g})",
+                                              analysis::to_string(result.top.front().details.buckling.end_condition),
+                                              analysis::to_string(result.top.front().details.buckling.method),
+                                              result.top.front().details.buckling.effective_length_factor));
+  if (result.top_outside_force_law_range > 0) {
+    fmt::print("warning: {} of the {} best designs lie outside the validity range of the puncture force law {}: "
+               "their force is an extrapolation (see each design's notes)\n",
+               result.top_outside_force_law_range, result.top.size(), analysis::to_string(law));
+  }
   fmt::print("grid points {}, evaluated {}, feasible {}{}, {:.3f} s\n", result.grid_points, result.evaluated,
              result.feasible, result.feasible == 0 && !result.top.empty() ? " (not counted by --certified)" : "",
              result.seconds);
@@ -151,7 +164,7 @@ void add_optimize_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--out", arguments->out_path, "also write the JSON result to FILE (written only on success)")
       ->type_name("FILE");
-  command->footer(std::string(kSpaceFileHelp) + "\n" + kRobustSpaceHelp);
+  command->footer(space_file_help() + "\n" + kRobustSpaceHelp);
   command->callback([arguments] { run_optimize(*arguments); });
 }
 

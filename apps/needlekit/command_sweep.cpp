@@ -88,7 +88,7 @@ void add_sweep_command(CLI::App& app) {
                       "of stdout")
       ->type_name("FILE");
   command->add_flag("--json", arguments->json, "print every point as JSON on stdout (with all quantities)");
-  command->footer(kDesignFileHelp);
+  command->footer(design_file_help());
   command->callback([arguments] { run_sweep(*arguments); });
 }
 

@@ -1,5 +1,10 @@
 // The input-file formats with units and valid ranges, shown at the end of the commands' --help.
 #pragma once
+#include <fmt/format.h>
+
+#include <string>
+
+#include "needlekit/analysis/puncture_force_law.hpp"
 
 namespace needlekit::cli {
 
@@ -16,6 +21,7 @@ inline constexpr const char* kDesignFileHelp = R"(DESIGN file (TOML; every dimen
                spacing_factor = 3          beta >= 0 of w >= beta*n*D2 (default 3; 0 disables)
   [tissue]     model = "skin"              "skin" | "brain" | { alpha = "0.0183 N", tau = "6.25 /mm",
                                            small_tip_slope = "0.0608 /um" }   (default skin)
+               puncture_force = "eq-4.2"   the puncture-force law F(A), laws below (default eq-4.2)
   [insertion]  angle = "0 deg"             [0, 90) deg from the surface normal (default 0)
                target_depth = "50 um"      T > 0, or application = "transdermal" (50 um) | "aesthetic" | "tattoo"
                                            (1.5 mm) | "brain" (1 mm); default transdermal
@@ -28,6 +34,7 @@ inline constexpr const char* kSpaceFileHelp = R"(SPACE file (TOML; every dimensi
   hollow = false                 true: a bore_diameter range is required
   material = "silicon"           a preset (see `needlekit materials`) or { youngs_modulus = "169 GPa", ... }
   tissue = "skin"                "skin" | "brain" | { alpha = "0.0183 N", tau = "6.25 /mm" }   (default skin)
+  puncture_force = "eq-4.2"      the puncture-force law F(A), laws below (default eq-4.2)
   target_depth = "50 um"         T > 0 (default 50 um)
   spacing_factor = 3             beta >= 0 of w >= beta*n*D2 (default 3)
   [ranges]                       inclusive [min, max, step], min > 0, max >= min, step > 0
@@ -58,5 +65,19 @@ inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (b
   [sampling]     samples = 4096 (>= 2), method = "sobol" (scrambled, use 2^m) | "monte-carlo", seed = 1,
                  sobol_indices = true (N*(k+2) runs for k inputs)
   [[correlation]] inputs = ["tissue.alpha", "tissue.tau"], rho = 0.5   (between normal scores, optional))";
+// The puncture-force laws of [tissue] puncture_force, from the law table (analysis::puncture_force_laws()).
+inline std::string puncture_force_law_help() {
+  std::string help = "\nPuncture-force laws (puncture_force = NAME, or a table { law = NAME, ... } for the user laws; D = the "
+                     "tip's equivalent diameter sqrt(4A/pi)):\n";
+  for (const auto& law : analysis::puncture_force_laws())
+    help += fmt::format("  {:<16}{}\n  {:<16}  source: {}\n", law.name, law.meaning, "", law.source);
+  help += "  linear-area: slope = \"0.00019 N/um2\", intercept = \"-0.66 N\"; linear-diameter: slope = \"4594 N/m\", "
+          "intercept = \"-3 mN\";\n  table: tip_diameter = [\"5 um\", \"37 um\"], force = [\"20 mN\", \"167 mN\"]; "
+          "any law: valid_tip_diameter = [\"min\", \"max\"]\n  Outside a law's validity range the result carries a note.";
+  return help;
+}
+
+inline std::string design_file_help() { return std::string(kDesignFileHelp) + "\n" + puncture_force_law_help(); }
+inline std::string space_file_help() { return std::string(kSpaceFileHelp) + "\n" + puncture_force_law_help(); }
 
 }  // namespace needlekit::cli

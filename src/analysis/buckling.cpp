@@ -38,6 +38,19 @@ double tapered_column_factor(const needle::NeedleGeometry& n) {
   return load * n.length * n.length / i2;  // Eq 2.36: P = m·E·I2/L²
 }
 
+std::string_view to_string(EndCondition end_condition) {
+  switch (end_condition) {
+    case EndCondition::FixedFree: return "fixed-free";
+    case EndCondition::FixedPinned: return "fixed-pinned";
+    case EndCondition::FixedFixed: return "fixed-fixed";
+  }
+  return "?";
+}
+
+std::string_view to_string(EffectiveLengthValue value) {
+  return value == EffectiveLengthValue::Theoretical ? "theoretical" : "practical";
+}
+
 std::string_view to_string(BucklingMethod method) {
   switch (method) {
     case BucklingMethod::Euler: return "euler";
@@ -55,6 +68,8 @@ BucklingResult critical_buckling_load(const needle::NeedleGeometry& n, const mat
   const needle::SectionProperties base = needle::section_at(n, n.length);
   const double k = effective_length_factor(options.end_condition, options.effective_length);
   BucklingResult r;
+  r.end_condition = options.end_condition;
+  r.effective_length_factor = k;
   r.slenderness_ratio = k * n.length / std::sqrt(base.second_moment_min / base.area);  // Eq 2.33
   if (material.yield_strength) {
     r.column_constant = column_constant(e, *material.yield_strength);

@@ -336,6 +336,8 @@ OptimizerResult optimize_design(const DesignSpace& space, const OptimizerOptions
       result.status = OptimizerStatus::Optimal;
     }
   }
+  for (const DesignCandidate& candidate : result.top)
+    result.top_outside_force_law_range += !candidate.details.puncture_force_in_range;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -61,6 +61,11 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   // §4.2: puncture force, deformation and cutting depth.
   r.tip_area = needle::tip_area(n);
   r.puncture_force = puncture_force(r.tip_area, conditions.tissue);
+  r.puncture_force_law = conditions.tissue.force_law.kind;
+  if (auto note = puncture_force_validity_note(r.tip_area, conditions.tissue.force_law)) {
+    r.puncture_force_in_range = false;
+    r.notes.push_back(*note);
+  }
   const SkinDeformation deformation = skin_deformation(r.tip_area, conditions.tissue);
   r.deformation = deformation.depth;
   r.small_tip_branch = deformation.small_tip_branch;

@@ -33,15 +33,12 @@ void validate(const PunctureModel& m, std::string_view where) {
   };
   positive(m.alpha, "alpha", "N");
   positive(m.tau, "tau", "1/m");
-  positive(m.force_slope, "force_slope", "N/m^2");
   positive(m.small_tip_slope, "small_tip_slope", "1/m");
-  if (!std::isfinite(m.force_intercept)) {
-    throw InvalidInput(fmt::format("{}.force_intercept: must be finite", where));
-  }
+  validate(m.force_law, fmt::format("{}.puncture_force", where));
 }
 
 double puncture_force(double tip_area, const PunctureModel& m) {
-  return m.force_slope * tip_area + m.force_intercept;  // Eq 4.2
+  return puncture_force(tip_area, m.force_law);  // Eq 4.2 or the model's other law
 }
 
 SkinDeformation skin_deformation(double tip_area, const PunctureModel& m) {
@@ -50,6 +47,18 @@ SkinDeformation skin_deformation(double tip_area, const PunctureModel& m) {
   return {m.small_tip_slope * tip_area, true};                            // linear branch (notes)
 }
 
-double small_tip_area_limit(const PunctureModel& m) { return (m.alpha - m.force_intercept) / m.force_slope; }
+double small_tip_area_limit(const PunctureModel& m) {
+  // F(A) = α for the linear-area laws (Eq 4.2); the other laws are solved by bisection on F(A) - α (F increasing).
+  if (m.force_law.kind == PunctureForceLawKind::Eq4_2 || m.force_law.kind == PunctureForceLawKind::LinearArea) {
+    return (m.alpha - m.force_law.intercept) / m.force_law.slope;
+  }
+  double lo = 0, hi = 1e-12;
+  while (puncture_force(hi, m) <= m.alpha && hi < 1) hi *= 2;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (puncture_force(mid, m) > m.alpha ? hi : lo) = mid;
+  }
+  return hi;
+}
 
 }  // namespace needlekit::analysis

@@ -202,8 +202,9 @@ DesignFile read_needle_tables(const toml::table& root, const Section& top, const
     }
   }
 
-  if (const auto tissue = top.optional_subsection("tissue", {"model"})) {
+  if (const auto tissue = top.optional_subsection("tissue", {"model", "puncture_force"})) {
     result.conditions.tissue = tissue_model_of(*tissue, "model");
+    result.conditions.tissue.force_law = puncture_force_law_of(*tissue, "puncture_force");
   }
   if (const auto insertion = top.optional_subsection(
           "insertion", {"angle", "target_depth", "application", "buckling_safety_factor", "bending_safety_factor",
@@ -273,8 +274,8 @@ SpaceFile parse_space_toml(std::string_view text, std::string_view source_name) 
   const std::string file(source_name);
   const toml::table root = parse_toml(text, file);
   const Section top(root, "", file,
-                    {"shape", "hollow", "material", "tissue", "target_depth", "spacing_factor", "ranges",
-                     "min_success_probability", "uncertain", "sampling", "correlation"});
+                    {"shape", "hollow", "material", "tissue", "puncture_force", "target_depth", "spacing_factor",
+                     "ranges", "min_success_probability", "uncertain", "sampling", "correlation"});
 
   SpaceFile result;
   analysis::DesignSpace& space = result.space;
@@ -282,6 +283,7 @@ SpaceFile parse_space_toml(std::string_view text, std::string_view source_name) 
   if (const toml::node* node = top.optional("hollow")) space.hollow = boolean_of(top, *node, "hollow");
   space.material = material_of(top, "material");
   space.conditions.tissue = tissue_model_of(top, "tissue");
+  space.conditions.tissue.force_law = puncture_force_law_of(top, "puncture_force");
   if (const auto depth = optional_positive_quantity(top, "target_depth", Dimension::Length)) {
     space.conditions.target_depth = *depth;
   }

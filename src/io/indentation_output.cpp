@@ -111,6 +111,18 @@ std::string solver_statistics_csv(const insertion::IndentationResult& result) {
   return out.str();
 }
 
+nlohmann::json fe_models_json(const fem::SolverOptions& solver) {
+  return {{"law", fem::to_string(solver.law)},
+          {"element", fem::to_string(solver.order)},
+          {"contact", fem::to_string(solver.contact)},
+          {"boundary", fem::to_string(solver.boundary)}};
+}
+
+std::string fe_models_text(const fem::SolverOptions& solver) {
+  return fmt::format("{} law, {} tetrahedra, {} contact, {} boundary", fem::to_string(solver.law),
+                     fem::to_string(solver.order), fem::to_string(solver.contact), fem::to_string(solver.boundary));
+}
+
 nlohmann::json puncture_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
   nlohmann::json json;
   json["puncture_depth_um"] = result.puncture ? nlohmann::json(result.puncture->depth * 1e6) : nlohmann::json(nullptr);
@@ -150,6 +162,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["law"] = to_name(c.solver.law);
   json["element"] = c.solver.order == fem::ElementOrder::Quadratic ? "quadratic" : "linear";
   json["contact"] = c.solver.contact == fem::ContactModel::Surface ? "surface" : "tip-nodes";
+  json["boundary"] = fem::to_string(c.solver.boundary);
   nlohmann::json needles = nlohmann::json::array();
   for (const insertion::NeedleSite& site : c.needles) {
     needles.push_back({{"x_um", site.position.x() * 1e6}, {"y_um", site.position.y() * 1e6},

@@ -78,6 +78,9 @@ nlohmann::json performance_json(const analysis::ArrayDesign& design, const analy
       // puncture (§4.2) and permeation (§4.4–4.7)
       {"tip_area_um2", um2(r.tip_area)},
       {"puncture_force_N", r.puncture_force},
+      {"puncture_force_law", analysis::to_string(r.puncture_force_law)},
+      {"puncture_force_law_source", analysis::puncture_force_law_info(r.puncture_force_law).source},
+      {"puncture_force_in_range", r.puncture_force_in_range},
       {"deformation_um", um(r.deformation)},
       {"small_tip_branch", r.small_tip_branch},
       {"cutting_depth_um", um(r.cutting_depth)},
@@ -93,6 +96,8 @@ nlohmann::json performance_json(const analysis::ArrayDesign& design, const analy
       // buckling and bending (§2.5, §4.3, §5.2)
       {"critical_buckling_load_N", r.buckling.critical_load},
       {"buckling_method", analysis::to_string(r.buckling.method)},
+      {"buckling_end_condition", analysis::to_string(r.buckling.end_condition)},
+      {"effective_length_factor", r.buckling.effective_length_factor},
       {"tapered_factor_m", tapered ? nlohmann::json(r.buckling.tapered_factor) : nlohmann::json(nullptr)},
       {"slenderness_ratio", r.buckling.slenderness_ratio},
       {"column_constant", r.buckling.column_constant > 0 ? nlohmann::json(r.buckling.column_constant)
@@ -134,6 +139,8 @@ nlohmann::json optimizer_json(const analysis::DesignSpace& space, const analysis
       {"seconds", result.seconds},
       {"status", analysis::to_string(result.status)},
       {"reason", result.reason},
+      {"puncture_force_law", analysis::to_string(space.conditions.tissue.force_law.kind)},
+      {"top_outside_puncture_force_law_range", result.top_outside_force_law_range},
       {"top", std::move(top)},
   };
 }

@@ -226,6 +226,15 @@ Value choice_of(const Section& section, const toml::node& node, std::string_view
   section.fail(node, key, fmt::format("unknown value '{}', expected one of: {}", text, fmt::join(names, ", ")));
 }
 
+// Runs a library validation and reports its InvalidInput at `node`'s line.
+template <class Validation>
+void validate_at_node(const Section& section, const toml::node& node, Validation&& validation) {
+  section.at(node, [&] {
+    validation();
+    return 0;
+  });
+}
+
 // ---- the parts shared by both files -------------------------------------------------------------------------------
 
 inline needle::Shape shape_of(const Section& section, std::string_view key) {
@@ -281,6 +290,81 @@ inline analysis::PunctureModel tissue_model_of(const Section& parent, std::strin
     model.small_tip_slope = *slope;
   }
   return model;
+}
+
+// [tissue] puncture_force = a law name (analysis::puncture_force_laws(): "eq-4.2", "romgens-2014") or a table
+// { law = "linear-area", slope = "0.00019 N/um2", intercept = "-0.66 N" } | { law = "linear-diameter", slope =
+// "4594 N/m", intercept = "-3 mN" } | { law = "table", tip_diameter = ["5 um", ...], force = ["20 mN", ...] },
+// each with an optional valid_tip_diameter = ["min", "max"]. Eq 4.2 when the key is absent.
+inline analysis::PunctureForceLaw puncture_force_law_of(const Section& parent, std::string_view key) {
+  using analysis::PunctureForceLawKind;
+  const toml::node* node = parent.optional(key);
+  if (!node) return analysis::eq_4_2_puncture_force_law();
+  const std::string expected =
+      fmt::format("one of {} or a table {{ law = \"linear-area\", slope = \"0.00019 N/um2\", intercept = \"-0.66 N\" }}",
+                  analysis::puncture_force_law_names());
+  if (node->is_string()) {
+    const std::string name = node->as_string()->get();
+    const PunctureForceLawKind kind =
+        parent.at(*node, [&] { return analysis::puncture_force_law_from_string(name, parent.what(key)); });
+    if (kind != PunctureForceLawKind::Eq4_2 && kind != PunctureForceLawKind::Romgens2014) {
+      parent.fail(*node, key, fmt::format("the law '{}' needs its coefficients, expected a table {{ law = \"{}\", ... }}",
+                                          name, name));
+    }
+    return analysis::puncture_force_law_preset(kind);
+  }
+  if (!node->is_table()) parent.fail(*node, key, fmt::format("{} is not a force law, expected {}", describe(*node), expected));
+  const Section table =
+      parent.subsection(*node, key, {"law", "slope", "intercept", "tip_diameter", "force", "valid_tip_diameter"});
+  const toml::node& law_node = table.required("law", analysis::puncture_force_law_names());
+  const std::string name = text_of(table, law_node, "law", analysis::puncture_force_law_names());
+  const PunctureForceLawKind kind =
+      table.at(law_node, [&] { return analysis::puncture_force_law_from_string(name, table.what("law")); });
+  analysis::PunctureForceLaw law = analysis::puncture_force_law_preset(kind);
+  const auto quantities = [&](std::string_view array_key, Dimension dimension) {
+    const toml::node& array_node =
+        table.required(array_key, fmt::format("an array of {}s with units", units::dimension_name(dimension)));
+    if (!array_node.is_array()) {
+      table.fail(array_node, array_key, fmt::format("{} is not an array, expected [{}, ...]", describe(array_node),
+                                                    example_of(dimension)));
+    }
+    std::vector<double> values;
+    for (const toml::node& element : *array_node.as_array())
+      values.push_back(quantity_of(table, element, array_key, dimension));
+    return values;
+  };
+  const bool linear = kind == PunctureForceLawKind::LinearArea || kind == PunctureForceLawKind::LinearDiameter;
+  for (std::string_view k : {"slope", "intercept"}) {
+    if (!linear && table.optional(k)) {
+      table.fail(*table.optional(k), k, fmt::format("does not apply to the law '{}', expected no {}", name, k));
+    }
+  }
+  for (std::string_view k : {"tip_diameter", "force"}) {
+    if (kind != PunctureForceLawKind::Table && table.optional(k)) {
+      table.fail(*table.optional(k), k, fmt::format("does not apply to the law '{}', expected law = \"table\"", name));
+    }
+  }
+  if (linear) {
+    law.slope = quantity_of(table, table.required("slope", kind == PunctureForceLawKind::LinearArea ? "a force per area, e.g. \"0.00019 N/um2\"" : "a force per length, e.g. \"4594 N/m\""),
+                            "slope", kind == PunctureForceLawKind::LinearArea ? Dimension::Pressure : Dimension::Stiffness);
+    law.intercept = quantity_of(table, table.required("intercept", expected_quantity(Dimension::Force)), "intercept",
+                                Dimension::Force);
+  }
+  if (kind == PunctureForceLawKind::Table) {
+    law.table_tip_diameter = quantities("tip_diameter", Dimension::Length);
+    law.table_force = quantities("force", Dimension::Force);
+  }
+  if (table.optional("valid_tip_diameter")) {
+    const std::vector<double> range = quantities("valid_tip_diameter", Dimension::Length);
+    if (range.size() != 2) {
+      table.fail(*table.optional("valid_tip_diameter"), "valid_tip_diameter",
+                 fmt::format("{} entries, expected [min, max]", range.size()));
+    }
+    law.valid_min_tip_diameter = range[0];
+    law.valid_max_tip_diameter = range[1];
+  }
+  validate_at_node(table, *node, [&] { analysis::validate(law, parent.key_path(key)); });
+  return law;
 }
 
 // Runs the library's validation and re-throws its InvalidInput at the line of the key it names ("needle.length: ...")

@@ -127,7 +127,7 @@ TEST(PerformanceIndex, ScaleInvariantWhenTheTissueModelScalesToo) {
   large.needle = {needle::Shape::Cone, 30e-6 * k, 150e-6 * k, 0, 500e-6 * k};
   large.width *= k;
   InsertionConditions c_small, c_large;
-  c_large.tissue.force_slope /= k * k;  // same force for the scaled area
+  c_large.tissue.force_law.slope /= k * k;  // same force for the scaled area
   c_large.tissue.tau /= k;
   c_large.tissue.small_tip_slope /= k;
   c_large.target_depth *= k;

@@ -13,6 +13,10 @@ enum class EffectiveLengthValue {
   Practical,    // K = 2.1, 0.8, 0.65
 };
 
+// The names of [insertion] end_condition and effective_length ("fixed-free", "theoretical", ...).
+std::string_view to_string(EndCondition end_condition);
+std::string_view to_string(EffectiveLengthValue value);
+
 // End-fixity factor K, L_e = K·L (§2.5).
 double effective_length_factor(EndCondition end_condition, EffectiveLengthValue value);
 
@@ -48,6 +52,8 @@ struct BucklingOptions {
 struct BucklingResult {
   double critical_load = 0;        // N
   BucklingMethod method = BucklingMethod::Euler;
+  EndCondition end_condition = EndCondition::FixedFree;  // the end condition it was computed for
+  double effective_length_factor = 2.0;                  // K of L_e = K·L
   double tapered_factor = 0;       // m of Eq 2.36 (for cones and bevels; π²/4·(4/K²) equivalents are not used)
   double slenderness_ratio = 0;    // L_e / r with r = √(I_min/A) of the base section
   double column_constant = 0;      // C_c, 0 when the material has no yield strength

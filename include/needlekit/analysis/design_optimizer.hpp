@@ -61,6 +61,9 @@ struct OptimizerResult {
   std::uint64_t evaluated = 0;        // points whose index was evaluated (brute force: all)
   std::uint64_t feasible = 0;         // evaluated points with index > 0 (certified: not counted, 0)
   std::uint64_t needle_evaluations = 0;  // needle-only evaluations (both methods)
+  // Designs of `top` whose tip lies outside the puncture-force law's validity range (their force is extrapolated;
+  // each one's details.notes says why).
+  int top_outside_force_law_range = 0;
   double seconds = 0;                 // wall time
 };
 

@@ -49,7 +49,9 @@ std::string_view to_string(PerformanceStatus status);
 
 struct PerformanceIndexResult {
   double tip_area = 0;               // m², A
-  double puncture_force = 0;         // N, F(A) of Eq 4.2 (signed)
+  double puncture_force = 0;         // N, F(A) of the tissue's force law (Eq 4.2 by default; signed)
+  PunctureForceLawKind puncture_force_law = PunctureForceLawKind::Eq4_2;  // the law F(A) came from
+  bool puncture_force_in_range = true;  // the tip lies within the law's validity range and F(A) > 0 (else a note)
   double deformation = 0;            // m, d (Eq 4.3 or the small-tip line)
   bool small_tip_branch = false;     // d came from the small-tip line d = K·A
   double cutting_depth = 0;          // m, h = L − d (Eq 4.4)

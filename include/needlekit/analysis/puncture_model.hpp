@@ -4,14 +4,16 @@
 #include <string>
 #include <string_view>
 
+#include "needlekit/analysis/puncture_force_law.hpp"
+
 namespace needlekit::analysis {
 
 struct PunctureModel {
   std::string name = "skin";
   double alpha = 0.0183;          // N, pre-exponential constant of F(d) = α·e^{τd} (Eq 4.1), > 0
   double tau = 6250.0;            // 1/m, exponential constant τ (6.25 /mm for skin), > 0
-  double force_slope = 1.9e8;     // N/m², slope of F(A) (0.00019 N/µm², Eq 4.2, Davis 2004)
-  double force_intercept = -0.66; // N, intercept of F(A) (Eq 4.2)
+  // The puncture force F(A) ([tissue] puncture_force): Eq 4.2 by default (puncture_force_law.hpp).
+  PunctureForceLaw force_law = eq_4_2_puncture_force_law();
   // Small-tip branch (notes, "Deformation before puncture"): when F(A) <= α the deformation is d = K·A, a line
   // through the origin with K = 0.0608 µm/µm² = 6.08e4 1/m (= 2·0.00019·1000/τ for skin). Kept for brain too:
   // the text does not say whether K scales with τ.
@@ -23,11 +25,11 @@ PunctureModel skin_puncture_model();
 PunctureModel brain_puncture_model();
 // "skin" or "brain"; throws InvalidInput naming `what` otherwise.
 PunctureModel puncture_model_preset(std::string_view name, std::string_view what = "tissue.model");
-// Throws InvalidInput for non-positive α, τ or K.
+// Throws InvalidInput for non-positive α, τ or K, or an invalid force law.
 void validate(const PunctureModel& model, std::string_view where = "tissue");
 
-// Eq 4.2: F(A) = 0.00019·A − 0.66 (A in µm², F in N), signed. Negative for A < 3473.7 µm²; the dissertation's
-// figures show |F| (notes).
+// The model's force law at tip area A (Eq 4.2 by default: F(A) = 0.00019·A − 0.66, A in µm², F in N), signed.
+// Eq 4.2 is negative for A < 3473.7 µm²; the dissertation's figures show |F| (notes).
 double puncture_force(double tip_area, const PunctureModel& model);
 
 struct SkinDeformation {

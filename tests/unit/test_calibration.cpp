@@ -1,0 +1,231 @@
+// Calibration (calibration/*.hpp): case-file paths, the analytic model's exact answers (alpha, tau and a puncture-
+// force law recovered from noise-free synthetic data to 1e-6), K and S reported as degenerate, and bad input named
+// by file and key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <iterator>
+
+#include "../support/expect_invalid.hpp"
+#include "needlekit/calibration/calibrate.hpp"
+#include "needlekit/calibration/case_parameters.hpp"
+#include "needlekit/io/design_config.hpp"
+#include "../support/scratch_files.hpp"
+
+namespace needlekit {
+namespace {
+
+using calibration::CalibrationStatus;
+
+TEST(CaseParameters, ReadAndReplaceKeepTheRestOfTheText) {
+  const std::string text = "# c\n[[tissue.layers]]\nyoungs_modulus = \"0.2 MPa\"  # E\npoisson_ratio = 0.49\n"
+                           "[post_puncture]\nscale = 0.168\n";
+  const auto e = calibration::case_value(text, "tissue.layers.0.youngs_modulus", "c.toml");
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->dimension, units::Dimension::Pressure);
+  EXPECT_DOUBLE_EQ(e->value, 2e5);
+  EXPECT_EQ(e->line, 3);
+  EXPECT_FALSE(calibration::case_value(text, "tissue.layers.1.youngs_modulus", "c.toml").has_value());
+  const std::string edited =
+      calibration::with_case_value(text, "tissue.layers.0.youngs_modulus", 2.5e5, units::Dimension::Pressure, "MPa", 6);
+  EXPECT_EQ(edited, "# c\n[[tissue.layers]]\nyoungs_modulus = \"0.25 MPa\"  # E\npoisson_ratio = 0.49\n"
+                    "[post_puncture]\nscale = 0.168\n");
+  const std::string scaled = calibration::with_case_value(text, "post_puncture.scale", 2, units::Dimension::Dimensionless);
+  EXPECT_DOUBLE_EQ(calibration::case_value(scaled, "post_puncture.scale", "c.toml")->value, 2.0);
+  EXPECT_NE(calibration::parameter_kind_of("tissue.layers.3.youngs_modulus"), nullptr);
+  EXPECT_EQ(calibration::parameter_kind_of("needle.length"), nullptr);
+}
+
+// A cylinder design file with the analytic tissue model written out (so that alpha and tau can be fitted).
+std::string design(double tip_um, const std::string& law = "") {
+  return fmt::format(R"([needle]
+shape = "cylinder"
+tip_diameter = "{} um"
+length = "600 um"
+material = "silicon"
+[array]
+needles_per_row = 10
+width = "1 cm"
+[tissue]
+model = {{ alpha = "0.0183 N", tau = "6.25 /mm" }}
+{}
+)",
+                     tip_um, law);
+}
+
+struct Synthetic {
+  std::filesystem::path dir;
+  std::string experiments;
+};
+
+// Design files for several tips and their d and F(A) from the library at the true values.
+Synthetic synthetic_designs(const std::string& name, const std::vector<double>& tips_um, const std::string& true_law,
+                            const std::string& fitted_law, bool with_depth, bool with_force) {
+  Synthetic s{test::scratch_directory(name), ""};
+  for (double tip : tips_um) {
+    const io::DesignFile truth = io::parse_design_toml(design(tip, true_law), "truth.toml");
+    const auto r = analysis::performance_index(truth.design, truth.conditions, truth.options);
+    const std::string file = fmt::format("tip_{}.toml", tip);
+    test::write_text(s.dir / file, design(tip, fitted_law));
+    s.experiments += fmt::format("[[experiments]]\nname = \"tip {} um\"\ncase = \"{}\"\npuncture = {{ {}{}{} }}\n\n",
+                                 tip, file, with_depth ? fmt::format("depth = \"{:.17g} um\"", r.deformation * 1e6) : "",
+                                 with_depth && with_force ? ", " : "",
+                                 with_force ? fmt::format("force = \"{:.17g} N\"", r.puncture_force) : "");
+  }
+  return s;
+}
+
+TEST(Calibration, AlphaAndTauFromSyntheticAreaDepthDataExactly) {
+  // Truth: the skin model (alpha = 0.0183 N, tau = 6.25 /mm); tips 80-150 um (F(A) > alpha: Eq 4.3's branch).
+  Synthetic s = synthetic_designs("calibration_alpha_tau", {80, 100, 120, 150}, "", "", true, false);
+  test::write_text(s.dir / "fit.toml", R"([[parameters]]
+path = "tissue.model.alpha"
+initial = "0.03 N"
+bounds = ["0.001 N", "0.1 N"]
+[[parameters]]
+path = "tissue.model.tau"
+initial = "4 /mm"
+bounds = ["1 /mm", "20 /mm"]
+)" + s.experiments);
+  const auto problem = calibration::read_calibration_file(s.dir / "fit.toml");
+  const auto result = calibration::calibrate(problem);
+  ASSERT_EQ(result.status, CalibrationStatus::Converged) << result.reason;
+  EXPECT_NEAR(result.parameters[0].value / 0.0183, 1, 1e-6);
+  EXPECT_NEAR(result.parameters[1].value / 6250.0, 1, 1e-6);
+  EXPECT_LT(result.rms_relative, 1e-7);
+  EXPECT_EQ(result.parameters[0].spec.unit, "N");
+  EXPECT_EQ(result.model_runs, 0);  // analytic: no FE
+}
+
+TEST(Calibration, PunctureForceLawCoefficientsFromSeveralNeedles) {
+  // Truth: Romgens et al. 2014's line; the fit starts from another linear-diameter law.
+  Synthetic s = synthetic_designs(
+      "calibration_law", {5, 12, 20, 37}, "puncture_force = \"romgens-2014\"",
+      "puncture_force = { law = \"linear-diameter\", slope = \"3000 N/m\", intercept = \"0.01 N\" }", false, true);
+  test::write_text(s.dir / "fit.toml", R"([[parameters]]
+path = "tissue.puncture_force.slope"
+initial = "3000 N/m"
+bounds = ["100 N/m", "1e5 N/m"]
+[[parameters]]
+path = "tissue.puncture_force.intercept"
+initial = "0.01 N"
+bounds = ["-0.1 N", "0.1 N"]
+)" + s.experiments);
+  const auto result = calibration::calibrate(calibration::read_calibration_file(s.dir / "fit.toml"));
+  ASSERT_EQ(result.status, CalibrationStatus::Converged) << result.reason;
+  const auto romgens = analysis::romgens_2014_puncture_force_law();
+  EXPECT_NEAR(result.parameters[0].value / romgens.slope, 1, 1e-6);
+  EXPECT_NEAR(result.parameters[1].value / romgens.intercept, 1, 1e-6);
+}
+
+// An insert case with a given pre-puncture curve (no FE): the cutting force depends on K*S only.
+std::filesystem::path insert_case(const std::filesystem::path& dir) {
+  test::write_text(dir / "pre.csv", "depth_um,force_N\n0,0\n60,0.002\n120,0.008\n");
+  test::write_text(dir / "insert.toml", R"(name = "bevel"
+[needle]
+shape = "bevel"
+tip_diameter = "10 um"
+base_diameter = "230 um"
+length = "1000 um"
+[tissue]
+preset = "silicone-0.2mpa"
+[loading]
+depth = "300 um"
+[puncture]
+critical_pressure = "0.663 MPa"
+[post_puncture]
+stiffness = "0.2 N/mm2"
+scale = 0.168
+final_depth = "1000 um"
+samples = 40
+[pre_puncture]
+curve = "pre.csv"
+)");
+  return dir / "insert.toml";
+}
+
+TEST(Calibration, StiffnessAndScaleTogetherAreDegenerate) {
+  const auto dir = test::scratch_directory("calibration_ks");
+  insert_case(dir);
+  // The measured curve: the model's own at K = 0.2 N/mm2, S = 0.5.
+  calibration::ExperimentSpec spec;
+  spec.name = "truth";
+  spec.case_path = dir / "insert.toml";
+  spec.case_text = R"()";
+  {
+    std::ifstream in(dir / "insert.toml");
+    spec.case_text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  spec.kind = calibration::ExperimentKind::Insertion;
+  spec.puncture.force = 0.008;
+  calibration::ParameterSpec scale{"post_puncture.scale", units::Dimension::Dimensionless, "", 0.5, 0.01, 10, "x"};
+  const calibration::ExperimentModel truth(spec, {scale});
+  const auto curve = truth.predict({0.5}).curve;
+  std::string csv = "depth_um,force_N\n";
+  for (std::size_t i = 0; i < curve.depth.size(); ++i)
+    if (curve.depth[i] > 200e-6 && (i == 0 || curve.depth[i] > curve.depth[i - 1]))
+      csv += fmt::format("{:.17g},{:.17g}\n", curve.depth[i] * 1e6, curve.force[i]);
+  test::write_text(dir / "cutting.csv", csv);
+  test::write_text(dir / "fit.toml", R"([[parameters]]
+path = "post_puncture.stiffness"
+initial = "0.3 N/mm2"
+bounds = ["0.01 N/mm2", "10 N/mm2"]
+[[parameters]]
+path = "post_puncture.scale"
+initial = 0.2
+bounds = [0.01, 10]
+[[experiments]]
+name = "cutting"
+case = "insert.toml"
+measured = "cutting.csv"
+)");
+  const auto result = calibration::calibrate(calibration::read_calibration_file(dir / "fit.toml"));
+  EXPECT_NE(result.status, CalibrationStatus::Failed) << result.reason;
+  EXPECT_NEAR(result.parameters[0].value * result.parameters[1].value / (0.2e6 * 0.5), 1, 1e-5);  // K*S is found
+  bool degenerate = false;
+  for (const std::string& w : result.warnings)
+    degenerate = degenerate || (w.find("degenerate") != std::string::npos &&
+                                w.find("post_puncture.stiffness and post_puncture.scale") != std::string::npos);
+  EXPECT_TRUE(degenerate);
+  EXPECT_FALSE(result.parameters[0].ci95.has_value());
+  EXPECT_FALSE(result.parameters[1].ci95.has_value());
+}
+
+TEST(CalibrationBadInput, NamesFileAndKey) {
+  const auto dir = test::scratch_directory("calibration_bad");
+  test::write_text(dir / "d.toml", design(100));
+  const std::string parameter = "[[parameters]]\npath = \"tissue.model.alpha\"\ninitial = \"0.02 N\"\n"
+                                "bounds = [\"0.001 N\", \"0.1 N\"]\n";
+  const std::string experiment = "[[experiments]]\ncase = \"d.toml\"\npuncture = { depth = \"100 um\" }\n";
+  const auto fails = [&](const std::string& text, const std::string& fragment) {
+    test::write_text(dir / "c.toml", text);
+    test::expect_invalid([&] { calibration::calibrate(calibration::read_calibration_file(dir / "c.toml")); }, fragment);
+  };
+  fails("[[parameters]]\npath = \"tissue.model.alpha\"\ninitial = \"0.2 N\"\nbounds = [\"0.001 N\", \"0.1 N\"]\n" +
+            experiment,
+        "c.toml:3: key 'parameters[0].initial': lies outside bounds");
+  fails("[[parameters]]\npath = \"tissue.layers.0.youngs_modulus\"\ninitial = \"0.2 MPa\"\n"
+        "bounds = [\"0.01 MPa\", \"1 MPa\"]\n" + experiment,
+        "does not exist in the case");
+  fails("[[parameters]]\npath = \"needle.length\"\ninitial = \"1 mm\"\nbounds = [\"0.1 mm\", \"2 mm\"]\n" + experiment,
+        "not a calibratable key");
+  // The puncture force F(A) does not depend on alpha: no experiment depends on the parameter.
+  fails(parameter + "[[experiments]]\ncase = \"d.toml\"\npuncture = { force = \"0.5 N\" }\n",
+        "no experiment depends on 'tissue.model.alpha'");
+  fails(parameter + "[[experiments]]\ncase = \"d.toml\"\nmeasured = \"curve.csv\"\n",
+        "c.toml:7: key 'experiments[0].measured': a force-depth curve does not apply to a design file");
+  test::write_text(dir / "pre.csv", "depth_um,force_N\n0,0\n10,1\n");
+  insert_case(dir);
+  const std::string insert_parameter = "[[parameters]]\npath = \"post_puncture.scale\"\ninitial = 0.2\nbounds = [0.01, 1]\n";
+  test::write_text(dir / "m.csv", "depth_um,force_N\n300,0.01\n200,0.02\n400,0.03\n");
+  fails(insert_parameter + "[[experiments]]\ncase = \"insert.toml\"\nmeasured = \"m.csv\"\n", "m.csv:3");
+  test::write_text(dir / "m.csv", "depth_um,force_N\n300,0.01\n400,0.03\n");
+  fails(insert_parameter + "[[experiments]]\ncase = \"insert.toml\"\nmeasured = \"m.csv\"\n", "expected at least 3");
+  test::write_text(dir / "m.csv", "depth_um,f\n300,0.01\n400,0.03\n500,0.04\n");
+  fails(insert_parameter + "[[experiments]]\ncase = \"insert.toml\"\nmeasured = \"m.csv\"\n", "force_");
+}
+
+}  // namespace
+}  // namespace needlekit

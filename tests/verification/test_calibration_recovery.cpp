@@ -1,0 +1,35 @@
+// Synthetic recovery through the FE (issue 13): an indentation curve and puncture point made by needlekit with known
+// E and P_c, 2 % noise on every force and on the puncture point, fitted from 50 % / 32 % off: E within 3 %, P_c within
+// 5 % (one noisy puncture point carries it), 95 % intervals a few per cent wide. The data and the fit use the same mesh size here: on
+// meshes of different size the tip-node contact's FE force differs by up to 7 % at depth, more than the 3 % asked
+// (docs/calibration.md). One noise seed here; the coverage over 20 seeds is the benchmark BM_CalibrationCoverage
+// (BENCHMARKS.md, "Calibration").
+#include <gtest/gtest.h>
+
+#include "../support/calibration_fixture.hpp"
+
+namespace needlekit {
+namespace {
+
+TEST(CalibrationRecovery, YoungsModulusAndCriticalPressureThroughTheFe) {
+  const test::SyntheticIndentation synthetic = test::synthetic_indentation("calibration_recovery", 40e-6, 7);
+  const test::RecoveryOutcome outcome = test::recover(synthetic, 40e-6, 11);
+  ASSERT_EQ(outcome.result.status, calibration::CalibrationStatus::Converged) << outcome.result.reason;
+  EXPECT_LT(std::abs(outcome.error[0]), 0.03) << "E = " << outcome.result.parameters[0].value;
+  // One noisy puncture point carries P_c: its error is that of a 2 % measurement.
+  EXPECT_LT(std::abs(outcome.error[1]), 0.05) << "P_c = " << outcome.result.parameters[1].value;
+  // Intervals: present, a few per cent wide. Whether they hold the truth 95 % of the time is a property of many
+  // seeds, measured by BM_CalibrationCoverage (one seed misses in one run of 20 by design).
+  for (const auto& p : outcome.result.parameters) {
+    ASSERT_TRUE(p.ci95.has_value()) << p.spec.path;
+    const double half_width = (p.ci95->second - p.ci95->first) / 2 / p.value;
+    EXPECT_GT(half_width, 0.001) << p.spec.path;
+    EXPECT_LT(half_width, 0.1) << p.spec.path;
+  }
+  // The fit reads a 2 % noise level back: the relative residual is about the noise.
+  EXPECT_GT(outcome.result.rms_relative, 0.005);
+  EXPECT_LT(outcome.result.rms_relative, 0.05);
+}
+
+}  // namespace
+}  // namespace needlekit
