@@ -31,11 +31,15 @@ double johnson_critical_load(double area, double sy, double e, double slendernes
   return area * sy * (1 - sy * slenderness * slenderness / (4 * M_PI * M_PI * e));  // Eq 2.35
 }
 
-double tapered_column_factor(const needle::NeedleGeometry& n) {
-  const double i2 = needle::section_at(n, n.length).second_moment_min;
-  const double load = column_buckling_load(
-      [&](double s) { return needle::section_at(n, s).second_moment_min; }, n.length);  // E = 1
-  return load * n.length * n.length / i2;  // Eq 2.36: P = m·E·I2/L²
+double tapered_column_factor(const needle::NeedleGeometry& n, EndCondition end_condition) {
+  needle::NeedleGeometry unit = n;  // the same section along s/L on a column of length 1
+  unit.length = 1;
+  const double i2 = needle::section_at(unit, 1.0).second_moment_min;
+  ColumnEigenvalueOptions eigen;
+  eigen.end_condition = end_condition;
+  // Eq 2.36: P = m·E·I2/L², so m is the load of the column with EI(s)/(E·I2) and L = 1.
+  return column_buckling_load([&](double s) { return needle::section_at(unit, s).second_moment_min / i2; }, 1.0,
+                              eigen);
 }
 
 std::string_view to_string(EndCondition end_condition) {
@@ -61,7 +65,7 @@ std::string_view to_string(BucklingMethod method) {
 }
 
 BucklingResult critical_buckling_load(const needle::NeedleGeometry& n, const materials::NeedleMaterial& material,
-                                      const BucklingOptions& options) {
+                                      const BucklingOptions& options, std::optional<double> known_tapered_factor) {
   needle::validate(n);
   materials::validate(material);
   const double e = material.youngs_modulus;
@@ -93,11 +97,9 @@ BucklingResult critical_buckling_load(const needle::NeedleGeometry& n, const mat
   // practical K values apply to the uniform-column formula only. For the bevel, the smaller principal second moment
   // of each section is used and the eccentricity of its shifting centroid is neglected (docs/bevel-buckling.md).
   r.method = BucklingMethod::TaperedEigenvalue;
-  ColumnEigenvalueOptions eigen;
-  eigen.end_condition = options.end_condition;
-  r.critical_load = column_buckling_load([&](double s) { return e * needle::section_at(n, s).second_moment_min; },
-                                         n.length, eigen);
-  r.tapered_factor = r.critical_load * n.length * n.length / (e * base.second_moment_min);
+  r.tapered_factor = known_tapered_factor ? *known_tapered_factor : tapered_column_factor(n, options.end_condition);
+  // The grouping is DesignPointEvaluator::needle_buckles()'s, so that both decide φ on the same bits.
+  r.critical_load = r.tapered_factor * (e * base.second_moment_min / (n.length * n.length));
   return r;
 }
 

@@ -51,7 +51,8 @@ std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
 }  // namespace
 
 PerformanceIndexResult performance_index(const ArrayDesign& design, const InsertionConditions& conditions,
-                                         const PerformanceIndexOptions& options) {
+                                         const PerformanceIndexOptions& options,
+                                         std::optional<double> known_tapered_factor) {
   validate_inputs(design, conditions, options);
   const auto& n = design.needle;
   PerformanceIndexResult r;
@@ -100,7 +101,7 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   r.fractional_skin_volume = fractional_skin_volume(n, h, options.gap_ratio, r.pitch);
 
   // §4.3, §5.2: buckling (φ) and bending (ω) under an insertion at angle θ.
-  r.buckling = critical_buckling_load(n, design.material, options.buckling);
+  r.buckling = critical_buckling_load(n, design.material, options.buckling, known_tapered_factor);
   r.buckling_force = angled_buckling_force(r.puncture_force, conditions.angle);
   r.buckling_ok = options.buckling_safety_factor * r.buckling_force < r.buckling.critical_load;  // Eq 4.5
   if (!r.buckling_ok) {
@@ -136,6 +137,7 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   } else {
     r.performance_index = 0;
     r.status = failed.front();
+    for (PerformanceStatus check : failed) r.failed_checks |= 1u << static_cast<unsigned>(check);
     r.reason = fmt::format("{}", fmt::join(failures, "; "));
   }
   return r;

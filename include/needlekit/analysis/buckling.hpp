@@ -1,5 +1,6 @@
 // Critical buckling load of a needle (dissertation §2.5, §4.3, Table 4.1, Eqs 2.26–2.36, 5.5, 5.6).
 #pragma once
+#include <optional>
 #include <string>
 
 #include "needlekit/analysis/column_eigenvalue.hpp"
@@ -29,10 +30,12 @@ double column_constant(double youngs_modulus, double yield_strength);
 // Eq 2.35 (J. B. Johnson): P_cr = A·s_y·[1 − s_y·(L_e/r)² / (4π²E)].
 double johnson_critical_load(double area, double yield_strength, double youngs_modulus, double slenderness_ratio);
 
-// Eq 2.36 / Table 4.1: the factor m of P_cr = m·E·I2/L² for a fixed-free column with the needle's own profile,
-// computed as the lowest eigenvalue of column_buckling_load() divided by E·I2/L² (π²/4 for a uniform column).
-// I2 is the base section's second moment (π(D2⁴ − D3⁴)/64 for round sections).
-double tapered_column_factor(const needle::NeedleGeometry& needle);
+// Eq 2.36 / Table 4.1: the factor m of P_cr = m·E·I2/L² for a column with the needle's own profile (π²/4 for a
+// uniform fixed-free column). I2 is the base section's second moment (π(D2⁴ − D3⁴)/64 for round sections). m is
+// dimensionless and depends only on how the section varies along s/L, so it is computed as the lowest eigenvalue of
+// column_buckling_load() for the column scaled to unit length and unit base rigidity: one section (shape, D1, D2, D3)
+// gives the same m to the last bit for every L and E, which is what lets the optimizer and evaluate_many memoize it.
+double tapered_column_factor(const needle::NeedleGeometry& needle, EndCondition end_condition = EndCondition::FixedFree);
 
 enum class BucklingMethod {
   Euler,                  // uniform column, Eq 2.28 (Table 4.1 for cylinders)
@@ -62,7 +65,10 @@ struct BucklingResult {
 
 // Cylinders: Euler (or Johnson for short columns). Cones and bevels: the varying-section eigenvalue with the bevel's
 // smaller principal second moment at each section (section_at()); the method is documented in docs/bevel-buckling.md.
+// `known_tapered_factor`: m of this needle's section (tapered_column_factor(needle, options.end_condition)) when the
+// caller has it memoized; the result is then the same to the last bit as without it.
 BucklingResult critical_buckling_load(const needle::NeedleGeometry& needle, const materials::NeedleMaterial& material,
-                                      const BucklingOptions& options = {});
+                                      const BucklingOptions& options = {},
+                                      std::optional<double> known_tapered_factor = std::nullopt);
 
 }  // namespace needlekit::analysis

@@ -72,13 +72,15 @@ struct PerformanceIndexResult {
   std::optional<bool> bending_ok;    // ω; empty: not assessed (no allowable stress and θ > 0)
   double performance_index = 0;      // 1/m (multiply by 1e-6 for the dissertation's 1/µm)
   PerformanceStatus status = PerformanceStatus::Ok;
+  unsigned failed_checks = 0;        // bit 1 << int(PerformanceStatus) of every failed check (status is the first)
   std::string reason;                // why the index is zero (every failed check), or notes
   std::vector<std::string> notes;    // e.g. "bending not assessed: material has no allowable_stress"
 };
 
 // Evaluates one array. Throws InvalidInput for invalid geometry, material, tissue or conditions; physical
-// outcomes (buckling, too short, ...) are a status with a reason.
+// outcomes (buckling, too short, ...) are a status with a reason. `known_tapered_factor`: as critical_buckling_load().
 PerformanceIndexResult performance_index(const ArrayDesign& design, const InsertionConditions& conditions,
-                                         const PerformanceIndexOptions& options = {});
+                                         const PerformanceIndexOptions& options = {},
+                                         std::optional<double> known_tapered_factor = std::nullopt);
 
 }  // namespace needlekit::analysis

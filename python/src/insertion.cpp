@@ -1,0 +1,275 @@
+// needlekit/insertion: indentation cases and runs (progress callbacks, GIL released, Ctrl-C stops the run, optional
+// ParaView output), puncture points, post-puncture loads and the complete insertion curve.
+#include "common.hpp"
+#include "needlekit/io/force_curve_csv.hpp"
+#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/indentation_output.hpp"
+#include "needlekit/io/insertion_case.hpp"
+#include "needlekit/io/insertion_output.hpp"
+#include "needlekit/insertion/indentation.hpp"
+#include "needlekit/insertion/insertion_curve.hpp"
+#include "needlekit/insertion/post_puncture_force.hpp"
+
+namespace needlekit::python {
+namespace {
+
+using namespace insertion;
+
+template <class T, class Member>
+py::array_t<double> step_column(const IndentationResult& r, Member member) {
+  std::vector<double> values;
+  values.reserve(r.steps.size());
+  for (const IndentationStep& s : r.steps) values.push_back(static_cast<double>(s.*member));
+  return owning_array(std::move(values));
+}
+
+void bind_indentation(py::module_& m) {
+  py::enum_<PunctureCriterion>(m, "PunctureCriterion")
+      .value("None_", PunctureCriterion::None)
+      .value("CriticalPressure", PunctureCriterion::CriticalPressure)
+      .value("FractureEnergy", PunctureCriterion::FractureEnergy);
+  py::class_<PuncturePoint> point(m, "PuncturePoint");
+  def_keyword_init<PuncturePoint>(point);
+  def_quantity(point, "depth", &PuncturePoint::depth, Dimension::Length, "m");
+  def_quantity(point, "force", &PuncturePoint::force, Dimension::Force, "N");
+  point.def_readwrite("criterion", &PuncturePoint::criterion);
+  py::class_<ForceDepthCurve>(m, "ForceDepthCurve", "Samples of depth (m) and force (N).")
+      .def(py::init([](py::handle depth, py::handle force) {
+             return ForceDepthCurve{values_from(depth, "depth"), values_from(force, "force")};
+           }),
+           py::arg("depth"), py::arg("force"))
+      .def_property_readonly("depth", [](py::object self) { return values_view(self.cast<const ForceDepthCurve&>().depth, self); }, "m")
+      .def_property_readonly("force", [](py::object self) { return values_view(self.cast<const ForceDepthCurve&>().force, self); }, "N");
+  py::class_<PrePunctureCurve>(m, "PrePunctureCurve")
+      .def(py::init([](const ForceDepthCurve& c, std::optional<PuncturePoint> p) { return PrePunctureCurve{c, p}; }),
+           py::arg("curve"), py::arg("puncture") = py::none())
+      .def_readonly("curve", &PrePunctureCurve::curve)
+      .def_readonly("puncture", &PrePunctureCurve::puncture);
+  m.def("read_force_curve_csv", &io::read_force_curve_csv, py::arg("path"), "depth_<unit>,force_<unit> columns.");
+
+  py::class_<PunctureOptions> puncture(m, "PunctureOptions", "Puncture criteria (§3.5); None: not used.");
+  def_keyword_init<PunctureOptions>(puncture);
+  def_optional_quantity(puncture, "critical_pressure", &PunctureOptions::critical_pressure, Dimension::Pressure, "Pa");
+  def_optional_quantity(puncture, "toughness", &PunctureOptions::toughness, Dimension::Stiffness, "J/m^2 (= N/m)");
+
+  using fem::SolverOptions;
+  py::enum_<fem::MaterialLaw>(m, "MaterialLaw")
+      .value("StVenantKirchhoff", fem::MaterialLaw::StVenantKirchhoff)
+      .value("NeoHookean", fem::MaterialLaw::NeoHookean);
+  py::enum_<fem::ElementOrder>(m, "ElementOrder")
+      .value("Linear", fem::ElementOrder::Linear)
+      .value("Quadratic", fem::ElementOrder::Quadratic);
+  py::enum_<fem::ContactModel>(m, "ContactModel")
+      .value("TipNodes", fem::ContactModel::TipNodes)
+      .value("Surface", fem::ContactModel::Surface);
+  py::enum_<fem::LinearSolver>(m, "LinearSolver")
+      .value("Automatic", fem::LinearSolver::Automatic)
+      .value("Cholesky", fem::LinearSolver::Cholesky)
+      .value("CholeskyCg", fem::LinearSolver::CholeskyCg)
+      .value("TwoGrid", fem::LinearSolver::TwoGrid);
+  py::enum_<fem::BoundaryCondition>(m, "BoundaryCondition")
+      .value("SidesAndBottomFixed", fem::BoundaryCondition::SidesAndBottomFixed)
+      .value("BottomFixed", fem::BoundaryCondition::BottomFixed)
+      .value("BottomFixedSidesRoller", fem::BoundaryCondition::BottomFixedSidesRoller)
+      .value("SymmetryPlanes", fem::BoundaryCondition::SymmetryPlanes)
+      .value("QuarterSymmetry", fem::BoundaryCondition::QuarterSymmetry);
+  py::class_<SolverOptions> solver(m, "SolverOptions", "The FE solver's law, elements, contact and tolerances (§3.4).");
+  def_keyword_init<SolverOptions>(solver);
+  solver.def_readwrite("law", &SolverOptions::law)
+      .def_readwrite("order", &SolverOptions::order)
+      .def_readwrite("contact", &SolverOptions::contact)
+      .def_readwrite("boundary", &SolverOptions::boundary)
+      .def_readwrite("residual_tolerance", &SolverOptions::residual_tolerance, "(0, 1)")
+      .def_readwrite("displacement_tolerance", &SolverOptions::displacement_tolerance, "(0, 1)")
+      .def_readwrite("energy_tolerance", &SolverOptions::energy_tolerance, "(0, 1)")
+      .def_readwrite("max_iterations", &SolverOptions::max_iterations, ">= 1")
+      .def_readwrite("max_cutbacks", &SolverOptions::max_cutbacks, ">= 0")
+      .def_readwrite("linear_solver", &SolverOptions::linear_solver)
+      .def_readwrite("penalty_factor", &SolverOptions::penalty_factor, "> 0")
+      .def_readwrite("penetration_tolerance", &SolverOptions::penetration_tolerance, "(0, 1)")
+      .def_readwrite("threads", &SolverOptions::threads, "0: all cores");
+
+  py::class_<NeedleSite> site(m, "NeedleSite");
+  def_keyword_init<NeedleSite>(site);
+  site.def_readwrite("position", &NeedleSite::position, "m, (x, y)");
+  def_quantity(site, "tip_height", &NeedleSite::tip_height, Dimension::Length, "m, >= 0");
+  py::class_<IndentationCase> indentation(m, "IndentationCase",
+                                          "An indentation case (`needlekit indent`); read one with read_indentation_case.");
+  def_keyword_init<IndentationCase>(indentation);
+  indentation.def_readwrite("name", &IndentationCase::name)
+      .def_readwrite("needle", &IndentationCase::needle)
+      .def_readwrite("geometry", &IndentationCase::geometry)
+      .def_readwrite("needles", &IndentationCase::needles)
+      .def_readwrite("block", &IndentationCase::block)
+      .def_readwrite("tissue_mesh", &IndentationCase::tissue_mesh)
+      .def_readwrite("steps", &IndentationCase::steps)
+      .def_readwrite("solver", &IndentationCase::solver)
+      .def_readwrite("puncture", &IndentationCase::puncture)
+      .def_readwrite("stop_at_puncture", &IndentationCase::stop_at_puncture);
+  def_quantity(indentation, "depth", &IndentationCase::depth, Dimension::Length, "m, final depth");
+  m.def("read_indentation_case", &io::read_indentation_case, py::arg("path"),
+        "Reads an indentation case file; raises InvalidInput naming file, line and key.");
+  m.def("validate_indentation_case", [](const IndentationCase& c) { validate(c); }, py::arg("case"));
+
+  py::enum_<IndentationStatus>(m, "IndentationStatus")
+      .value("Punctured", IndentationStatus::Punctured)
+      .value("ReachedDepth", IndentationStatus::ReachedDepth)
+      .value("SolverFailed", IndentationStatus::SolverFailed);
+  py::class_<IndentationProgress>(m, "IndentationProgress")
+      .def_readonly("stage", &IndentationProgress::stage)
+      .def_readonly("step", &IndentationProgress::step)
+      .def_readonly("steps", &IndentationProgress::steps)
+      .def_readonly("depth", &IndentationProgress::depth, "m")
+      .def_readonly("fraction", &IndentationProgress::fraction);
+  py::class_<IndentationStep>(m, "IndentationStep")
+      .def_readonly("depth", &IndentationStep::depth, "m")
+      .def_readonly("force", &IndentationStep::force, "N")
+      .def_readonly("needle_force", &IndentationStep::needle_force, "N per needle")
+      .def_readonly("contact_area", &IndentationStep::contact_area, "m^2")
+      .def_readonly("contact_pressure", &IndentationStep::contact_pressure, "Pa")
+      .def_readonly("max_contact_pressure", &IndentationStep::max_contact_pressure, "Pa")
+      .def_readonly("contact_nodes", &IndentationStep::contact_nodes)
+      .def_readonly("strain_energy", &IndentationStep::strain_energy, "J")
+      .def_readonly("external_work", &IndentationStep::external_work, "J")
+      .def_readonly("newton_iterations", &IndentationStep::newton_iterations)
+      .def_readonly("step_seconds", &IndentationStep::step_seconds, "s");
+  py::class_<IndentationResult>(m, "IndentationResult",
+                                "Every converged step; depth, force, ... as numpy arrays (one entry per step).")
+      .def_readonly("status", &IndentationResult::status)
+      .def_readonly("reason", &IndentationResult::reason)
+      .def_readonly("steps", &IndentationResult::steps)
+      .def_readonly("puncture", &IndentationResult::puncture)
+      .def_readonly("elements", &IndentationResult::elements)
+      .def_readonly("nodes", &IndentationResult::nodes)
+      .def_readonly("dofs", &IndentationResult::dofs)
+      .def_readonly("quality", &IndentationResult::quality)
+      .def_readonly("mesh_seconds", &IndentationResult::mesh_seconds, "s")
+      .def_readonly("setup_seconds", &IndentationResult::setup_seconds, "s")
+      .def_readonly("total_seconds", &IndentationResult::total_seconds, "s")
+      .def_property_readonly("depth", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::depth); }, "m")
+      .def_property_readonly("force", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::force); }, "N")
+      .def_property_readonly("contact_pressure", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::contact_pressure); }, "Pa")
+      .def_property_readonly("strain_energy", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::strain_energy); }, "J");
+  m.def(
+      "run_indentation",
+      [](const IndentationCase& c, py::object progress, std::optional<std::string> output_directory) {
+        ProgressRelay relay(std::move(progress));
+        IndentationOptions options;
+        // The run has no "stop" answer: a Ctrl-C (or an exception of the callback) unwinds it from here.
+        options.progress = [&relay](const IndentationProgress& p) {
+          if (!relay.keep_going(p)) throw RunStopped{};
+        };
+        std::optional<io::IndentationWriter> writer;
+        if (output_directory) {
+          writer.emplace(*output_directory, c);
+          options.on_mesh = [&writer](const mesh::TetMesh& tissue) { writer->set_mesh(tissue); };
+          options.on_step = [&writer](const IndentationStep& s, const fem::QuasiStaticSolver& solver) {
+            writer->write_step(s, solver);
+          };
+        }
+        IndentationResult result;
+        try {
+          py::gil_scoped_release released;
+          result = run_indentation(c, options);
+          if (writer) writer->finish(result);
+        } catch (const RunStopped&) {
+        }
+        relay.rethrow();
+        return result;
+      },
+      py::arg("case"), py::arg("progress") = py::none(), py::arg("output_directory") = py::none(),
+      "Runs the FE indentation (GIL released). progress(IndentationProgress) is called at each stage and Newton "
+      "iteration; Ctrl-C raises KeyboardInterrupt (files of completed steps are complete, none is half-written). "
+      "output_directory: the ParaView series (NAME.pvd, NAME_step_KKK.vtu), CSV and JSON as `needlekit indent --out`.");
+  m.def("pre_puncture_curve", &pre_puncture_curve, py::arg("result"));
+  m.def(
+      "indentation_json",
+      [](const IndentationCase& c, const IndentationResult& r) { return to_python(io::indentation_json(c, r)); },
+      py::arg("case"), py::arg("result"), "The result JSON of `needlekit indent` (units in the keys).");
+  m.def("force_depth_csv", &io::force_depth_csv, py::arg("result"));
+}
+
+void bind_post_puncture(py::module_& m) {
+  py::class_<TriangleClassificationOptions> classification(m, "TriangleClassificationOptions");
+  def_keyword_init<TriangleClassificationOptions>(classification);
+  classification.def_readwrite("insertion_direction", &TriangleClassificationOptions::insertion_direction)
+      .def_readwrite("axis_point", &TriangleClassificationOptions::axis_point, "m")
+      .def_readwrite("occlusion_test", &TriangleClassificationOptions::occlusion_test);
+  def_quantity(classification, "side_tolerance", &TriangleClassificationOptions::side_tolerance, Dimension::Angle, "rad");
+  def_quantity(classification, "alpha_tolerance", &TriangleClassificationOptions::alpha_tolerance, Dimension::Angle, "rad");
+  def_quantity(classification, "bore_radius", &TriangleClassificationOptions::bore_radius, Dimension::Length, "m");
+  py::class_<PostPunctureOptions>(m, "PostPunctureOptions").def(py::init<>());
+  py::class_<PostPunctureLoads>(m, "PostPunctureLoads", "The loaded triangles of a needle (§3.6).")
+      .def_readonly("reference_radius", &PostPunctureLoads::reference_radius, "m")
+      .def_readonly("needle_length", &PostPunctureLoads::needle_length, "m")
+      .def_readonly("alpha_area", &PostPunctureLoads::alpha_area, "m^2");
+  m.def("post_puncture_loads",
+        [](const geometry::TriangleMesh& needle, const TriangleClassificationOptions& c, const PostPunctureOptions& o) {
+          return post_puncture_loads(needle, c, o);
+        },
+        py::arg("needle"), py::arg("classification") = TriangleClassificationOptions{},
+        py::arg("options") = PostPunctureOptions{});
+  m.def(
+      "post_puncture_forces",
+      [](const PostPunctureLoads& loads, py::handle depths, py::handle stiffness, double scale) {
+        return owning_array(post_puncture_forces(loads, values_from(depths, "inserted_depths"),
+                                                 quantity(stiffness, Dimension::Pressure, "stiffness"), scale));
+      },
+      py::arg("loads"), py::arg("inserted_depths"), py::arg("stiffness"), py::arg("scale"),
+      "Post-puncture force (N) at inserted depths (m); stiffness K in N/m^2 (\"0.84 N/mm2\"), scale S (Eq 3.18).");
+
+  py::enum_<InsertionPhase>(m, "InsertionPhase")
+      .value("Indentation", InsertionPhase::Indentation)
+      .value("Cutting", InsertionPhase::Cutting);
+  py::enum_<InsertionStatus>(m, "InsertionStatus")
+      .value("Complete", InsertionStatus::Complete)
+      .value("NoPuncture", InsertionStatus::NoPuncture);
+  py::class_<PunctureEvent>(m, "PunctureEvent")
+      .def_readonly("needle", &PunctureEvent::needle)
+      .def_readonly("displacement", &PunctureEvent::displacement, "m")
+      .def_readonly("depth", &PunctureEvent::depth, "m")
+      .def_readonly("force_before", &PunctureEvent::force_before, "N")
+      .def_readonly("force_after", &PunctureEvent::force_after, "N")
+      .def_readonly("drop", &PunctureEvent::drop, "N");
+  py::class_<InsertionCurve>(m, "InsertionCurve", "The complete insertion curve (§3.5-3.6); depth (m), force (N).")
+      .def_readonly("status", &InsertionCurve::status)
+      .def_readonly("reason", &InsertionCurve::reason)
+      .def_property_readonly("depth", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().depth, self); }, "m")
+      .def_property_readonly("force", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().force, self); }, "N")
+      .def_readonly("phase", &InsertionCurve::phase)
+      .def_readonly("punctured_needles", &InsertionCurve::punctured_needles)
+      .def_readonly("punctures", &InsertionCurve::punctures);
+  m.def(
+      "insertion_curve",
+      [](const std::vector<PrePunctureCurve>& pre, const PostPunctureLoads& loads, py::handle stiffness, double scale,
+         std::vector<double> contact_offsets, py::handle final_depth, int cutting_samples) {
+        std::vector<NeedleInsertion> needles(pre.size());
+        for (std::size_t i = 0; i < pre.size(); ++i) {
+          needles[i].pre_puncture = pre[i];
+          needles[i].loads = &loads;
+          needles[i].stiffness = quantity(stiffness, Dimension::Pressure, "stiffness");
+          needles[i].scale = scale;
+          needles[i].contact_offset = i < contact_offsets.size() ? contact_offsets[i] : 0.0;
+        }
+        InsertionCurveOptions options;
+        options.final_depth = quantity(final_depth, Dimension::Length, "final_depth");
+        options.cutting_samples = cutting_samples;
+        return insertion_curve(needles, options);
+      },
+      py::arg("pre_puncture"), py::arg("loads"), py::arg("stiffness"), py::arg("scale"),
+      py::arg("contact_offsets") = std::vector<double>{}, py::arg("final_depth") = 1e-3, py::arg("cutting_samples") = 200,
+      "The complete insertion curve of needles sharing one post-puncture load (one PrePunctureCurve per needle).");
+  m.def(
+      "insertion_curve_json", [](const InsertionCurve& c) { return to_python(io::insertion_curve_json(c)); },
+      py::arg("curve"));
+  m.def("insertion_curve_csv", &io::insertion_curve_csv, py::arg("curve"));
+}
+
+}  // namespace
+
+void bind_insertion(py::module_& m) {
+  bind_indentation(m);
+  bind_post_puncture(m);
+}
+
+}  // namespace needlekit::python

@@ -1,0 +1,75 @@
+"""Tissue meshes and FE indentation from Python: progress callbacks, the GIL released, Ctrl-C stops the run with
+nothing half-written, and the insertion pieces (post-puncture loads, the insertion curve)."""
+import threading
+
+import numpy as np
+import pytest
+
+import needlekit as nk
+from conftest import EXAMPLES
+
+
+def coarse_flat_punch(steps=2):
+    case = nk.read_indentation_case(str(EXAMPLES / "indent_flat_punch.toml"))
+    case.block.size_at_site = "60 um"
+    case.block.size_far = "900 um"
+    case.steps = steps
+    return case
+
+
+def test_a_tissue_mesh_has_numpy_nodes_and_layers():
+    options = nk.LayeredBlockOptions(width="1 mm", length="1 mm", size_at_site="60 um", size_far="300 um",
+                                     refinement_radius="200 um")
+    result = nk.layered_block_mesh(options)
+    mesh = result.mesh
+    assert mesh.nodes.shape[1] == 3 and mesh.tets.shape[1] == 4 and len(mesh.tet_layer) == len(mesh.tets)
+    assert [layer.name for layer in mesh.layers] == [layer.name for layer in nk.skin_layers()]
+    assert mesh.nodes[:, 2].max() == pytest.approx(0, abs=1e-12)  # top surface z = 0
+    assert mesh.nodes[:, 2].min() == pytest.approx(-1150e-6, rel=1e-9)  # the skin preset's 1150 um
+    assert np.ptp(mesh.nodes[:, 0]) == pytest.approx(1e-3, rel=1e-9)
+    assert {q.name for q in result.quality} == {layer.name for layer in mesh.layers}
+
+
+def test_indentation_reports_progress_and_runs_without_the_gil(tmp_path):
+    seen, other_thread_ran = [], []
+    ticker = threading.Thread(target=lambda: other_thread_ran.append(sum(range(1000))))
+
+    def progress(p):
+        if not ticker.is_alive() and not other_thread_ran:
+            ticker.start()
+        seen.append((p.stage, p.fraction))
+
+    result = nk.run_indentation(coarse_flat_punch(), progress=progress, output_directory=str(tmp_path))
+    ticker.join()
+    assert other_thread_ran  # another Python thread ran while the FE worked
+    assert result.status == nk.IndentationStatus.ReachedDepth and len(result.steps) == 2
+    assert {stage for stage, _ in seen} >= {"mesh", "setup", "step"} and seen[-1][1] == pytest.approx(1)
+    assert result.depth == pytest.approx([10e-6, 20e-6]) and np.all(np.diff(result.force) > 0)
+    assert nk.indentation_json(coarse_flat_punch(), result)["status"] == "reached-depth"
+    assert (tmp_path / "flat_punch_result.json").exists() and (tmp_path / "flat_punch.pvd").exists()
+
+
+def test_ctrl_c_stops_the_run_cleanly(tmp_path):
+    def interrupt(p):
+        if p.stage == "step":
+            raise KeyboardInterrupt  # what PyErr_CheckSignals raises on Ctrl-C
+
+    with pytest.raises(KeyboardInterrupt):
+        nk.run_indentation(coarse_flat_punch(steps=4), progress=interrupt, output_directory=str(tmp_path))
+    assert not list(tmp_path.glob("*tmp*"))  # nothing half-written
+    assert not (tmp_path / "flat_punch_result.json").exists()  # the run did not finish
+
+
+def test_the_insertion_curve_from_a_pre_puncture_curve_and_the_post_puncture_load():
+    needle = nk.NeedleGeometry(shape="cylinder", tip_diameter="230 um", base_diameter="230 um", length="1000 um")
+    loads = nk.post_puncture_loads(nk.needle_surface_mesh(needle))
+    # A flat tip: its face, the 64-gon of the surface mesh, is the loaded (alpha) area.
+    segments, radius = nk.NeedleMeshOptions().circumferential_segments, 115e-6
+    assert loads.alpha_area == pytest.approx(segments / 2 * radius ** 2 * np.sin(2 * np.pi / segments), rel=1e-9)
+    pre = nk.PrePunctureCurve(nk.ForceDepthCurve(np.array([0, 100e-6, 200e-6]), np.array([0, 0.05, 0.12])),
+                              nk.PuncturePoint(depth="200 um", force="0.12 N",
+                                               criterion=nk.PunctureCriterion.CriticalPressure))
+    curve = nk.insertion_curve([pre], loads, stiffness="0.84 N/mm2", scale=0.168, final_depth="1000 um")
+    assert curve.status == nk.InsertionStatus.Complete and curve.depth[-1] == pytest.approx(1e-3)
+    forces = nk.post_puncture_forces(loads, np.array([500e-6]), "0.84 N/mm2", 0.168)
+    assert forces[0] > 0
