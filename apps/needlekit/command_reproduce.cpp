@@ -220,6 +220,8 @@ void run_reproduce(const ReproduceArguments& arguments) {
     context.check_interrupt();
     sections.push_back(run_section("§6.4 patches", reproduce::section_6_4, context));
     context.check_interrupt();
+    sections.push_back(run_section("uncertainty", reproduce::section_uncertainty, context));
+    context.check_interrupt();
 
     nlohmann::json results = {
         {"title", "Dissertation Chapter 6 reproduced by needlekit"},

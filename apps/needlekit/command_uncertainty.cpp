@@ -86,6 +86,20 @@ void run_uncertainty(const UncertaintyArguments& arguments) {
   }
 }
 
+// The distributions, methods and inputs from their tables (uncertainty/distribution.hpp, sample_points.hpp,
+// design_inputs.hpp).
+std::string tables_help() {
+  std::string help = "\nDistributions:\n";
+  for (const auto& d : uncertainty::distribution_kinds()) help += fmt::format("  {:<18}{}\n", d.name, d.meaning);
+  help += "Sampling methods:\n";
+  for (const auto& m : uncertainty::sampling_methods()) help += fmt::format("  {:<18}{}\n", m.name, m.meaning);
+  help += "Uncertain inputs (key, unit, meaning):\n";
+  for (const auto& i : uncertainty::design_inputs()) {
+    help += fmt::format("  {:<34}{:<5}{}\n", i.key, i.unit, i.meaning);
+  }
+  return help;
+}
+
 }  // namespace
 
 void add_uncertainty_command(CLI::App& app) {
@@ -105,7 +119,7 @@ void add_uncertainty_command(CLI::App& app) {
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->footer(std::string(kUncertaintyFileHelp) + "\n\n" + kDesignFileHelp);
+  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + "\n" + kDesignFileHelp);
   command->callback([arguments] { run_uncertainty(*arguments); });
 }
 

@@ -55,15 +55,10 @@ inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (b
   [uncertain]    one inline table per uncertain input, keyed by its design-file key, values with the input's unit:
                  "needle.tip_diameter" = { distribution = "normal", mean = "30 um", sd = "2 um" }
                  "tissue.alpha" = { distribution = "lognormal", median = "0.0183 N", sigma_log = 0.2 }
-                 distributions: normal (mean, sd >= 0) | truncated-normal (mean, sd > 0, min, max) | lognormal
-                 (median > 0, sigma_log >= 0) | uniform (min < max) | triangular (min < max, mode);
-                 an omitted mean / median is the design's value. Keys: needle.tip_diameter, needle.base_diameter,
-                 needle.bore_diameter, needle.length, needle.material.youngs_modulus, .yield_strength,
-                 .allowable_stress, array.width, tissue.alpha, tissue.tau, tissue.small_tip_slope, insertion.angle,
-                 insertion.target_depth. More than 0.1 % of a distribution outside the physical range (e.g. a
-                 diameter <= 0) is an error; less is truncated and reported.
-  [sampling]     samples = 4096 (>= 2), method = "sobol" (scrambled, use 2^m) | "monte-carlo", seed = 1,
-                 sobol_indices = true (N*(k+2) runs for k inputs)
+                 an omitted mean / median is the design's value. More than 0.1 % of a distribution outside the
+                 input's physical range (e.g. a diameter <= 0) is an error; less is truncated and reported.
+  [sampling]     samples = 4096 (>= 2), method (below, default "sobol"), seed = 1, sobol_indices = true
+                 (N*(k+2) runs for k inputs)
   [[correlation]] inputs = ["tissue.alpha", "tissue.tau"], rho = 0.5   (between normal scores, optional))";
 // The puncture-force laws of [tissue] puncture_force, from the law table (analysis::puncture_force_laws()).
 inline std::string puncture_force_law_help() {

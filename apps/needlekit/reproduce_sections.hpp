@@ -16,6 +16,8 @@ using SectionProgress = std::function<void(double fraction, const std::string& s
 SectionReport section_6_2(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_2.cpp
 SectionReport section_6_3(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_3.cpp
 SectionReport section_6_4(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_4.cpp
+// Beyond the dissertation: uncertainty and robust design (issue 15), reproduce_section_uncertainty.cpp.
+SectionReport section_uncertainty(const RunContext& context, const SectionProgress& progress);
 
 // The input files a section needs (checked before the run starts, so that a missing file fails at once).
 std::vector<std::filesystem::path> section_6_4_mesh_files(const RunContext& context);
