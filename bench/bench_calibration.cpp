@@ -1,12 +1,13 @@
 // Benchmarks of the calibration (issue 13).
 // BM_CalibrationCoverage: the synthetic-recovery study over 20 noise seeds (tests/support/calibration_fixture.hpp:
 //   a flat 100 um punch into a 1.5 mm silicone block, E = 0.2 MPa, P_c = 0.663 MPa, data made on a 40 um mesh with
-//   2 % noise, fitted on a 44 um mesh). Counters: coverage_E, coverage_Pc (fraction of the seeds whose 95 % interval
+//   2 % noise, fitted on a 40 um mesh: the same size; see docs/calibration.md for other meshes). Counters: coverage_E, coverage_Pc (fraction of the seeds whose 95 % interval
 //   holds the truth), max_error_E, max_error_Pc (largest relative error), within_3pct (seeds with both within 3 %).
-//     build/bin/needlekit_bench --benchmark_filter=BM_CalibrationCoverage
+//     build/bin/needlekit_bench --benchmark_filter=BM_CalibrationCoverage/20  (/5: a shorter run)
 // BM_CalibrateInsertion: E and P_c fitted to one complete insertion curve (the blunt bevel of §6.2 into the phantom (a sharp tip punctures at its first step whatever P_c is, so P_c would not be identifiable),
-//   FE to puncture + cutting force) on a mesh of about 10k tetrahedra, from 50 % / 30 % off; the curve is the
-//   model's own at E = 0.2 MPa, P_c = 0.663 MPa on the same mesh. Counters: tets, fe_runs, iterations, seconds,
+//   FE to puncture + cutting force) on a mesh of about 10k tetrahedra, from 50 % / 32 % off; the curve and its
+//   puncture point are the model's own at E = 0.2 MPa, P_c = 0.663 MPa on the same mesh. (From the curve alone P_c
+//   is found only through where the drop falls between samples, a step function of P_c: the fit then stalls.) Counters: tets, fe_runs, iterations, seconds,
 //   error_E, error_Pc.
 //     build/bin/needlekit_bench --benchmark_filter=BM_CalibrateInsertion
 #include <benchmark/benchmark.h>
@@ -27,7 +28,7 @@ void BM_CalibrationCoverage(benchmark::State& state) {
     int covered_e = 0, covered_p = 0, within = 0, converged = 0;
     double max_e = 0, max_p = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
-      const test::RecoveryOutcome o = test::recover(synthetic, 44e-6, static_cast<unsigned>(seed));
+      const test::RecoveryOutcome o = test::recover(synthetic, 40e-6, static_cast<unsigned>(seed));
       converged += o.result.status == calibration::CalibrationStatus::Converged;
       covered_e += o.covered[0];
       covered_p += o.covered[1];
@@ -44,7 +45,7 @@ void BM_CalibrationCoverage(benchmark::State& state) {
     state.counters["max_error_Pc"] = max_p;
   }
 }
-BENCHMARK(BM_CalibrationCoverage)->Arg(20)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_CalibrationCoverage)->Arg(5)->Arg(20)->Unit(benchmark::kSecond)->Iterations(1);
 
 const char* kInsertCase = R"(name = "blunt_bevel"
 [needle]
@@ -61,8 +62,8 @@ thickness = "1150 um"
 youngs_modulus = "0.2 MPa"
 poisson_ratio = 0.49
 [mesh]
-size_at_tip = "25 um"
-size_far = "500 um"
+size_at_tip = "35 um"
+size_far = "600 um"
 [loading]
 depth = "200 um"
 steps = 10
@@ -100,7 +101,8 @@ void BM_CalibrateInsertion(benchmark::State& state) {
 name = "blunt bevel"
 case = "case.toml"
 measured = "curve.csv"
-)";
+)" << fmt::format("puncture = {{ depth = \"{:.9g} um\", force = \"{:.9g} N\" }}\n", p.puncture->depth * 1e6,
+                    p.puncture->force);
   for (auto _ : state) {
     const auto result = calibration::calibrate(calibration::read_calibration_file(dir / "fit.toml"));
     state.counters["fe_runs"] = result.model_runs;

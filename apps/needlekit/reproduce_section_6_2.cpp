@@ -353,6 +353,8 @@ SectionReport section_6_2(const RunContext& context, const SectionProgress& prog
   SectionReport report("6.2", "§6.2 Pre-puncture, puncture and post-puncture insertion forces");
   phantom_needles(context, report, progress);
   context.check_interrupt();
+  calibrated_phantom(context, report, progress);
+  context.check_interrupt();
   four_needles(context, report, progress);
   context.check_interrupt();
   soft_vs_layered(context, report, progress);

@@ -14,6 +14,8 @@ namespace needlekit::cli::reproduce {
 using SectionProgress = std::function<void(double fraction, const std::string& step)>;
 
 SectionReport section_6_2(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_2.cpp
+// The §6.2 rows after calibration (reproduce_section_6_2_calibrated.cpp; full run only).
+void calibrated_phantom(const RunContext& context, SectionReport& report, const SectionProgress& progress);
 SectionReport section_6_3(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_3.cpp
 SectionReport section_6_4(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_4.cpp
 // Beyond the dissertation: uncertainty and robust design (issue 15), reproduce_section_uncertainty.cpp.
