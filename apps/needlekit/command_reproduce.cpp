@@ -43,6 +43,7 @@ extern "C" void on_interrupt(int) { g_interrupted.store(true); }
 
 struct ReproduceArguments {
   bool quick = false;
+  bool with_calibration = false;
   std::string out_dir = "out";
   std::string meshes_dir;
   std::string python;
@@ -187,6 +188,7 @@ void run_reproduce(const ReproduceArguments& arguments) {
 
   RunContext context;
   context.quick = arguments.quick;
+  context.with_calibration = arguments.with_calibration;
   context.resources = resources;
   // The meshes of §6.4: those the patch examples name, or the files of the same names in --meshes.
   context.meshes = arguments.meshes_dir;
@@ -284,6 +286,9 @@ void add_reproduce_command(CLI::App& app) {
       "figures beside the published ones");
   command->add_flag("--quick", arguments->quick,
                     "coarser meshes and fewer sweep points (under 2 minutes; what the tests run)");
+  command->add_flag("--with-calibration", arguments->with_calibration,
+                    "also the §6.2 rows after calibration (E and P_c fitted on the sharp bevel, the blunt bevel and "
+                    "the cylinder predicted: tens of FE runs, full run only)");
   command->add_option("--out", arguments->out_dir,
                       "output directory: report.html, results.json, data (CSV/JSON with units) and figures (PNG); "
                       "results of an earlier run with the same names are replaced when the run completes")

@@ -52,6 +52,7 @@ public:
 
 struct RunContext {
   bool quick = false;
+  bool with_calibration = false;  // --with-calibration: the §6.2 rows after calibration (tens of FE runs)
   std::filesystem::path staging;    // every file of the run is written under this directory first
   std::filesystem::path resources;  // the needlekit tree: docs/published, examples, scripts
   std::filesystem::path meshes;     // --meshes: folder of the §6.4 body surface meshes (empty: as the examples say)

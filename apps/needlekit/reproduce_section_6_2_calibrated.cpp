@@ -1,7 +1,7 @@
 // §6.2 of `needlekit reproduce`, after calibration (issue 13): the phantom's E and P_c fitted to the sharp bevel's
 // experiment alone (examples/calibrate_6_2_phantom.toml), then the blunt bevel and the cylinder predicted with the
-// fitted values (weight-0 experiments of the same file), beside the uncalibrated rows. Full run only: the fit is
-// some tens of FE runs. What the prediction can and cannot claim: docs/calibration.md.
+// fitted values (weight-0 experiments of the same file), beside the uncalibrated rows. Only with
+// --with-calibration and not with --quick: the fit is some tens of FE runs. What the prediction can and cannot claim: docs/calibration.md.
 #include <fmt/format.h>
 
 #include "needlekit/calibration/calibrate.hpp"
@@ -12,9 +12,9 @@ namespace needlekit::cli::reproduce {
 
 void calibrated_phantom(const RunContext& context, SectionReport& report, const SectionProgress& progress) {
   const char* example = "calibrate_6_2_phantom.toml";
-  if (context.quick) {
-    report.input(fmt::format("examples/{}: the §6.2 prediction after calibration runs in the full run only (a fit of "
-                             "some tens of FE runs)",
+  if (context.quick || !context.with_calibration) {
+    report.input(fmt::format("examples/{}: the §6.2 prediction after calibration runs with `reproduce "
+                             "--with-calibration` (full run only: a fit of some tens of FE runs)",
                              example));
     return;
   }
