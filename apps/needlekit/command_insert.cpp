@@ -3,26 +3,19 @@
 // CSV/JSON with the phases and puncture markers and plotted as a PNG (scripts/plot_force_curve.py).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
-#include "needlekit/geometry/surface_mesh.hpp"
-#include "needlekit/insertion/indentation.hpp"
-#include "needlekit/insertion/insertion_curve.hpp"
-#include "needlekit/io/force_curve_csv.hpp"
-#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
 #include "needlekit/io/result_writers.hpp"
@@ -44,7 +37,9 @@ constexpr const char* kInsertHelp = R"(CASE file (TOML): an indentation case (se
   [pre_puncture]   curve = "pre.csv" (depth_<unit>, force_<unit>), punctured = true: use this curve (its last
                    sample is the puncture point) instead of running the FE
 Outputs (in --out DIR, default .): NAME_insertion.csv (depth_um, force_N, phase, punctured_needles, marker),
-NAME_insertion.json, NAME_insertion.png (needs /usr/bin/python3 with matplotlib; --no-plot to skip).)";
+NAME_insertion.json, NAME_insertion.png (needs /usr/bin/python3 with matplotlib; --no-plot to skip). With
+measured, the curve, JSON and plot use the fitted S (JSON: scale, scale_source = "fitted", case_scale). A FE run
+that stops converging writes what converged (the JSON alone if no step did) and exits with code 3.)";
 
 struct InsertArguments {
   std::string case_path;
@@ -67,41 +62,9 @@ std::string shell_quote(const std::string& text) {
   return quoted + "'";
 }
 
-// The pre-puncture curve of needle i of an FE run: its own reaction force against its own depth (the FE depth is
-// measured from the first needle's contact; needle i touches `offset` later). Every needle of an array is taken to
-// puncture at the run's puncture point (the runner reports one).
-insertion::PrePunctureCurve needle_pre_curve(const insertion::IndentationResult& result, std::size_t i, double offset) {
-  insertion::PrePunctureCurve pre;
-  for (const auto& step : result.steps) {
-    const double x = step.depth - offset;
-    if (x <= 0) continue;
-    pre.curve.depth.push_back(x);
-    pre.curve.force.push_back(i < step.needle_force.size() ? step.needle_force[i] : step.force);
-  }
-  if (result.puncture && result.puncture->depth - offset > 0 && !pre.curve.depth.empty()) {
-    pre.puncture = *result.puncture;
-    pre.puncture->depth = std::min(result.puncture->depth - offset, pre.curve.depth.back());
-  }
-  if (pre.curve.depth.empty()) {  // never touched within the run: a zero curve to the run's depth
-    pre.curve.depth.push_back(result.steps.empty() ? 1e-9 : std::max(result.steps.back().depth, 1e-9));
-    pre.curve.force.push_back(0);
-  }
-  return pre;
-}
-
 void run_insert(const InsertArguments& arguments) {
-  const std::filesystem::path case_path(arguments.case_path);
-  std::ifstream probe(case_path);
-  if (!probe) throw IoError(fmt::format("{}: cannot read", case_path.string()));
-  std::stringstream buffer;
-  buffer << probe.rdbuf();
-  const std::filesystem::path base = case_path.has_parent_path() ? case_path.parent_path() : ".";
-  const io::InsertionSettings settings = io::parse_insertion_settings(buffer.str(), case_path.string(), base);
-  if (settings.needle_mesh)  // open, non-manifold or inverted: say so (the indentation reader would flip it)
-    insertion::validate_needle_surface(geometry::read_triangle_mesh(*settings.needle_mesh, 1.0),
-                                       settings.needle_mesh->string());
-  insertion::IndentationCase indentation_case =
-      io::parse_indentation_case_toml(settings.indentation_text, case_path.string(), base);
+  io::InsertionCase c = io::read_insertion_case(arguments.case_path);
+  insertion::IndentationCase& indentation_case = c.indentation;
   if (!arguments.size_at_tip.empty()) {
     indentation_case.block.size_at_site =
         units::parse_quantity(arguments.size_at_tip, units::Dimension::Length, "--size-at-tip");
@@ -111,71 +74,43 @@ void run_insert(const InsertArguments& arguments) {
     indentation_case.block.size_far = units::parse_quantity(arguments.size_far, units::Dimension::Length, "--size-far");
   if (arguments.steps > 0) indentation_case.steps = arguments.steps;
   indentation_case.stop_at_puncture = true;
-  insertion::validate(indentation_case);
 
-  // The post-puncture load of the needle (checked before the FE runs: a bad mesh fails fast).
-  insertion::TriangleClassificationOptions classification = settings.classification;
-  if (indentation_case.geometry) classification.bore_radius = 0.5 * indentation_case.geometry->bore_diameter;
-  const geometry::SurfaceMesh surface(indentation_case.needle);
-  const insertion::PostPunctureLoads loads =
-      insertion::post_puncture_loads(indentation_case.needle, classification, settings.post_puncture, &surface);
-  std::optional<insertion::PostPunctureFit> fit;
-  if (settings.measured) {
-    insertion::PostPunctureFitOptions options;
-    options.stiffness = settings.stiffness;
-    fit = insertion::fit_post_puncture(loads, io::read_force_curve_csv(*settings.measured), options);
-  }
-
-  // The pre-puncture part: the FE (or the given curve).
+  std::optional<ProgressBar> progress;
+  if (!c.options.pre_puncture) progress.emplace(fmt::format("insert {}: FE indentation", indentation_case.name));
+  c.options.indentation.progress = [&progress](const insertion::IndentationProgress& p) { progress->update(p.fraction); };
+  const insertion::CompleteInsertionResult result = insertion::complete_insertion(indentation_case, c.options);
+  if (progress) progress->finish();
+  const std::optional<insertion::IndentationResult>& fe = result.indentation;
+  const insertion::InsertionCurve& curve = result.curve;
+  const bool failed = result.status == insertion::CompleteInsertionStatus::SolverFailed;
   const std::size_t count = indentation_case.needles.size();
-  double lowest = indentation_case.needles.front().tip_height;
-  for (const auto& site : indentation_case.needles) lowest = std::min(lowest, site.tip_height);
-  std::vector<insertion::NeedleInsertion> needles(count);
-  std::optional<insertion::IndentationResult> fe;
-  if (settings.pre_puncture) {
-    for (std::size_t i = 0; i < count; ++i) needles[i].pre_puncture = *settings.pre_puncture;
-  } else {
-    ProgressBar progress(fmt::format("insert {}: FE indentation", indentation_case.name));
-    insertion::IndentationOptions options;
-    options.progress = [&progress](const insertion::IndentationProgress& p) { progress.update(p.fraction); };
-    fe = insertion::run_indentation(indentation_case, options);
-    progress.finish();
-    if (fe->steps.empty())
-      throw InvalidInput(fmt::format("{}: the FE indentation converged no load step ({}); nothing to insert",
-                                     case_path.string(), fe->reason));
-    for (std::size_t i = 0; i < count; ++i)
-      needles[i].pre_puncture = needle_pre_curve(*fe, i, indentation_case.needles[i].tip_height - lowest);
-  }
-  for (std::size_t i = 0; i < count; ++i) {
-    needles[i].loads = &loads;
-    needles[i].stiffness = settings.stiffness;
-    needles[i].scale = settings.scale;
-    needles[i].contact_offset = indentation_case.needles[i].tip_height - lowest;
-  }
-  insertion::InsertionCurveOptions curve_options;
-  curve_options.final_depth = settings.final_depth;
-  curve_options.cutting_samples = settings.cutting_samples;
-  const insertion::InsertionCurve curve = insertion::insertion_curve(needles, curve_options);
 
-  // Outputs: CSV and JSON, then the plot; on a plot failure the CSV and JSON are removed again.
+  // Outputs: JSON always; CSV and the plot when the curve has samples (the FE converged at least one step). On a
+  // plot failure the CSV and JSON are removed again.
   nlohmann::json json = io::insertion_curve_json(curve);
+  json["status"] = insertion::to_string(result.status);
+  json["reason"] = result.reason;
   json["name"] = indentation_case.name;
   json["needles"] = count;
-  json["stiffness_N_per_mm2"] = settings.stiffness * 1e-6;
-  json["scale"] = settings.scale;
-  json["final_depth_um"] = settings.final_depth * 1e6;
+  json["stiffness_N_per_mm2"] = result.stiffness * 1e-6;
+  json["scale"] = result.scale;
+  json["scale_source"] = result.fit ? "fitted" : "case";
+  json["case_scale"] = c.options.model.scale;
+  json["final_depth_um"] = c.options.curve.final_depth * 1e6;
   json["pre_puncture_source"] = fe ? "fe" : "csv";
   if (fe) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
                   {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds}};
   }
-  const auto& c = loads.classification;
-  json["classification"] = {{"alpha", c.alpha.size()},   {"beta", c.beta.size()},
-                            {"side", c.side},            {"back", c.back},
-                            {"channel", c.channel},      {"occluded", c.occluded},
-                            {"alpha_area_um2", c.alpha_area * 1e12}, {"beta_area_um2", c.beta_area * 1e12},
+  const auto& loads = result.loads;
+  const auto& classes = loads.classification;
+  json["classification"] = {{"alpha", classes.alpha.size()},   {"beta", classes.beta.size()},
+                            {"side", classes.side},            {"back", classes.back},
+                            {"channel", classes.channel},      {"occluded", classes.occluded},
+                            {"alpha_area_um2", classes.alpha_area * 1e12}, {"beta_area_um2", classes.beta_area * 1e12},
                             {"loaded_subtriangles", loads.triangles.size()},
                             {"reference_radius_um", loads.reference_radius * 1e6}};
+  const std::optional<insertion::PostPunctureFit>& fit = result.fit;
   json["fit"] = nullptr;
   if (fit)
     json["fit"] = {{"scale", fit->scale}, {"stiffness_N_per_mm2", fit->stiffness * 1e-6},
@@ -186,18 +121,23 @@ void run_insert(const InsertArguments& arguments) {
   const std::filesystem::path csv_path = dir / (indentation_case.name + "_insertion.csv");
   const std::filesystem::path json_path = dir / (indentation_case.name + "_insertion.json");
   const std::filesystem::path png_path = dir / (indentation_case.name + "_insertion.png");
-  std::vector<std::string> files{csv_path.string(), json_path.string()};
-  if (!arguments.no_plot) files.push_back(png_path.string());
+  const bool has_curve = !curve.depth.empty();
+  std::vector<std::string> files;
+  if (has_curve) files.push_back(csv_path.string());
+  files.push_back(json_path.string());
+  if (has_curve && !arguments.no_plot) files.push_back(png_path.string());
   json["files"] = files;
-  io::write_text_file_atomically(csv_path, io::insertion_curve_csv(curve));
+  if (has_curve) io::write_text_file_atomically(csv_path, io::insertion_curve_csv(curve));
   io::write_text_file_atomically(json_path, json.dump(2) + "\n");
-  if (!arguments.no_plot) {
+  if (has_curve && !arguments.no_plot) {
+    const std::string s = fit ? fmt::format("S = {:.4g} (fitted; case {:.4g})", result.scale, c.options.model.scale)
+                              : fmt::format("S = {:.4g}", result.scale);
     std::vector<std::string> command{"/usr/bin/python3", plot_script(), csv_path.string(), png_path.string(),
-                                     "--title", fmt::format("{}: K = {:.4g} N/mm2, S = {:.4g}", indentation_case.name,
-                                                            settings.stiffness * 1e-6, settings.scale)};
-    if (settings.measured) {
+                                     "--title", fmt::format("{}: K = {:.4g} N/mm2, {}", indentation_case.name,
+                                                            result.stiffness * 1e-6, s)};
+    if (c.measured) {
       command.push_back("--measured");
-      command.push_back(settings.measured->string());
+      command.push_back(c.measured->string());
     }
     std::string line;
     for (const auto& part : command) line += shell_quote(part) + " ";
@@ -214,22 +154,25 @@ void run_insert(const InsertArguments& arguments) {
 
   if (arguments.json) {
     fmt::print("{}\n", json.dump(2));
-    return;
+  } else {
+    fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
+               indentation_case.name, count, classes.alpha.size(), classes.beta.size(), classes.side, classes.back,
+               classes.channel, classes.occluded);
+    if (fe) fmt::print("FE indentation: {}: {}\n", insertion::to_string(fe->status), fe->reason);
+    for (const auto& event : curve.punctures)
+      fmt::print("needle {} punctures at {:.4g} um: force {:.5g} N before, {:.5g} N after (relaxation drop {:.5g} N)\n",
+                 event.needle + 1, event.displacement * 1e6, event.force_before, event.force_after, event.drop);
+    if (curve.punctures.empty()) fmt::print("no puncture\n");
+    if (has_curve) fmt::print("end: {:.4g} um, {:.5g} N\n", curve.depth.back() * 1e6, curve.force.back());
+    fmt::print("{}: {}\n", insertion::to_string(result.status), result.reason);
+    if (fit)
+      fmt::print("fit to {}: S = {:.5g} at K = {:.4g} N/mm2 (rms {:.3g} N, {:.1f} % of the measured rms); the curve "
+                 "uses the fitted S (the case's S = {:.4g})\n",
+                 c.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error, 100 * fit->relative_rms,
+                 c.options.model.scale);
+    fmt::print("wrote {}\n", fmt::join(files, ", "));
   }
-  fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
-             indentation_case.name, count, c.alpha.size(), c.beta.size(), c.side, c.back, c.channel, c.occluded);
-  if (fe) fmt::print("FE indentation: {}: {}\n", insertion::to_string(fe->status), fe->reason);
-  for (const auto& event : curve.punctures)
-    fmt::print("needle {} punctures at {:.4g} um: force {:.5g} N before, {:.5g} N after (relaxation drop {:.5g} N)\n",
-               event.needle + 1, event.displacement * 1e6, event.force_before, event.force_after, event.drop);
-  if (curve.punctures.empty()) fmt::print("no puncture\n");
-  fmt::print("end: {:.4g} um, {:.5g} N ({}: {})\n", curve.depth.back() * 1e6, curve.force.back(),
-             insertion::to_string(curve.status), curve.reason);
-  if (fit)
-    fmt::print("fit to {}: S = {:.5g} at K = {:.4g} N/mm2 (rms {:.3g} N, {:.1f} % of the measured rms)\n",
-               settings.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error,
-               100 * fit->relative_rms);
-  fmt::print("wrote {}\n", fmt::join(files, ", "));
+  if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
 
 }  // namespace

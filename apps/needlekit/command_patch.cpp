@@ -2,7 +2,7 @@
 // needle (dissertation ch. 5, §6.4); `--sweep max_spring_energy=A:B:N` writes the Fig 6.25 curve.
 #include <fmt/format.h>
 
-#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,7 +15,7 @@
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/io/result_writers.hpp"
-#include "needlekit/patch/spring_geodesics.hpp"
+#include "needlekit/patch/fit_and_evaluate.hpp"
 #include "progress_bar.hpp"
 
 namespace needlekit::cli {
@@ -126,7 +126,6 @@ void run_patch(const PatchArguments& arguments) {
     throw InvalidInput(fmt::format("--sweep max_spring_energy needs a flexible patch, but {} has patch.kind = \"{}\"",
                                    arguments.case_path, patch::to_string(c.fit.kind)));
   }
-  const patch::PatchDesign design = patch::patch_design(c.design);
   geometry::SurfaceMesh surface = [&] {
     try {
       return geometry::SurfaceMesh(geometry::read_triangle_mesh(c.mesh, c.mesh_unit));
@@ -134,15 +133,10 @@ void run_patch(const PatchArguments& arguments) {
       throw InvalidInput(fmt::format("{}: {}", c.mesh.string(), error.what()));
     }
   }();
-  const double diagonal = std::hypot(design.width_u, design.width_v);
-  const patch::PatchFrame frame = patch::patch_frame(surface, c.placement, diagonal, design.needle.length);
-
-  auto run_once = [&](const patch::FitOptions& options, double& ms) {
-    const auto start = std::chrono::steady_clock::now();
-    patch::FittedPatch fit = patch::fit_patch(surface, design, frame, options);
-    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return fit;
-  };
+  patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweep};
+  // A fit that did not converge (the equilibrium solver's iteration limit) ends the command with exit code 3 once
+  // everything is written; the other statuses (the patch leaves the surface, springs over E_cri) are outcomes.
+  bool not_converged = false;
 
   if (sweep) {
     std::string csv =
@@ -152,19 +146,18 @@ void run_patch(const PatchArguments& arguments) {
     nlohmann::json points = nlohmann::json::array();
     ProgressBar progress("sweep");
     for (int i = 0; i < sweep->count; ++i) {
-      patch::FitOptions options = c.fit;
-      options.flexible.max_spring_energy =
+      options.fit.flexible.max_spring_energy =
           sweep->count == 1 ? sweep->from : sweep->from + (sweep->to - sweep->from) * i / (sweep->count - 1);
-      double ms = 0;
-      const patch::FittedPatch fit = run_once(options, ms);
-      const patch::PatchEvaluation e = patch::evaluate_needles(surface, design, fit, c.evaluation);
-      const nlohmann::json s = io::patch_summary_json(design, options, fit, e, ms);
-      points.push_back(s);
+      const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
+      const patch::PatchEvaluation& e = r.evaluation;
+      const double ms = r.fit_seconds * 1e3;
+      not_converged = not_converged || r.status == patch::FitStatus::NotConverged;
+      points.push_back(io::patch_summary_json(r.design, options.fit, r.fit, e, ms));
       csv += fmt::format("{:.6g},{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g},{}\n",
-                         options.flexible.max_spring_energy * 1e3, e.performance_index.mean * 1e-6,
+                         options.fit.flexible.max_spring_energy * 1e3, e.performance_index.mean * 1e-6,
                          e.performance_index.total * 1e-6, e.penetrating, e.buckled, e.bent, e.angle.max * 180 / M_PI,
                          e.buckling_force.max, e.bending_force.max, e.bending_force.mean, e.spring_energy.total * 1e3,
-                         ms, patch::to_string(fit.status));
+                         ms, patch::to_string(r.status));
       progress.update(static_cast<double>(i + 1) / sweep->count);
     }
     progress.finish();
@@ -178,15 +171,15 @@ void run_patch(const PatchArguments& arguments) {
     } else {
       fmt::print("{}", csv);
     }
+    if (not_converged) throw CommandOutcome{ExitCode::NumericalFailure};
     return;
   }
 
-  double ms = 0;
-  const patch::FittedPatch fit = run_once(c.fit, ms);
-  const patch::PatchEvaluation evaluation = patch::evaluate_needles(surface, design, fit, c.evaluation);
-  nlohmann::json summary = io::patch_summary_json(design, c.fit, fit, evaluation, ms);
+  const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
+  not_converged = r.status == patch::FitStatus::NotConverged;
+  nlohmann::json summary = io::patch_summary_json(r.design, c.fit, r.fit, r.evaluation, r.fit_seconds * 1e3);
   // Beyond the dissertation: the springs measured along the surface (exact geodesic distances).
-  const patch::SpringGeodesics geodesics = patch::spring_geodesics(surface, design, fit);
+  const patch::SpringGeodesics& geodesics = *r.geodesics;
   summary["spring_geodesic_strain"] =
       geodesics.strain_abs.count == 0
           ? nlohmann::json(nullptr)
@@ -197,10 +190,11 @@ void run_patch(const PatchArguments& arguments) {
     std::error_code error;
     std::filesystem::create_directories(out, error);
     if (error) throw IoError(fmt::format("{}: cannot create the output folder: {}", out.string(), error.message()));
-    const io::VtuGrid surface_part = io::surface_grid(surface, frame.surface_point, diagonal);
-    const io::VtuGrid patch_part = io::patch_grid(design, fit, geodesics.strain);
-    const io::VtuGrid needles_part = io::needles_grid(evaluation);
-    io::write_text_file_atomically(out / "needles.csv", io::patch_needles_csv(design, fit, evaluation));
+    const double diagonal = std::hypot(r.design.width_u, r.design.width_v);
+    const io::VtuGrid surface_part = io::surface_grid(surface, r.frame.surface_point, diagonal);
+    const io::VtuGrid patch_part = io::patch_grid(r.design, r.fit, geodesics.strain);
+    const io::VtuGrid needles_part = io::needles_grid(r.evaluation);
+    io::write_text_file_atomically(out / "needles.csv", io::patch_needles_csv(r.design, r.fit, r.evaluation));
     io::write_text_file_atomically(out / "summary.json", summary.dump(2) + "\n");
     io::write_vtu(surface_part, out / "surface.vtu");
     io::write_vtu(patch_part, out / "patch.vtu");
@@ -217,6 +211,7 @@ void run_patch(const PatchArguments& arguments) {
   } else {
     print_summary(c, summary);
   }
+  if (not_converged) throw CommandOutcome{ExitCode::NumericalFailure};
 }
 
 }  // namespace

@@ -4,16 +4,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/insertion/indentation.hpp"
-#include "needlekit/insertion/insertion_curve.hpp"
-#include "needlekit/insertion/post_puncture_force.hpp"
+#include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
@@ -150,18 +147,6 @@ struct PhantomNeedle {
   const char* example;  // an insertion case: the indentation case plus [post_puncture]
 };
 
-// An insertion case file: its indentation case and its post-puncture settings.
-std::pair<insertion::IndentationCase, io::InsertionSettings> read_insertion_case(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError(fmt::format("{}: cannot read the insertion case", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  io::InsertionSettings settings = io::parse_insertion_settings(text.str(), path.string(), path.parent_path());
-  insertion::IndentationCase indentation =
-      io::parse_indentation_case_toml(settings.indentation_text, path.string(), path.parent_path());
-  return {std::move(indentation), std::move(settings)};
-}
-
 void phantom_needles(const RunContext& context, SectionReport& report, const SectionProgress& progress) {
   const PublishedValues& published = *context.published;
   const std::vector<PhantomNeedle> needles = {{"sharp_bevel", "sharp bevel", "insert_sharp_bevel.toml"},
@@ -174,28 +159,29 @@ void phantom_needles(const RunContext& context, SectionReport& report, const Sec
   for (std::size_t i = 0; i < needles.size(); ++i) {
     const PhantomNeedle& n = needles[i];
     const double lo = 0.5 * i / needles.size(), hi = 0.5 * (i + 1) / needles.size();
-    auto [indentation, settings] = read_insertion_case(context.example(n.example));
-    set_resolution(indentation, context.quick);
-    FeRun run = run_fe(context, n.example, std::move(indentation), true, Capture::Nothing,
-                       [&](double f) { progress(lo + (hi - lo) * f, n.label); });
-    report.input(case_text(run) + fmt::format("; post-puncture K = {:g} N/mm^2, S = {:g}, to {:g} um", settings.stiffness * 1e-6,
-                                              settings.scale, settings.final_depth / kMicro));
+    io::InsertionCase c = io::read_insertion_case(context.example(n.example));
+    set_resolution(c.indentation, context.quick);
+    c.indentation.stop_at_puncture = true;
+    if (context.quick) c.options.curve.cutting_samples = std::min(60, c.options.curve.cutting_samples);
+    c.options.indentation.progress = [&](const insertion::IndentationProgress& p) {
+      context.check_interrupt();
+      progress(lo + (hi - lo) * p.fraction, n.label);
+    };
+    c.options.indentation.on_step = [&](const insertion::IndentationStep&, const fem::QuasiStaticSolver&) {
+      context.check_interrupt();
+    };
+    // The complete insertion: the FE curve to the puncture point, then the post-puncture load of the needle's mesh.
+    const insertion::CompleteInsertionResult complete = insertion::complete_insertion(c.indentation, c.options);
+    if (complete.curve.depth.empty()) throw std::runtime_error(fmt::format("{}: {}", n.example, complete.reason));
+    const FeRun run{n.example, c.indentation, *complete.indentation};
+    const insertion::InsertionCurve& curve = complete.curve;
+    report.input(case_text(run) + fmt::format("; post-puncture K = {:g} N/mm^2, S = {:g}, to {:g} um",
+                                              complete.stiffness * 1e-6, complete.scale,
+                                              c.options.curve.final_depth / kMicro));
     const std::string pre_csv = context.write(fmt::format("section_6_2/{}_pre_puncture.csv", n.key), steps_csv(run.result));
     report.data_file(pre_csv);
     pre_series.push_back({{"csv", pre_csv}, {"x", "depth_um"}, {"y", "force_N"}, {"label", n.label}, {"style", ".-"}});
 
-    // The complete insertion: the FE curve to the puncture point, then the post-puncture load of the needle's mesh.
-    const insertion::PostPunctureLoads loads =
-        insertion::post_puncture_loads(run.input.needle, settings.classification, settings.post_puncture);
-    insertion::NeedleInsertion needle;
-    needle.pre_puncture = insertion::pre_puncture_curve(run.result);
-    needle.loads = &loads;
-    needle.stiffness = settings.stiffness;
-    needle.scale = settings.scale;
-    insertion::InsertionCurveOptions curve_options;
-    curve_options.final_depth = settings.final_depth;
-    curve_options.cutting_samples = context.quick ? std::min(60, settings.cutting_samples) : settings.cutting_samples;
-    const insertion::InsertionCurve curve = insertion::insertion_curve({needle}, curve_options);
     const std::string complete_csv =
         context.write(fmt::format("section_6_2/{}_insertion.csv", n.key), io::insertion_curve_csv(curve));
     report.data_file(complete_csv);

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <optional>
 #include <tuple>
 #include <cmath>
@@ -18,8 +17,7 @@
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
-#include "needlekit/patch/fit_patch.hpp"
-#include "needlekit/patch/needle_evaluation.hpp"
+#include "needlekit/patch/fit_and_evaluate.hpp"
 #include "needlekit/materials/needle_material.hpp"
 #include "reproduce_sections.hpp"
 
@@ -99,16 +97,14 @@ PatchRun run_patch(const RunContext& context, Surfaces& surfaces, const std::str
   run.example = example;
   run.input = read_case(context, example);
   if (max_spring_energy) run.input.fit.flexible.max_spring_energy = *max_spring_energy;
-  run.design = patch::patch_design(run.input.design);
   const geometry::SurfaceMesh& surface = surfaces.get(run.input);
   run.surface_triangles = surface.triangle_count();
-  const patch::PatchFrame frame = patch::patch_frame(surface, run.input.placement,
-                                                     std::hypot(run.design.width_u, run.design.width_v),
-                                                     run.design.needle.length);
-  const auto start = std::chrono::steady_clock::now();
-  run.fit = patch::fit_patch(surface, run.design, frame, run.input.fit);
-  run.fit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  run.evaluation = patch::evaluate_needles(surface, run.design, run.fit, run.input.evaluation);
+  patch::FitAndEvaluateResult result = patch::fit_and_evaluate(
+      surface, run.input.design, {run.input.placement, run.input.fit, run.input.evaluation, false});
+  run.design = std::move(result.design);
+  run.fit = std::move(result.fit);
+  run.evaluation = std::move(result.evaluation);
+  run.fit_ms = result.fit_seconds * 1e3;
   run.summary = io::patch_summary_json(run.design, run.input.fit, run.fit, run.evaluation, run.fit_ms);
   return run;
 }

@@ -1,8 +1,11 @@
 #include "needlekit/io/insertion_case.hpp"
 
+#include <fstream>
 #include <sstream>
 
+#include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
+#include "needlekit/io/indentation_case.hpp"
 #include "toml_config.hpp"
 
 namespace needlekit::io {
@@ -119,6 +122,33 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
       settings.needle_mesh = base_directory / mesh->as_string()->get();
   settings.indentation_text = without_tables(text, {"post_puncture", "pre_puncture"});
   return settings;
+}
+
+InsertionCase read_insertion_case(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(fmt::format("{}: cannot read", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::filesystem::path base = path.has_parent_path() ? path.parent_path() : ".";
+  InsertionSettings settings = parse_insertion_settings(text.str(), path.string(), base);
+  if (settings.needle_mesh)  // open, non-manifold or inverted: say so
+    insertion::validate_needle_surface(geometry::read_triangle_mesh(*settings.needle_mesh, 1.0),
+                                       settings.needle_mesh->string());
+  InsertionCase c;
+  c.indentation = parse_indentation_case_toml(settings.indentation_text, path.string(), base);
+  insertion::CompleteInsertionOptions& o = c.options;
+  o.model.stiffness = settings.stiffness;
+  o.model.scale = settings.scale;
+  o.post_puncture = settings.post_puncture;
+  o.classification = settings.classification;
+  o.curve.final_depth = settings.final_depth;
+  o.curve.cutting_samples = settings.cutting_samples;
+  o.pre_puncture = std::move(settings.pre_puncture);
+  if (settings.measured) {
+    o.measured = read_force_curve_csv(*settings.measured);
+    c.measured = settings.measured;
+  }
+  return c;
 }
 
 }  // namespace needlekit::io

@@ -102,9 +102,19 @@ TEST(InsertCli, FitsTheScaleToAMeasuredCurve) {
   const CliRun r = run_cli(dir, "insert case.toml --json --no-plot");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(json["fit"]["scale"].get<double>(), 0.3, 1e-4);  // to the CSV's printed digits
+  const double fitted = json["fit"]["scale"].get<double>();
+  EXPECT_NEAR(fitted, 0.3, 1e-4);  // to the CSV's printed digits
   EXPECT_LT(json["fit"]["relative_rms"].get<double>(), 1e-4);
   EXPECT_FALSE(fs::exists(dir / "sb_insertion.png"));
+  // The curve, the JSON file and the summary use the fitted S, and say that it was fitted and what the case gave.
+  EXPECT_EQ(json["scale"].get<double>(), fitted);
+  EXPECT_EQ(json["scale_source"], "fitted");
+  EXPECT_EQ(json["case_scale"].get<double>(), 0.168);
+  EXPECT_NEAR(json["force_N"].back().get<double>(), insertion::post_puncture_force(loads, 1e-3, 0.2e6, fitted), 1e-12);
+  EXPECT_EQ(nlohmann::json::parse(file_text(dir / "sb_insertion.json"))["force_N"], json["force_N"]);
+  const CliRun text = run_cli(dir, "insert case.toml --no-plot");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("the curve uses the fitted S (the case's S = 0.168)"));
   fs::remove_all(dir);
 }
 
@@ -142,6 +152,42 @@ TEST(InsertCli, BadInputExitsWith2AndWritesNothing) {
   };
   expect_bad(mesh_case("open.stl"), "open");
   expect_bad(mesh_case("inverted.stl"), "inverted");
+  fs::remove_all(dir);
+}
+
+TEST(InsertCli, NewtonFailureExitsThreeAfterWritingTheConvergedPart) {
+  // The sharp bevel on a deterministic graded block (tests/data/insertion), 25 um steps, at most N Newton iterations
+  // and no cut-back: with N = 4 the first step converges and the second does not; with N = 3 none does.
+  const fs::path dir = fresh_dir("newton");
+  auto case_with = [](int iterations) {
+    return "name = \"sb\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"10 um\"\nbase_diameter = \"230 um\"\n"
+           "length = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nfile = \"" NEEDLEKIT_TEST_DATA_DIR
+           "/insertion/graded_block.msh\"\nunit = \"um\"\n[loading]\ndepth = \"300 um\"\nsteps = 12\n"
+           "[model]\nlaw = \"neo-hookean\"\ncontact = \"tip-nodes\"\n[puncture]\ncritical_pressure = \"0.663 MPa\"\n"
+           "[solver]\nmax_iterations = " + std::to_string(iterations) + "\nmax_cutbacks = 0\n"
+           "[post_puncture]\nstiffness = \"0.2 N/mm2\"\nscale = 0.168\nfinal_depth = \"1000 um\"\n";
+  };
+  put(dir / "case.toml", case_with(4));
+  const CliRun r = run_cli(dir, "insert case.toml --no-plot --out results");
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("solver-failed: the FE indentation stopped: load step 2 of 12"));
+  EXPECT_THAT(r.out, HasSubstr("wrote results/sb_insertion.csv, results/sb_insertion.json\n"));
+  const auto json = nlohmann::json::parse(file_text(dir / "results/sb_insertion.json"));
+  EXPECT_EQ(json["status"], "solver-failed");
+  EXPECT_EQ(json["fe"]["status"], "solver-failed");
+  EXPECT_EQ(json["depth_um"].size(), 2u);  // 0 and the converged 25 um
+  EXPECT_NEAR(json["depth_um"].back().get<double>(), 25, 1e-9);
+  EXPECT_THAT(file_text(dir / "results/sb_insertion.csv"), HasSubstr("\n25,"));
+
+  put(dir / "case.toml", case_with(3));
+  fs::remove_all(dir / "results");
+  const CliRun none = run_cli(dir, "insert case.toml --out results");
+  EXPECT_EQ(none.exit_code, 3) << none.out << none.err;
+  EXPECT_THAT(none.out, HasSubstr("converged no load step"));
+  EXPECT_THAT(none.out, HasSubstr("wrote results/sb_insertion.json\n"));  // only what was written is named
+  EXPECT_FALSE(fs::exists(dir / "results/sb_insertion.csv"));
+  EXPECT_FALSE(fs::exists(dir / "results/sb_insertion.png"));
+  EXPECT_EQ(nlohmann::json::parse(file_text(dir / "results/sb_insertion.json"))["status"], "solver-failed");
   fs::remove_all(dir);
 }
 

@@ -6,11 +6,8 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "needlekit/insertion/indentation.hpp"
-#include "needlekit/insertion/insertion_curve.hpp"
-#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/io/insertion_case.hpp"
 
 using namespace needlekit;
@@ -23,24 +20,16 @@ struct Outcome {
 };
 
 Outcome run_example(const std::string& name) {
-  const std::string path = std::string(NEEDLEKIT_SOURCE_DIR) + "/examples/insert_" + name + ".toml";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const auto settings = io::parse_insertion_settings(text.str(), path, NEEDLEKIT_SOURCE_DIR "/examples");
-  auto indentation_case = io::parse_indentation_case_toml(settings.indentation_text, path);
-  indentation_case.block.size_at_site = 40e-6;
-  indentation_case.block.size_far = 600e-6;
-  indentation_case.depth = 400e-6;
-  indentation_case.steps = 8;
-  const auto result = insertion::run_indentation(indentation_case);
-  EXPECT_TRUE(result.puncture.has_value()) << name << ": " << result.reason;
-  if (!result.puncture) return {};
-  const auto loads = insertion::post_puncture_loads(indentation_case.needle, settings.classification,
-                                                    settings.post_puncture);
-  insertion::NeedleInsertion needle{insertion::pre_puncture_curve(result), &loads, settings.stiffness, settings.scale,
-                                    0};
-  return {*result.puncture, insertion::insertion_curve({needle}, {settings.final_depth, 20})};
+  io::InsertionCase c = io::read_insertion_case(std::string(NEEDLEKIT_SOURCE_DIR) + "/examples/insert_" + name + ".toml");
+  c.indentation.block.size_at_site = 40e-6;
+  c.indentation.block.size_far = 600e-6;
+  c.indentation.depth = 400e-6;
+  c.indentation.steps = 8;
+  c.options.curve.cutting_samples = 20;
+  const insertion::CompleteInsertionResult result = insertion::complete_insertion(c.indentation, c.options);
+  EXPECT_TRUE(result.indentation && result.indentation->puncture) << name << ": " << result.reason;
+  if (!result.indentation || !result.indentation->puncture) return {};
+  return {*result.indentation->puncture, result.curve};
 }
 
 TEST(Section6_2, SharpBevelPuncturesBeforeBluntBevelBeforeCylinder) {

@@ -24,7 +24,9 @@
 #include <string>
 #include <string_view>
 
+#include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/insertion/force_curve.hpp"
+#include "needlekit/insertion/indentation.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
 #include "needlekit/insertion/triangle_classification.hpp"
 
@@ -50,5 +52,17 @@ struct InsertionSettings {
 // Throws IoError (TOML syntax, unreadable CSV) or InvalidInput (a missing, unknown or invalid key; a bad CSV).
 InsertionSettings parse_insertion_settings(std::string_view text, std::string_view source_name,
                                            const std::filesystem::path& base_directory = ".");
+
+// A whole insertion case file, ready for insertion::complete_insertion: the indentation case, and the options from
+// [post_puncture] and [pre_puncture] with the measured curve read.
+struct InsertionCase {
+  insertion::IndentationCase indentation;
+  insertion::CompleteInsertionOptions options;
+  std::optional<std::filesystem::path> measured;  // the file options.measured was read from
+};
+
+// Reads the file (paths in it relative to its folder). A [needle] mesh must be closed and outward-oriented (the
+// indentation reader would turn an inward one silently). Throws IoError or InvalidInput naming FILE:LINE and the key.
+InsertionCase read_insertion_case(const std::filesystem::path& path);
 
 }  // namespace needlekit::io

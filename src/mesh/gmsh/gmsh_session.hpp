@@ -1,5 +1,6 @@
-// Private to src/mesh: Gmsh is one global state, so every use goes through a GmshSession, which holds a process-wide
-// mutex, initializes Gmsh silently (no terminal output, messages kept in its logger) and finalizes it on exit.
+// Private to the Gmsh module (src/mesh/gmsh/): Gmsh is one global state, so every use goes through a GmshSession,
+// which holds a process-wide mutex, initializes Gmsh silently (no terminal output, messages kept in its logger) and
+// finalizes it on exit.
 #pragma once
 #include <gmsh.h>
 

@@ -1,0 +1,53 @@
+// Private to src/mesh: the interface between the library and its Gmsh module (libneedlekit_gmsh.so, the sources in
+// src/mesh/gmsh/). Gmsh links about 100 shared libraries (OpenCASCADE, FLTK, X11, GL) whose loading and relocation
+// cost every process 0.2 s before main(); the module keeps them out of the library, and gmsh_module() opens it with
+// dlopen the first time a function meshes or reads a .msh file, so that commands which do not mesh never load Gmsh.
+//
+// The module is built by the same build as the library (a version mismatch is refused when it is opened); its entry
+// points take and return only needlekit's header-only types and report errors through GmshError, so that no
+// exception crosses the dlopen boundary.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::mesh::detail {
+
+enum class GmshErrorKind { None, InvalidInput, IoError, Failure };
+
+struct GmshError {
+  GmshErrorKind kind = GmshErrorKind::None;
+  std::string message;
+};
+
+// What Gmsh read from a .msh file, before numbering and validation (msh_import.cpp).
+struct MshContents {
+  std::vector<TissueLayer> layers;                      // one per layer, in the order of layer_corners
+  std::vector<std::vector<std::size_t>> layer_corners;  // Gmsh node tags, 4 per tetrahedron, per layer
+  std::vector<std::size_t> node_tags;                   // every node of the file, with
+  std::vector<double> coords;                           // its x, y, z in file units
+};
+
+struct GmshModule {
+  const char* version;  // NEEDLEKIT_VERSION of the build that made the module
+  // The layered block's tetrahedra (layered_block_mesh.hpp), in m, not yet reoriented. Sets `error` on failure.
+  TetMesh (*layered_block)(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                           GmshError& error);
+  // The tetrahedra and physical volume groups of `file`, matched to `layers` as MshImportOptions::layers says.
+  MshContents (*read_msh)(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error);
+};
+
+// The module, opened on the first call (thread-safe). Throws std::runtime_error naming every place it looked when
+// it cannot be opened or was built by another version.
+const GmshModule& gmsh_module();
+
+// Throws the exception `error` describes (InvalidInput, IoError or std::runtime_error); returns if there is none.
+void throw_if_failed(const GmshError& error);
+
+}  // namespace needlekit::mesh::detail
+
+// The module's one exported symbol.
+extern "C" const needlekit::mesh::detail::GmshModule* needlekit_gmsh_module_v1();
