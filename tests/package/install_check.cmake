@@ -47,15 +47,15 @@ endif()
 expect_module_from_prefix("the installed needlekit" "${log}")
 message(STATUS "find_package(needlekit) consumer and installed tool (with the Gmsh module): ok")
 if(PYTHON)
-  set(script "import needlekit, sys\n"
-             "assert needlekit.__file__.startswith(sys.argv[1]), needlekit.__file__\n"
-             "d = needlekit.ArrayDesign(needle=needlekit.NeedleGeometry(shape='cone', tip_diameter='30 um', "
-             "base_diameter='150 um', length='500 um'), material='silicon', width='1 cm')\n"
-             "pi = needlekit.performance_index(d).performance_index * 1e-6\n"
-             "assert abs(pi / 1.288e-4 - 1) < 5e-4, pi  # dissertation 6.3.1, Table 6.1 solid cone\n"
-             "block = needlekit.LayeredBlockOptions(width='1 mm', length='1 mm', size_at_site='100 um', "
-             "size_far='250 um', threads=1)\n"
-             "assert len(needlekit.layered_block_mesh(block).mesh.tets) > 100\n")
+  string(CONCAT script "import needlekit, sys\n"
+                "assert needlekit.__file__.startswith(sys.argv[1]), needlekit.__file__\n"
+                "d = needlekit.ArrayDesign(needle=needlekit.NeedleGeometry(shape='cone', tip_diameter='30 um', "
+                "base_diameter='150 um', length='500 um'), material='silicon', width='1 cm')\n"
+                "pi = needlekit.performance_index(d).performance_index * 1e-6\n"
+                "assert abs(pi / 1.288e-4 - 1) < 5e-4, pi  # dissertation 6.3.1, Table 6.1 solid cone\n"
+                "block = needlekit.LayeredBlockOptions(width='1 mm', length='1 mm', size_at_site='100 um', "
+                "size_far='250 um', threads=1)\n"
+                "assert len(needlekit.layered_block_mesh(block).mesh.tets) > 100\n")
   execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR} LD_DEBUG=files
                           ${PYTHON} -c "${script}" ${WORK_DIR}/prefix
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE log)
