@@ -29,13 +29,13 @@ out.mkdir(parents=True, exist_ok=True)
 
 case = nk.read_patch_case(args.case)
 surface = nk.SurfaceMesh(nk.read_triangle_mesh(str(case.mesh), case.mesh_unit))
-design = nk.patch_design(case.design)
+# The patch pipeline of `needlekit patch`: design, frame, fit, every needle evaluated.
+run = nk.fit_and_evaluate(surface, case.design,
+                          nk.FitAndEvaluateOptions(placement=case.placement, fit=case.fit, evaluation=case.evaluation))
+design, frame, fit, evaluation = run.design, run.frame, run.fit, run.evaluation
 diagonal = float(np.hypot(design.width_u, design.width_v))
-frame = nk.patch_frame(surface, case.placement, diagonal, design.needle.length)
-fit = nk.fit_patch(surface, design, frame, case.fit)
-evaluation = nk.evaluate_needles(surface, design, fit, case.evaluation)
 needles = evaluation.needle_arrays()
-summary = nk.patch_summary_json(design, case.fit, fit, evaluation)
+summary = nk.patch_summary_json(design, case.fit, fit, evaluation, run.fit_seconds * 1e3)
 print(f"{case.mesh.name}: {summary['kind']} patch, fit {summary['status']}, {evaluation.penetrating} of "
       f"{len(evaluation.needles)} needles penetrate, buckling force {evaluation.buckling_force.min:.4g} .. "
       f"{evaluation.buckling_force.max:.4g} N, angle up to {np.degrees(evaluation.angle.max):.3g} deg")

@@ -151,6 +151,91 @@ class ClosestPoint:
     def triangle(self) -> int:
         ...
 
+class CompleteInsertionOptions:
+    """The post-puncture model, an optional measured curve to fit, the curve's final depth, or a given pre-puncture curve (no FE)."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def classification(self) -> TriangleClassificationOptions:
+        ...
+    @classification.setter
+    def classification(self, value: Any) -> None: ...
+    @property
+    def curve(self) -> InsertionCurveOptions:
+        ...
+    @curve.setter
+    def curve(self, value: Any) -> None: ...
+    @property
+    def measured(self) -> Optional[ForceDepthCurve]:
+        ...
+    @measured.setter
+    def measured(self, value: Any) -> None: ...
+    @property
+    def model(self) -> PostPunctureFitOptions:
+        ...
+    @model.setter
+    def model(self, value: Any) -> None: ...
+    @property
+    def post_puncture(self) -> PostPunctureOptions:
+        ...
+    @post_puncture.setter
+    def post_puncture(self, value: Any) -> None: ...
+    @property
+    def pre_puncture(self) -> Optional[PrePunctureCurve]:
+        ...
+    @pre_puncture.setter
+    def pre_puncture(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class CompleteInsertionResult:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def curve(self) -> InsertionCurve:
+        ...
+    @property
+    def fit(self) -> Optional[PostPunctureFit]:
+        ...
+    @property
+    def indentation(self) -> Optional[IndentationResult]:
+        ...
+    @property
+    def loads(self) -> PostPunctureLoads:
+        ...
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def scale(self) -> float:
+        """S used"""
+    @property
+    def status(self) -> CompleteInsertionStatus:
+        ...
+    @property
+    def stiffness(self) -> float:
+        """N/m^2, K used"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class CompleteInsertionStatus:
+    """Members:
+
+  Complete
+
+  NoPuncture
+
+  SolverFailed"""
+    Complete: ClassVar[CompleteInsertionStatus]
+    NoPuncture: ClassVar[CompleteInsertionStatus]
+    SolverFailed: ClassVar[CompleteInsertionStatus]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class ContactModel:
     """Members:
 
@@ -452,6 +537,64 @@ class FirstNode:
     def name(self) -> str: ...
     @property
     def value(self) -> int: ...
+
+class FitAndEvaluateOptions:
+    """Placement, fit and evaluation of a patch."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def evaluation(self) -> NeedleEvaluationOptions:
+        ...
+    @evaluation.setter
+    def evaluation(self, value: Any) -> None: ...
+    @property
+    def fit(self) -> FitOptions:
+        ...
+    @fit.setter
+    def fit(self, value: Any) -> None: ...
+    @property
+    def placement(self) -> Placement:
+        ...
+    @placement.setter
+    def placement(self, value: Any) -> None: ...
+    @property
+    def spring_geodesics(self) -> bool:
+        ...
+    @spring_geodesics.setter
+    def spring_geodesics(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class FitAndEvaluateResult:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def design(self) -> PatchDesign:
+        ...
+    @property
+    def evaluation(self) -> PatchEvaluation:
+        ...
+    @property
+    def fit(self) -> FittedPatch:
+        ...
+    @property
+    def fit_seconds(self) -> float:
+        """s"""
+    @property
+    def frame(self) -> PatchFrame:
+        ...
+    @property
+    def geodesics(self) -> Optional[SpringGeodesics]:
+        ...
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def status(self) -> FitStatus:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
 
 class FitOptions:
     ...
@@ -868,6 +1011,28 @@ class IndentationStep:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class InsertionCase:
+    """An insertion case file (`needlekit insert CASE.toml`)."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def indentation(self) -> IndentationCase:
+        ...
+    @indentation.setter
+    def indentation(self, value: Any) -> None: ...
+    @property
+    def measured(self) -> Optional[os.PathLike[str]]:
+        ...
+    @measured.setter
+    def measured(self, value: Any) -> None: ...
+    @property
+    def options(self) -> CompleteInsertionOptions:
+        ...
+    @options.setter
+    def options(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class InsertionConditions:
     """Tissue, angle and target depth."""
     def __init__(self, **kwargs) -> None:
@@ -915,6 +1080,23 @@ class InsertionCurve:
     @property
     def status(self) -> InsertionStatus:
         ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class InsertionCurveOptions:
+    ...
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def cutting_samples(self) -> int:
+        """>= 1"""
+    @cutting_samples.setter
+    def cutting_samples(self, value: Any) -> None: ...
+    @property
+    def final_depth(self) -> float:
+        """m"""
+    @final_depth.setter
+    def final_depth(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
@@ -1778,6 +1960,44 @@ class Placement:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class PostPunctureFit:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def rms_error(self) -> float:
+        """N"""
+    @property
+    def scale(self) -> float:
+        ...
+    @property
+    def stiffness(self) -> float:
+        """N/m^2"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class PostPunctureFitOptions:
+    """K and S of Eq 3.18, and which one to fit."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def fit_stiffness(self) -> bool:
+        """fit K (else S) to a measured curve"""
+    @fit_stiffness.setter
+    def fit_stiffness(self, value: Any) -> None: ...
+    @property
+    def scale(self) -> float:
+        """S, > 0"""
+    @scale.setter
+    def scale(self, value: Any) -> None: ...
+    @property
+    def stiffness(self) -> float:
+        """N/m^2, K ("0.84 N/mm2")"""
+    @stiffness.setter
+    def stiffness(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class PostPunctureLoads:
     """The loaded triangles of a needle (§3.6)."""
     def __init__(*args, **kwargs) -> Any:
@@ -2529,6 +2749,9 @@ def _evaluate_many(shape: handle, needles_per_row: handle, tip_diameter: handle,
 def brain_puncture_model() -> PunctureModel:
     ...
 
+def complete_insertion(case: IndentationCase, options: CompleteInsertionOptions = ..., progress: object = None) -> CompleteInsertionResult:
+    """The complete insertion (§3.4-3.6): post-puncture load, FE indentation to puncture, the force curve to the final depth; what `needlekit insert` runs. GIL released; progress(IndentationProgress); Ctrl-C: KeyboardInterrupt."""
+
 def critical_bending_load(needle: NeedleGeometry, allowable_stress: float) -> float:
     """P_Be in N (Eqs 5.7/5.8); allowable_stress in Pa."""
 
@@ -2548,6 +2771,9 @@ def evaluate_needles(surface: SurfaceMesh, design: PatchDesign, fit: FittedPatch
 
 def figure_6_20_space(shape: Shape, hollow: bool) -> DesignSpace:
     """The dissertation's Fig 6.20 grid for one needle type (silicon, skin, T = 50 um, beta = 3)."""
+
+def fit_and_evaluate(surface: SurfaceMesh, design: PatchDesignOptions, options: FitAndEvaluateOptions = ...) -> FitAndEvaluateResult:
+    """The patch pipeline (ch. 5, §6.4): design, frame, fit, every needle evaluated; what `needlekit patch` runs."""
 
 def fit_patch(surface: SurfaceMesh, design: PatchDesign, frame: PatchFrame, options: FitOptions = ...) -> FittedPatch:
     """Fits the patch onto the surface: rigid (§6.4.1), flexible (Alg 5.1-5.3) or equilibrium."""
@@ -2653,6 +2879,9 @@ def read_force_curve_csv(path: os.PathLike[str]) -> ForceDepthCurve:
 
 def read_indentation_case(path: os.PathLike[str]) -> IndentationCase:
     """Reads an indentation case file; raises InvalidInput naming file, line and key."""
+
+def read_insertion_case(path: os.PathLike[str]) -> InsertionCase:
+    """Reads an insertion case file; raises InvalidInput / IoError naming file, line and key."""
 
 def read_patch_case(path: os.PathLike[str]) -> PatchCase:
     """Reads a patch case file; raises InvalidInput / IoError naming file, line and key."""

@@ -97,7 +97,8 @@ void bind_puncture_and_buckling(py::module_& m) {
         return critical_buckling_load(n, material_of(material), o);
       },
       py::arg("needle"), py::arg("material"), py::arg("options") = BucklingOptions{},
-      "P_cr of a needle (Euler, Johnson, or the tapered-column eigenvalue); material: a preset name or NeedleMaterial.");
+      "P_cr of a needle (Euler, Johnson, or the tapered-column eigenvalue); material: a preset name or "
+      "NeedleMaterial.");
   m.def("tapered_column_factor", &tapered_column_factor, py::arg("needle"),
         py::arg("end_condition") = EndCondition::FixedFree, "m of P_cr = m*E*I2/L^2 (Eq 2.36), dimensionless.");
   m.def("critical_bending_load", &critical_bending_load, py::arg("needle"), py::arg("allowable_stress"),
@@ -140,8 +141,9 @@ void bind_performance_index(py::module_& m) {
       .value("TooShort", PerformanceStatus::TooShort)
       .value("Buckles", PerformanceStatus::Buckles)
       .value("Bends", PerformanceStatus::Bends);
-  m.def("performance_status_name", [](PerformanceStatus s) { return std::string(to_string(s)); }, py::arg("status"),
-        "\"ok\", \"constraint_violated\", \"too_short\", \"buckles\", \"bends\"");
+  m.def(
+      "performance_status_name", [](PerformanceStatus s) { return std::string(to_string(s)); }, py::arg("status"),
+      "\"ok\", \"constraint_violated\", \"too_short\", \"buckles\", \"bends\"");
 
   using R = PerformanceIndexResult;
   py::class_<R>(m, "PerformanceIndexResult", "Every quantity of one evaluation (SI: m, m^2, m^3, N, 1/m).")
@@ -188,8 +190,11 @@ void bind_performance_index(py::module_& m) {
 void bind_optimizer(py::module_& m) {
   py::class_<GridRange> range(m, "GridRange", "An inclusive grid min, min + step, ..., <= max (SI).");
   def_keyword_init<GridRange>(range);
-  range.def(py::init([](double min, double max, double step) { return GridRange{min, max, step}; }), py::arg("min"),
-            py::arg("max"), py::arg("step"))
+  range
+      .def(py::init([](double min, double max, double step) {
+             return GridRange{min, max, step};
+           }),
+           py::arg("min"), py::arg("max"), py::arg("step"))
       .def_readwrite("min", &GridRange::min)
       .def_readwrite("max", &GridRange::max)
       .def_readwrite("step", &GridRange::step);
@@ -203,7 +208,8 @@ void bind_optimizer(py::module_& m) {
       .def_property(
           "shape", [](const DesignSpace& s) { return s.shape; },
           [](DesignSpace& s, py::handle v) {
-            s.shape = py::isinstance<py::str>(v) ? needle::shape_from_string(v.cast<std::string>()) : v.cast<needle::Shape>();
+            s.shape =
+                py::isinstance<py::str>(v) ? needle::shape_from_string(v.cast<std::string>()) : v.cast<needle::Shape>();
           })
       .def_readwrite("hollow", &DesignSpace::hollow)
       .def_property(

@@ -1,7 +1,8 @@
 #include "common.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "needlekit/core/errors.hpp"
 
@@ -13,12 +14,14 @@ double quantity(py::handle value, Dimension dimension, std::string_view what) {
   double si = 0;
   if (py::isinstance<py::str>(value)) {
     si = units::parse_quantity(value.cast<std::string>(), dimension, what);
-  } else if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
-                                                    py::hasattr(value, "__float__"))) {
-    throw InvalidInput(fmt::format("{}: {} is not a quantity, expected a number in {} or a string with a unit of {} "
-                                   "(e.g. \"230 um\")",
-                                   what, std::string(py::str(py::type::of(value).attr("__name__"))),
-                                   units::si_symbol(dimension), units::dimension_name(dimension)));
+  } else if (py::isinstance<py::bool_>(value) ||
+             !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
+               py::hasattr(value, "__float__"))) {
+    throw InvalidInput(
+        fmt::format("{}: {} is not a quantity, expected a number in {} or a string with a unit of {} "
+                    "(e.g. \"230 um\")",
+                    what, std::string(py::str(py::type::of(value).attr("__name__"))), units::si_symbol(dimension),
+                    units::dimension_name(dimension)));
   } else {
     si = value.cast<double>();
   }
@@ -71,9 +74,9 @@ py::array_t<double, py::array::c_style> numeric_array(py::handle value, std::str
   const py::ssize_t width = columns > 0 ? columns : 1;
   for (py::ssize_t i = 0; i < doubles.size(); ++i) {
     if (!std::isfinite(data[i])) {
-      throw InvalidInput(columns > 0 ? fmt::format("{}[{}, {}]: {} is not a finite number", what, i / width, i % width,
-                                                   data[i])
-                                     : fmt::format("{}[{}]: {} is not a finite number", what, i, data[i]));
+      throw InvalidInput(columns > 0
+                             ? fmt::format("{}[{}, {}]: {} is not a finite number", what, i / width, i % width, data[i])
+                             : fmt::format("{}[{}]: {} is not a finite number", what, i, data[i]));
     }
   }
   return doubles;
@@ -140,12 +143,18 @@ template std::vector<std::array<int, 4>> index_rows_from<4>(py::handle, std::str
 
 py::object to_python(const nlohmann::json& j) {
   switch (j.type()) {
-    case nlohmann::json::value_t::null: return py::none();
-    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer: return py::int_(j.get<std::int64_t>());
-    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<std::uint64_t>());
-    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::json::value_t::null:
+      return py::none();
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(j.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(j.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float:
+      return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string:
+      return py::str(j.get<std::string>());
     case nlohmann::json::value_t::array: {
       py::list list;
       for (const auto& item : j) list.append(to_python(item));
@@ -156,7 +165,8 @@ py::object to_python(const nlohmann::json& j) {
       for (const auto& [key, item] : j.items()) dict[py::str(key)] = to_python(item);
       return dict;
     }
-    default: return py::none();
+    default:
+      return py::none();
   }
 }
 

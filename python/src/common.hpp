@@ -97,8 +97,8 @@ template <class T>
 py::array_t<T> owning_array(std::vector<T>&& values) {
   auto* held = new std::vector<T>(std::move(values));
   py::capsule free_when_done(held, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>({static_cast<py::ssize_t>(held->size())}, {static_cast<py::ssize_t>(sizeof(T))},
-                        held->data(), free_when_done);
+  return py::array_t<T>({static_cast<py::ssize_t>(held->size())}, {static_cast<py::ssize_t>(sizeof(T))}, held->data(),
+                        free_when_done);
 }
 
 // Arrays from Python. Throw InvalidInput naming `what` (and the index) for a wrong type, shape, or a non-finite value.
@@ -115,7 +115,7 @@ py::object to_python(const nlohmann::json& json);
 // the GIL released. Once a Python exception is raised there (KeyboardInterrupt from Ctrl-C, or the callback's own),
 // keep_going() returns false and rethrow() raises it after the run.
 class ProgressRelay {
-public:
+ public:
   explicit ProgressRelay(py::object callback) : callback_(std::move(callback)) {}
   template <class... Args>
   bool keep_going(Args&&... args) {
@@ -135,7 +135,7 @@ public:
     if (stopped_) throw std::move(*error_);
   }
 
-private:
+ private:
   py::object callback_;
   bool stopped_ = false;
   std::optional<py::error_already_set> error_;

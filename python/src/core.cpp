@@ -17,9 +17,11 @@ void bind_core(py::module_& m) {
       .value("InverseLength", Dimension::InverseLength)
       .value("Stiffness", Dimension::Stiffness)
       .value("ForcePerArea", Dimension::ForcePerArea);
-  m.def("si_symbol", [](Dimension d) { return std::string(units::si_symbol(d)); }, py::arg("dimension"),
-        "The SI unit symbol of a dimension (\"m\", \"Pa\", ...).");
-  m.def("dimension_name", [](Dimension d) { return std::string(units::dimension_name(d)); }, py::arg("dimension"));
+  m.def(
+      "si_symbol", [](Dimension d) { return std::string(units::si_symbol(d)); }, py::arg("dimension"),
+      "The SI unit symbol of a dimension (\"m\", \"Pa\", ...).");
+  m.def(
+      "dimension_name", [](Dimension d) { return std::string(units::dimension_name(d)); }, py::arg("dimension"));
   m.def("parse_quantity", &units::parse_quantity, py::arg("text"), py::arg("expected"), py::arg("what") = "value",
         "\"<number> <unit>\" in SI, e.g. parse_quantity(\"230 um\", Dimension.Length) == 2.3e-4. Raises InvalidInput "
         "naming `what` for a unit of another dimension.");

@@ -1,10 +1,11 @@
 // needlekit.evaluate_many: arrays of designs in, arrays of every quantity out (analysis/evaluate_many.hpp). Columns
 // are taken from numpy without a copy when they are float64 (int64 for needles_per_row) and contiguous; the outputs
 // are numpy arrays that own the library's vectors.
+#include "needlekit/analysis/evaluate_many.hpp"
+
 #include <fmt/format.h>
 
 #include "common.hpp"
-#include "needlekit/analysis/evaluate_many.hpp"
 #include "needlekit/analysis/puncture_model.hpp"
 #include "needlekit/materials/needle_material.hpp"
 

@@ -10,9 +10,10 @@ namespace needlekit::python {
 
 void bind_geometry(py::module_& m) {
   using namespace geometry;
-  py::class_<TriangleMesh>(m, "TriangleMesh",
-                           "A triangle surface mesh: vertices (N, 3) in m and triangles (M, 3) of vertex indices "
-                           "(counter-clockwise seen from outside). Read-only numpy views; build a new mesh to change it.")
+  py::class_<TriangleMesh>(
+      m, "TriangleMesh",
+      "A triangle surface mesh: vertices (N, 3) in m and triangles (M, 3) of vertex indices "
+      "(counter-clockwise seen from outside). Read-only numpy views; build a new mesh to change it.")
       .def(py::init([](py::handle vertices, py::handle triangles) {
              TriangleMesh mesh{points_from(vertices, "vertices"), index_rows_from<3>(triangles, "triangles")};
              for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -24,8 +25,12 @@ void bind_geometry(py::module_& m) {
              return mesh;
            }),
            py::arg("vertices"), py::arg("triangles"))
-      .def_property_readonly("vertices", [](py::object self) { return points_view(self.cast<const TriangleMesh&>().vertices, self); }, "m, (N, 3)")
-      .def_property_readonly("triangles", [](py::object self) { return index_view(self.cast<const TriangleMesh&>().triangles, self); }, "(M, 3)");
+      .def_property_readonly(
+          "vertices", [](py::object self) { return points_view(self.cast<const TriangleMesh&>().vertices, self); },
+          "m, (N, 3)")
+      .def_property_readonly(
+          "triangles", [](py::object self) { return index_view(self.cast<const TriangleMesh&>().triangles, self); },
+          "(M, 3)");
   m.def("signed_volume", &signed_volume, py::arg("mesh"), "m^3, positive for a closed outward mesh.");
   m.def("surface_area", &surface_area, py::arg("mesh"), "m^2");
   m.def("welded_mesh", &welded_mesh, py::arg("mesh"), "The mesh with coincident vertices merged.");
@@ -68,19 +73,28 @@ void bind_geometry(py::module_& m) {
       .def("face_normal", &SurfaceMesh::face_normal, py::arg("triangle"))
       .def("vertex_normal", &SurfaceMesh::vertex_normal, py::arg("vertex"))
       .def("check", &SurfaceMesh::check, py::return_value_policy::reference_internal)
-      .def("closest_point", [](const SurfaceMesh& s, py::handle q) { return s.closest_point(points_from(py::module_::import("numpy").attr("reshape")(q, py::make_tuple(1, 3)), "query")[0]); },
-           py::arg("query"), "The closest surface point to a point (m).")
-      .def("first_hit",
-           [](const SurfaceMesh& s, py::handle origin, py::handle direction) {
-             const auto np = py::module_::import("numpy");
-             return s.first_hit(points_from(np.attr("reshape")(origin, py::make_tuple(1, 3)), "origin")[0],
-                                points_from(np.attr("reshape")(direction, py::make_tuple(1, 3)), "direction")[0]);
-           },
-           py::arg("origin"), py::arg("direction"), "First hit of the ray, or None.");
+      .def(
+          "closest_point",
+          [](const SurfaceMesh& s, py::handle q) {
+            return s.closest_point(
+                points_from(py::module_::import("numpy").attr("reshape")(q, py::make_tuple(1, 3)), "query")[0]);
+          },
+          py::arg("query"), "The closest surface point to a point (m).")
+      .def(
+          "first_hit",
+          [](const SurfaceMesh& s, py::handle origin, py::handle direction) {
+            const auto np = py::module_::import("numpy");
+            return s.first_hit(points_from(np.attr("reshape")(origin, py::make_tuple(1, 3)), "origin")[0],
+                               points_from(np.attr("reshape")(direction, py::make_tuple(1, 3)), "direction")[0]);
+          },
+          py::arg("origin"), py::arg("direction"), "First hit of the ray, or None.");
 
   py::class_<SurfaceLocation> location(m, "SurfaceLocation", "A triangle and barycentric coordinates in it.");
-  location.def(py::init([](int triangle, const Eigen::Vector3d& barycentric) { return SurfaceLocation{triangle, barycentric}; }),
-               py::arg("triangle"), py::arg("barycentric") = Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3))
+  location
+      .def(py::init([](int triangle, const Eigen::Vector3d& barycentric) {
+             return SurfaceLocation{triangle, barycentric};
+           }),
+           py::arg("triangle"), py::arg("barycentric") = Eigen::Vector3d(1.0 / 3, 1.0 / 3, 1.0 / 3))
       .def_readwrite("triangle", &SurfaceLocation::triangle)
       .def_readwrite("barycentric", &SurfaceLocation::barycentric);
   m.def("surface_location", &surface_location, py::arg("closest_point"));
@@ -107,15 +121,22 @@ void bind_geometry(py::module_& m) {
       .def_readonly("end_point", &SurfacePath::end_point, "m")
       .def_readonly("end_direction", &SurfacePath::end_direction)
       .def_readonly("length", &SurfacePath::length, "m")
-      .def_property_readonly("points", [](py::object self) { return points_view(self.cast<const SurfacePath&>().points, self); }, "m, (K, 3)")
-      .def_property_readonly("triangles", [](py::object self) { return values_view(self.cast<const SurfacePath&>().triangles, self); })
+      .def_property_readonly(
+          "points", [](py::object self) { return points_view(self.cast<const SurfacePath&>().points, self); },
+          "m, (K, 3)")
+      .def_property_readonly(
+          "triangles", [](py::object self) { return values_view(self.cast<const SurfacePath&>().triangles, self); })
       .def_readonly("vertex_crossings", &SurfacePath::vertex_crossings);
   m.def(
       "straightest_geodesic",
       [](const SurfaceMesh& s, const SurfaceLocation& start, const Eigen::Vector3d& direction, py::handle length,
-         const TraceOptions& o) { return straightest_geodesic(s, start, direction, quantity(length, Dimension::Length, "length"), o); },
-      py::arg("surface"), py::arg("start"), py::arg("direction"), py::arg("length"), py::arg("options") = TraceOptions{},
-      "The straightest geodesic (Polthier & Schmies 1998) from `start` along `direction` for `length` (m or \"5 mm\").");
+         const TraceOptions& o) {
+        return straightest_geodesic(s, start, direction, quantity(length, Dimension::Length, "length"), o);
+      },
+      py::arg("surface"), py::arg("start"), py::arg("direction"), py::arg("length"),
+      py::arg("options") = TraceOptions{},
+      "The straightest geodesic (Polthier & Schmies 1998) from `start` along `direction` for `length` (m or \"5 "
+      "mm\").");
 
   py::class_<GeodesicDistanceOptions> distance_options(m, "GeodesicDistanceOptions");
   def_keyword_init<GeodesicDistanceOptions>(distance_options);

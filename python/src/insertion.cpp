@@ -1,14 +1,15 @@
 // needlekit/insertion: indentation cases and runs (progress callbacks, GIL released, Ctrl-C stops the run, optional
 // ParaView output), puncture points, post-puncture loads and the complete insertion curve.
 #include "common.hpp"
+#include "needlekit/insertion/complete_insertion.hpp"
+#include "needlekit/insertion/indentation.hpp"
+#include "needlekit/insertion/insertion_curve.hpp"
+#include "needlekit/insertion/post_puncture_force.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
-#include "needlekit/insertion/indentation.hpp"
-#include "needlekit/insertion/insertion_curve.hpp"
-#include "needlekit/insertion/post_puncture_force.hpp"
 
 namespace needlekit::python {
 namespace {
@@ -38,10 +39,14 @@ void bind_indentation(py::module_& m) {
              return ForceDepthCurve{values_from(depth, "depth"), values_from(force, "force")};
            }),
            py::arg("depth"), py::arg("force"))
-      .def_property_readonly("depth", [](py::object self) { return values_view(self.cast<const ForceDepthCurve&>().depth, self); }, "m")
-      .def_property_readonly("force", [](py::object self) { return values_view(self.cast<const ForceDepthCurve&>().force, self); }, "N");
+      .def_property_readonly(
+          "depth", [](py::object self) { return values_view(self.cast<const ForceDepthCurve&>().depth, self); }, "m")
+      .def_property_readonly(
+          "force", [](py::object self) { return values_view(self.cast<const ForceDepthCurve&>().force, self); }, "N");
   py::class_<PrePunctureCurve>(m, "PrePunctureCurve")
-      .def(py::init([](const ForceDepthCurve& c, std::optional<PuncturePoint> p) { return PrePunctureCurve{c, p}; }),
+      .def(py::init([](const ForceDepthCurve& c, std::optional<PuncturePoint> p) {
+             return PrePunctureCurve{c, p};
+           }),
            py::arg("curve"), py::arg("puncture") = py::none())
       .def_readonly("curve", &PrePunctureCurve::curve)
       .def_readonly("puncture", &PrePunctureCurve::puncture);
@@ -93,8 +98,8 @@ void bind_indentation(py::module_& m) {
   def_keyword_init<NeedleSite>(site);
   site.def_readwrite("position", &NeedleSite::position, "m, (x, y)");
   def_quantity(site, "tip_height", &NeedleSite::tip_height, Dimension::Length, "m, >= 0");
-  py::class_<IndentationCase> indentation(m, "IndentationCase",
-                                          "An indentation case (`needlekit indent`); read one with read_indentation_case.");
+  py::class_<IndentationCase> indentation(
+      m, "IndentationCase", "An indentation case (`needlekit indent`); read one with read_indentation_case.");
   def_keyword_init<IndentationCase>(indentation);
   indentation.def_readwrite("name", &IndentationCase::name)
       .def_readwrite("needle", &IndentationCase::needle)
@@ -109,7 +114,8 @@ void bind_indentation(py::module_& m) {
   def_quantity(indentation, "depth", &IndentationCase::depth, Dimension::Length, "m, final depth");
   m.def("read_indentation_case", &io::read_indentation_case, py::arg("path"),
         "Reads an indentation case file; raises InvalidInput naming file, line and key.");
-  m.def("validate_indentation_case", [](const IndentationCase& c) { validate(c); }, py::arg("case"));
+  m.def(
+      "validate_indentation_case", [](const IndentationCase& c) { validate(c); }, py::arg("case"));
 
   py::enum_<IndentationStatus>(m, "IndentationStatus")
       .value("Punctured", IndentationStatus::Punctured)
@@ -146,10 +152,16 @@ void bind_indentation(py::module_& m) {
       .def_readonly("mesh_seconds", &IndentationResult::mesh_seconds, "s")
       .def_readonly("setup_seconds", &IndentationResult::setup_seconds, "s")
       .def_readonly("total_seconds", &IndentationResult::total_seconds, "s")
-      .def_property_readonly("depth", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::depth); }, "m")
-      .def_property_readonly("force", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::force); }, "N")
-      .def_property_readonly("contact_pressure", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::contact_pressure); }, "Pa")
-      .def_property_readonly("strain_energy", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::strain_energy); }, "J");
+      .def_property_readonly(
+          "depth", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::depth); }, "m")
+      .def_property_readonly(
+          "force", [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::force); }, "N")
+      .def_property_readonly(
+          "contact_pressure",
+          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::contact_pressure); }, "Pa")
+      .def_property_readonly(
+          "strain_energy",
+          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::strain_energy); }, "J");
   m.def(
       "run_indentation",
       [](const IndentationCase& c, py::object progress, std::optional<std::string> output_directory) {
@@ -195,20 +207,23 @@ void bind_post_puncture(py::module_& m) {
   classification.def_readwrite("insertion_direction", &TriangleClassificationOptions::insertion_direction)
       .def_readwrite("axis_point", &TriangleClassificationOptions::axis_point, "m")
       .def_readwrite("occlusion_test", &TriangleClassificationOptions::occlusion_test);
-  def_quantity(classification, "side_tolerance", &TriangleClassificationOptions::side_tolerance, Dimension::Angle, "rad");
-  def_quantity(classification, "alpha_tolerance", &TriangleClassificationOptions::alpha_tolerance, Dimension::Angle, "rad");
+  def_quantity(classification, "side_tolerance", &TriangleClassificationOptions::side_tolerance, Dimension::Angle,
+               "rad");
+  def_quantity(classification, "alpha_tolerance", &TriangleClassificationOptions::alpha_tolerance, Dimension::Angle,
+               "rad");
   def_quantity(classification, "bore_radius", &TriangleClassificationOptions::bore_radius, Dimension::Length, "m");
   py::class_<PostPunctureOptions>(m, "PostPunctureOptions").def(py::init<>());
   py::class_<PostPunctureLoads>(m, "PostPunctureLoads", "The loaded triangles of a needle (§3.6).")
       .def_readonly("reference_radius", &PostPunctureLoads::reference_radius, "m")
       .def_readonly("needle_length", &PostPunctureLoads::needle_length, "m")
       .def_readonly("alpha_area", &PostPunctureLoads::alpha_area, "m^2");
-  m.def("post_puncture_loads",
-        [](const geometry::TriangleMesh& needle, const TriangleClassificationOptions& c, const PostPunctureOptions& o) {
-          return post_puncture_loads(needle, c, o);
-        },
-        py::arg("needle"), py::arg("classification") = TriangleClassificationOptions{},
-        py::arg("options") = PostPunctureOptions{});
+  m.def(
+      "post_puncture_loads",
+      [](const geometry::TriangleMesh& needle, const TriangleClassificationOptions& c, const PostPunctureOptions& o) {
+        return post_puncture_loads(needle, c, o);
+      },
+      py::arg("needle"), py::arg("classification") = TriangleClassificationOptions{},
+      py::arg("options") = PostPunctureOptions{});
   m.def(
       "post_puncture_forces",
       [](const PostPunctureLoads& loads, py::handle depths, py::handle stiffness, double scale) {
@@ -234,8 +249,10 @@ void bind_post_puncture(py::module_& m) {
   py::class_<InsertionCurve>(m, "InsertionCurve", "The complete insertion curve (§3.5-3.6); depth (m), force (N).")
       .def_readonly("status", &InsertionCurve::status)
       .def_readonly("reason", &InsertionCurve::reason)
-      .def_property_readonly("depth", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().depth, self); }, "m")
-      .def_property_readonly("force", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().force, self); }, "N")
+      .def_property_readonly(
+          "depth", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().depth, self); }, "m")
+      .def_property_readonly(
+          "force", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().force, self); }, "N")
       .def_readonly("phase", &InsertionCurve::phase)
       .def_readonly("punctured_needles", &InsertionCurve::punctured_needles)
       .def_readonly("punctures", &InsertionCurve::punctures);
@@ -257,7 +274,8 @@ void bind_post_puncture(py::module_& m) {
         return insertion_curve(needles, options);
       },
       py::arg("pre_puncture"), py::arg("loads"), py::arg("stiffness"), py::arg("scale"),
-      py::arg("contact_offsets") = std::vector<double>{}, py::arg("final_depth") = 1e-3, py::arg("cutting_samples") = 200,
+      py::arg("contact_offsets") = std::vector<double>{}, py::arg("final_depth") = 1e-3,
+      py::arg("cutting_samples") = 200,
       "The complete insertion curve of needles sharing one post-puncture load (one PrePunctureCurve per needle).");
   m.def(
       "insertion_curve_json", [](const InsertionCurve& c) { return to_python(io::insertion_curve_json(c)); },
@@ -265,11 +283,78 @@ void bind_post_puncture(py::module_& m) {
   m.def("insertion_curve_csv", &io::insertion_curve_csv, py::arg("curve"));
 }
 
+void bind_complete_insertion(py::module_& m) {
+  py::class_<PostPunctureFitOptions> model(m, "PostPunctureFitOptions", "K and S of Eq 3.18, and which one to fit.");
+  def_keyword_init<PostPunctureFitOptions>(model);
+  def_quantity(model, "stiffness", &PostPunctureFitOptions::stiffness, Dimension::Pressure,
+               "N/m^2, K (\"0.84 N/mm2\")");
+  model.def_readwrite("scale", &PostPunctureFitOptions::scale, "S, > 0")
+      .def_readwrite("fit_stiffness", &PostPunctureFitOptions::fit_stiffness, "fit K (else S) to a measured curve");
+  py::class_<PostPunctureFit>(m, "PostPunctureFit")
+      .def_readonly("stiffness", &PostPunctureFit::stiffness, "N/m^2")
+      .def_readonly("scale", &PostPunctureFit::scale)
+      .def_readonly("rms_error", &PostPunctureFit::rms_error, "N");
+  py::class_<InsertionCurveOptions> curve(m, "InsertionCurveOptions");
+  def_keyword_init<InsertionCurveOptions>(curve);
+  def_quantity(curve, "final_depth", &InsertionCurveOptions::final_depth, Dimension::Length, "m");
+  curve.def_readwrite("cutting_samples", &InsertionCurveOptions::cutting_samples, ">= 1");
+  py::class_<CompleteInsertionOptions> options(
+      m, "CompleteInsertionOptions",
+      "The post-puncture model, an optional measured curve to fit, the curve's "
+      "final depth, or a given pre-puncture curve (no FE).");
+  def_keyword_init<CompleteInsertionOptions>(options);
+  options.def_readwrite("model", &CompleteInsertionOptions::model)
+      .def_readwrite("measured", &CompleteInsertionOptions::measured)
+      .def_readwrite("post_puncture", &CompleteInsertionOptions::post_puncture)
+      .def_readwrite("classification", &CompleteInsertionOptions::classification)
+      .def_readwrite("curve", &CompleteInsertionOptions::curve)
+      .def_readwrite("pre_puncture", &CompleteInsertionOptions::pre_puncture);
+  py::enum_<CompleteInsertionStatus>(m, "CompleteInsertionStatus")
+      .value("Complete", CompleteInsertionStatus::Complete)
+      .value("NoPuncture", CompleteInsertionStatus::NoPuncture)
+      .value("SolverFailed", CompleteInsertionStatus::SolverFailed);
+  py::class_<CompleteInsertionResult>(m, "CompleteInsertionResult")
+      .def_readonly("status", &CompleteInsertionResult::status)
+      .def_readonly("reason", &CompleteInsertionResult::reason)
+      .def_readonly("indentation", &CompleteInsertionResult::indentation)
+      .def_readonly("loads", &CompleteInsertionResult::loads)
+      .def_readonly("fit", &CompleteInsertionResult::fit)
+      .def_readonly("stiffness", &CompleteInsertionResult::stiffness, "N/m^2, K used")
+      .def_readonly("scale", &CompleteInsertionResult::scale, "S used")
+      .def_readonly("curve", &CompleteInsertionResult::curve);
+  m.def(
+      "complete_insertion",
+      [](const IndentationCase& c, CompleteInsertionOptions options, py::object progress) {
+        ProgressRelay relay(std::move(progress));
+        options.indentation.progress = [&relay](const IndentationProgress& p) {
+          if (!relay.keep_going(p)) throw RunStopped{};
+        };
+        CompleteInsertionResult result;
+        try {
+          py::gil_scoped_release released;
+          result = complete_insertion(c, options);
+        } catch (const RunStopped&) {
+        }
+        relay.rethrow();
+        return result;
+      },
+      py::arg("case"), py::arg("options") = CompleteInsertionOptions{}, py::arg("progress") = py::none(),
+      "The complete insertion (§3.4-3.6): post-puncture load, FE indentation to puncture, the force curve to the final "
+      "depth; what `needlekit insert` runs. GIL released; progress(IndentationProgress); Ctrl-C: KeyboardInterrupt.");
+  py::class_<io::InsertionCase>(m, "InsertionCase", "An insertion case file (`needlekit insert CASE.toml`).")
+      .def_readwrite("indentation", &io::InsertionCase::indentation)
+      .def_readwrite("options", &io::InsertionCase::options)
+      .def_readwrite("measured", &io::InsertionCase::measured);
+  m.def("read_insertion_case", &io::read_insertion_case, py::arg("path"),
+        "Reads an insertion case file; raises InvalidInput / IoError naming file, line and key.");
+}
+
 }  // namespace
 
 void bind_insertion(py::module_& m) {
   bind_indentation(m);
   bind_post_puncture(m);
+  bind_complete_insertion(m);
 }
 
 }  // namespace needlekit::python

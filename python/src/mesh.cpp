@@ -20,13 +20,17 @@ void bind_mesh(py::module_& m) {
              mesh.tets = index_rows_from<4>(tets, "tets");
              for (double layer : values_from(tet_layer, "tet_layer")) mesh.tet_layer.push_back(static_cast<int>(layer));
              mesh.layers = std::move(layers);
-             if (mesh.tet_layer.size() != mesh.tets.size()) throw_invalid("tet_layer: one layer index per tet expected");
+             if (mesh.tet_layer.size() != mesh.tets.size())
+               throw_invalid("tet_layer: one layer index per tet expected");
              return mesh;
            }),
            py::arg("nodes"), py::arg("tets"), py::arg("tet_layer"), py::arg("layers"))
-      .def_property_readonly("nodes", [](py::object self) { return points_view(self.cast<const TetMesh&>().nodes, self); }, "m, (N, 3)")
-      .def_property_readonly("tets", [](py::object self) { return index_view(self.cast<const TetMesh&>().tets, self); }, "(M, 4)")
-      .def_property_readonly("tet_layer", [](py::object self) { return values_view(self.cast<const TetMesh&>().tet_layer, self); }, "(M)")
+      .def_property_readonly(
+          "nodes", [](py::object self) { return points_view(self.cast<const TetMesh&>().nodes, self); }, "m, (N, 3)")
+      .def_property_readonly(
+          "tets", [](py::object self) { return index_view(self.cast<const TetMesh&>().tets, self); }, "(M, 4)")
+      .def_property_readonly(
+          "tet_layer", [](py::object self) { return values_view(self.cast<const TetMesh&>().tet_layer, self); }, "(M)")
       .def_readonly("layers", &TetMesh::layers);
 
   py::class_<LayeredBlockOptions> block(m, "LayeredBlockOptions",
@@ -45,7 +49,8 @@ void bind_mesh(py::module_& m) {
           },
           [](LayeredBlockOptions& o, py::handle v) { o.insertion_sites = points2_from(v, "insertion_sites"); },
           "m, (K, 2) sites (x, y) on the top surface");
-  def_quantity(block, "size_at_site", &LayeredBlockOptions::size_at_site, Dimension::Length, "m, element size at a site");
+  def_quantity(block, "size_at_site", &LayeredBlockOptions::size_at_site, Dimension::Length,
+               "m, element size at a site");
   def_quantity(block, "refinement_radius", &LayeredBlockOptions::refinement_radius, Dimension::Length, "m");
   def_quantity(block, "size_far", &LayeredBlockOptions::size_far, Dimension::Length, "m");
   block.def_readwrite("threads", &LayeredBlockOptions::threads)
@@ -83,7 +88,8 @@ void bind_mesh(py::module_& m) {
       },
       py::arg("tissue"), "The case's tissue mesh (meshed block or imported .msh).");
   m.def(
-      "write_tet_mesh_vtu", [](const TetMesh& mesh, const std::string& path) { io::write_vtu(io::tet_mesh_grid(mesh), path); },
+      "write_tet_mesh_vtu",
+      [](const TetMesh& mesh, const std::string& path) { io::write_vtu(io::tet_mesh_grid(mesh), path); },
       py::arg("mesh"), py::arg("path"), "The mesh as a ParaView .vtu (layer_id, E, nu per cell).");
 }
 

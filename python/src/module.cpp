@@ -5,8 +5,9 @@
 
 PYBIND11_MODULE(_needlekit, m) {
   namespace nk = needlekit::python;
-  m.doc() = "needlekit: microneedle design and analysis (P. Boonma 2012). SI units inside; every quantity may also be "
-            "given as a string with its unit (\"230 um\").";
+  m.doc() =
+      "needlekit: microneedle design and analysis (P. Boonma 2012). SI units inside; every quantity may also be "
+      "given as a string with its unit (\"230 um\").";
   pybind11::register_exception<needlekit::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
   pybind11::register_exception<needlekit::IoError>(m, "IoError", PyExc_OSError);
   // In dependency order: a type is registered before the signatures that name it.

@@ -37,8 +37,9 @@ void bind_needle(py::module_& m) {
   def_quantity(geometry, "length", &NeedleGeometry::length, Dimension::Length, "m, L > 0");
   geometry.def_property_readonly("hollow", &NeedleGeometry::hollow, "bore_diameter > 0");
 
-  m.def("validate_needle", [](const NeedleGeometry& g, const std::string& where) { needle::validate(g, where); },
-        py::arg("needle"), py::arg("where") = "needle", "Raises InvalidInput naming the field of an invalid needle.");
+  m.def(
+      "validate_needle", [](const NeedleGeometry& g, const std::string& where) { needle::validate(g, where); },
+      py::arg("needle"), py::arg("where") = "needle", "Raises InvalidInput naming the field of an invalid needle.");
   m.def("tip_area", &needle::tip_area, py::arg("needle"), "Interfacial (tip) area A, m^2 (§4.2).");
   m.def("outer_diameter_at", &needle::outer_diameter_at, py::arg("needle"), py::arg("distance_from_tip"),
         "Outer diameter (m) at a distance (m) from the tip.");

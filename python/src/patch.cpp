@@ -3,6 +3,7 @@
 #include "common.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
+#include "needlekit/patch/fit_and_evaluate.hpp"
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/needle_evaluation.hpp"
 #include "needlekit/patch/patch_design.hpp"
@@ -41,7 +42,8 @@ py::array_t<double> needle_points(const PatchEvaluation& e, Eigen::Vector3d Need
 void bind_design_and_fit(py::module_& m) {
   py::class_<PatchDesignOptions> options(m, "PatchDesignOptions", "A Flexi-patch of n_h x n_v needles (§5.5).");
   def_keyword_init<PatchDesignOptions>(options);
-  options.def_readwrite("needles_u", &PatchDesignOptions::needles_u).def_readwrite("needles_v", &PatchDesignOptions::needles_v);
+  options.def_readwrite("needles_u", &PatchDesignOptions::needles_u)
+      .def_readwrite("needles_v", &PatchDesignOptions::needles_v);
   def_quantity(options, "width_u", &PatchDesignOptions::width_u, Dimension::Length, "m, patch side along U");
   def_quantity(options, "width_v", &PatchDesignOptions::width_v, Dimension::Length, "m, patch side along V");
   def_quantity(options, "stiffness_u", &PatchDesignOptions::stiffness_u, Dimension::Stiffness, "N/m (\"1 N/mm\")");
@@ -55,7 +57,10 @@ void bind_design_and_fit(py::module_& m) {
       .def_readonly("pitch_v", &PatchDesign::pitch_v, "m")
       .def_readonly("width_u", &PatchDesign::width_u, "m")
       .def_readonly("width_v", &PatchDesign::width_v, "m")
-      .def_property_readonly("rest_positions", [](py::object self) { return points_view(self.cast<const PatchDesign&>().rest_positions, self); }, "m, (N, 2)")
+      .def_property_readonly(
+          "rest_positions",
+          [](py::object self) { return points_view(self.cast<const PatchDesign&>().rest_positions, self); },
+          "m, (N, 2)")
       .def_readonly("inner", &PatchDesign::inner)
       .def_readonly("needle", &PatchDesign::needle)
       .def_readonly("material", &PatchDesign::material)
@@ -82,9 +87,15 @@ void bind_design_and_fit(py::module_& m) {
         py::arg("needle_length"));
 
   py::enum_<PatchKind>(m, "PatchKind")
-      .value("Rigid", PatchKind::Rigid).value("Flexible", PatchKind::Flexible).value("Equilibrium", PatchKind::Equilibrium);
-  py::enum_<FirstNode>(m, "FirstNode").value("FirstContact", FirstNode::FirstContact).value("Corner", FirstNode::Corner);
-  py::enum_<WalkMethod>(m, "WalkMethod").value("CuttingPlane", WalkMethod::CuttingPlane).value("Unfolding", WalkMethod::Unfolding);
+      .value("Rigid", PatchKind::Rigid)
+      .value("Flexible", PatchKind::Flexible)
+      .value("Equilibrium", PatchKind::Equilibrium);
+  py::enum_<FirstNode>(m, "FirstNode")
+      .value("FirstContact", FirstNode::FirstContact)
+      .value("Corner", FirstNode::Corner);
+  py::enum_<WalkMethod>(m, "WalkMethod")
+      .value("CuttingPlane", WalkMethod::CuttingPlane)
+      .value("Unfolding", WalkMethod::Unfolding);
   py::class_<FlexibleFitOptions> flexible(m, "FlexibleFitOptions");
   def_keyword_init<FlexibleFitOptions>(flexible);
   def_quantity(flexible, "max_spring_energy", &FlexibleFitOptions::max_spring_energy, Dimension::Energy,
@@ -111,9 +122,14 @@ void bind_design_and_fit(py::module_& m) {
       .value("EnergyCapExceeded", FitStatus::EnergyCapExceeded)
       .value("NotConverged", FitStatus::NotConverged)
       .value("MissesSurface", FitStatus::MissesSurface);
-  py::class_<FittedPatch>(m, "FittedPatch", "A patch after fitting: node positions and normals as (N, 3) numpy views (m).")
-      .def_property_readonly("positions", [](py::object self) { return points_view(self.cast<const FittedPatch&>().positions, self); }, "m, (N, 3)")
-      .def_property_readonly("normals", [](py::object self) { return points_view(self.cast<const FittedPatch&>().normals, self); }, "(N, 3)")
+  py::class_<FittedPatch>(m, "FittedPatch",
+                          "A patch after fitting: node positions and normals as (N, 3) numpy views (m).")
+      .def_property_readonly(
+          "positions", [](py::object self) { return points_view(self.cast<const FittedPatch&>().positions, self); },
+          "m, (N, 3)")
+      .def_property_readonly(
+          "normals", [](py::object self) { return points_view(self.cast<const FittedPatch&>().normals, self); },
+          "(N, 3)")
       .def_readonly("on_surface", &FittedPatch::on_surface)
       .def_readonly("frame", &FittedPatch::frame)
       .def_readonly("status", &FittedPatch::status)
@@ -145,7 +161,9 @@ void bind_evaluation(py::module_& m) {
       .def_readonly("total", &Statistics::total)
       .def_readonly("count", &Statistics::count);
   py::class_<NeedleState>(m, "NeedleState", "One needle of a fitted patch (§5.2-5.3; SI).")
-      .def_readonly("base", &NeedleState::base).def_readonly("tip", &NeedleState::tip).def_readonly("axis", &NeedleState::axis)
+      .def_readonly("base", &NeedleState::base)
+      .def_readonly("tip", &NeedleState::tip)
+      .def_readonly("axis", &NeedleState::axis)
       .def_readonly("hits_surface", &NeedleState::hits_surface)
       .def_readonly("surface_point", &NeedleState::surface_point)
       .def_readonly("surface_normal", &NeedleState::surface_normal)
@@ -174,7 +192,9 @@ void bind_evaluation(py::module_& m) {
       .def_readonly("travel", &PatchEvaluation::travel)
       .def_readonly("performance_index", &PatchEvaluation::performance_index)
       .def_readonly("spring_energy", &PatchEvaluation::spring_energy)
-      .def("needle_arrays", [](const PatchEvaluation& e) {
+      .def(
+          "needle_arrays",
+          [](const PatchEvaluation& e) {
             py::dict d;
             d["base"] = needle_points(e, &NeedleState::base);
             d["tip"] = needle_points(e, &NeedleState::tip);
@@ -231,11 +251,38 @@ void bind_evaluation(py::module_& m) {
       "The summary of `needlekit patch --json` (units in the keys).");
 }
 
+void bind_fit_and_evaluate(py::module_& m) {
+  py::class_<FitAndEvaluateOptions> options(m, "FitAndEvaluateOptions", "Placement, fit and evaluation of a patch.");
+  def_keyword_init<FitAndEvaluateOptions>(options);
+  options.def_readwrite("placement", &FitAndEvaluateOptions::placement)
+      .def_readwrite("fit", &FitAndEvaluateOptions::fit)
+      .def_readwrite("evaluation", &FitAndEvaluateOptions::evaluation)
+      .def_readwrite("spring_geodesics", &FitAndEvaluateOptions::spring_geodesics);
+  py::class_<FitAndEvaluateResult>(m, "FitAndEvaluateResult")
+      .def_readonly("status", &FitAndEvaluateResult::status)
+      .def_readonly("reason", &FitAndEvaluateResult::reason)
+      .def_readonly("design", &FitAndEvaluateResult::design)
+      .def_readonly("frame", &FitAndEvaluateResult::frame)
+      .def_readonly("fit", &FitAndEvaluateResult::fit)
+      .def_readonly("evaluation", &FitAndEvaluateResult::evaluation)
+      .def_readonly("geodesics", &FitAndEvaluateResult::geodesics)
+      .def_readonly("fit_seconds", &FitAndEvaluateResult::fit_seconds, "s");
+  m.def(
+      "fit_and_evaluate",
+      [](const geometry::SurfaceMesh& s, const PatchDesignOptions& d, const FitAndEvaluateOptions& o) {
+        py::gil_scoped_release released;
+        return fit_and_evaluate(s, d, o);
+      },
+      py::arg("surface"), py::arg("design"), py::arg("options") = FitAndEvaluateOptions{},
+      "The patch pipeline (ch. 5, §6.4): design, frame, fit, every needle evaluated; what `needlekit patch` runs.");
+}
+
 }  // namespace
 
 void bind_patch(py::module_& m) {
   bind_design_and_fit(m);
   bind_evaluation(m);
+  bind_fit_and_evaluate(m);
 }
 
 }  // namespace needlekit::python

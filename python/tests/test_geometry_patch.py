@@ -64,16 +64,18 @@ def test_a_patch_fit_gives_the_cli_summary(case):
     path = EXAMPLES / case
     c = nk.read_patch_case(str(path))
     surface = nk.SurfaceMesh(nk.read_triangle_mesh(str(c.mesh), c.mesh_unit))
-    design = nk.patch_design(c.design)
-    frame = nk.patch_frame(surface, c.placement, float(np.hypot(design.width_u, design.width_v)), design.needle.length)
-    fit = nk.fit_patch(surface, design, frame, c.fit)
-    evaluation = nk.evaluate_needles(surface, design, fit, c.evaluation)
-    ours = nk.patch_summary_json(design, c.fit, fit, evaluation)
+    run = nk.fit_and_evaluate(surface, c.design, nk.FitAndEvaluateOptions(placement=c.placement, fit=c.fit,
+                                                                          evaluation=c.evaluation))
+    ours = nk.patch_summary_json(run.design, c.fit, run.fit, run.evaluation, run.fit_seconds * 1e3)
     cli = cli_json("patch", path)
     for key in ("fit_ms", "spring_geodesic_strain", "spring_geodesics_not_converged"):
         ours.pop(key, None), cli.pop(key, None)
     assert ours == cli
-    arrays = evaluation.needle_arrays()
+    # The pieces give the same patch as the pipeline.
+    design = nk.patch_design(c.design)
+    frame = nk.patch_frame(surface, c.placement, float(np.hypot(design.width_u, design.width_v)), design.needle.length)
+    fit = nk.fit_patch(surface, design, frame, c.fit)
+    np.testing.assert_array_equal(fit.positions, run.fit.positions)
+    arrays = run.evaluation.needle_arrays()
     assert arrays["tip"].shape == (100, 3) and arrays["buckling_force"].shape == (100,)
     assert np.allclose(np.linalg.norm(arrays["tip"] - arrays["base"], axis=1), design.needle.length, rtol=1e-12)
-    assert fit.positions.shape == (100, 3)

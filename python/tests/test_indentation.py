@@ -73,3 +73,20 @@ def test_the_insertion_curve_from_a_pre_puncture_curve_and_the_post_puncture_loa
     assert curve.status == nk.InsertionStatus.Complete and curve.depth[-1] == pytest.approx(1e-3)
     forces = nk.post_puncture_forces(loads, np.array([500e-6]), "0.84 N/mm2", 0.168)
     assert forces[0] > 0
+
+
+def test_the_complete_insertion_of_an_insertion_case_with_a_given_pre_puncture_curve():
+    """The library's pipeline (`needlekit insert`) without FE: after the puncture the force is the post-puncture
+    model's K*S times the loaded area (Eq 3.18), here checked against post_puncture_forces."""
+    case = nk.read_insertion_case(str(EXAMPLES / "insert_cylinder.toml"))
+    options = case.options
+    options.pre_puncture = nk.PrePunctureCurve(
+        nk.ForceDepthCurve(np.array([0, 100e-6, 200e-6]), np.array([0, 0.05, 0.12])),
+        nk.PuncturePoint(depth="200 um", force="0.12 N", criterion=nk.PunctureCriterion.CriticalPressure))
+    result = nk.complete_insertion(case.indentation, options)
+    assert result.status == nk.CompleteInsertionStatus.Complete and result.indentation is None
+    curve = result.curve
+    cutting = np.array([phase == nk.InsertionPhase.Cutting for phase in curve.phase])
+    expected = nk.post_puncture_forces(result.loads, curve.depth[cutting], result.stiffness, result.scale)
+    np.testing.assert_allclose(curve.force[cutting], expected, rtol=1e-12)
+    assert curve.depth[-1] == pytest.approx(options.curve.final_depth)

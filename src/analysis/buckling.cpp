@@ -77,7 +77,7 @@ BucklingResult critical_buckling_load(const needle::NeedleGeometry& n, const mat
   r.slenderness_ratio = k * n.length / std::sqrt(base.second_moment_min / base.area);  // Eq 2.33
   if (material.yield_strength) {
     r.column_constant = column_constant(e, *material.yield_strength);
-  } else {
+  } else if (options.explain) {
     r.note = "C_c not assessed: the material has no yield_strength";
   }
   if (n.shape == needle::Shape::Cylinder) {
@@ -87,8 +87,10 @@ BucklingResult critical_buckling_load(const needle::NeedleGeometry& n, const mat
     if (options.johnson_for_short_columns && material.yield_strength && r.slenderness_ratio < r.column_constant) {
       r.method = BucklingMethod::Johnson;
       r.critical_load = johnson_critical_load(base.area, *material.yield_strength, e, r.slenderness_ratio);
-      r.note = fmt::format("short column (L_e/r = {:.3g} < C_c = {:.3g}): J. B. Johnson formula (Eq 2.35)",
-                           r.slenderness_ratio, r.column_constant);
+      if (options.explain) {
+        r.note = fmt::format("short column (L_e/r = {:.3g} < C_c = {:.3g}): J. B. Johnson formula (Eq 2.35)",
+                             r.slenderness_ratio, r.column_constant);
+      }
     }
     r.tapered_factor = r.critical_load * n.length * n.length / (e * base.second_moment_min);
     return r;

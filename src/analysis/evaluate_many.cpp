@@ -1,11 +1,11 @@
 #include "needlekit/analysis/evaluate_many.hpp"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <array>
 #include <bit>
 #include <cmath>
-#include <fmt/format.h>
 #include <limits>
 #include <mutex>
 #include <unordered_map>
@@ -35,7 +35,9 @@ constexpr std::array<ResultColumn, 21> kColumns{{
     {"tapered_factor", "", [](const PerformanceIndexResult& r) { return r.buckling.tapered_factor; }},
     {"slenderness_ratio", "", [](const PerformanceIndexResult& r) { return r.buckling.slenderness_ratio; }},
     {"column_constant", "",
-     [](const PerformanceIndexResult& r) { return r.buckling.column_constant > 0 ? r.buckling.column_constant : kNotAssessed; }},
+     [](const PerformanceIndexResult& r) {
+       return r.buckling.column_constant > 0 ? r.buckling.column_constant : kNotAssessed;
+     }},
     {"buckling_force", "N", [](const PerformanceIndexResult& r) { return r.buckling_force; }},
     {"critical_bending_load", "N",
      [](const PerformanceIndexResult& r) { return r.critical_bending_load.value_or(kNotAssessed); }},
@@ -63,19 +65,25 @@ struct SectionHash {
 
 // The number of designs: every column has this size or size 1.
 std::size_t row_count(const DesignColumns& d) {
-  const std::array<std::pair<std::string_view, std::size_t>, 9> sizes{{
-      {"shape", d.shape.size()}, {"needles_per_row", d.needles_per_row.size()},
-      {"tip_diameter", d.tip_diameter.size()}, {"base_diameter", d.base_diameter.size()},
-      {"bore_diameter", d.bore_diameter.size()}, {"length", d.length.size()}, {"width", d.width.size()},
-      {"angle", d.angle.size()}, {"target_depth", d.target_depth.size()}}};
+  const std::array<std::pair<std::string_view, std::size_t>, 9> sizes{{{"shape", d.shape.size()},
+                                                                       {"needles_per_row", d.needles_per_row.size()},
+                                                                       {"tip_diameter", d.tip_diameter.size()},
+                                                                       {"base_diameter", d.base_diameter.size()},
+                                                                       {"bore_diameter", d.bore_diameter.size()},
+                                                                       {"length", d.length.size()},
+                                                                       {"width", d.width.size()},
+                                                                       {"angle", d.angle.size()},
+                                                                       {"target_depth", d.target_depth.size()}}};
   std::size_t rows = 1;
   for (const auto& [name, size] : sizes) {
     if (size != 1) rows = size;
   }
   for (const auto& [name, size] : sizes) {
     if (size != 1 && size != rows) {
-      throw InvalidInput(fmt::format("{}: {} values, but other columns have {} (every column has one value per design, "
-                                     "or a single value for all)", name, size, rows));
+      throw InvalidInput(
+          fmt::format("{}: {} values, but other columns have {} (every column has one value per design, "
+                      "or a single value for all)",
+                      name, size, rows));
     }
   }
   return rows;
@@ -149,6 +157,8 @@ ManyResults evaluate_many(const DesignColumns& designs, const SharedInputs& shar
     }
   });
 
+  PerformanceIndexOptions options = shared.options;
+  options.explain = false;  // numbers and codes only: no messages to format per design
   ManyResults out;
   out.size = rows;
   out.distinct_sections = sections.size();
@@ -175,9 +185,8 @@ ManyResults evaluate_many(const DesignColumns& designs, const SharedInputs& shar
       conditions.target_depth = at(designs.target_depth, i);
       const bool tapered = design.needle.shape != needle::Shape::Cylinder;
       try {
-        const PerformanceIndexResult r =
-            performance_index(design, conditions, shared.options,
-                              tapered ? std::optional<double>(factor[row_section[i]]) : std::nullopt);
+        const PerformanceIndexResult r = performance_index(
+            design, conditions, options, tapered ? std::optional<double>(factor[row_section[i]]) : std::nullopt);
         for (std::size_t c = 0; c < kColumns.size(); ++c) out.values[c][i] = kColumns[c].value(r);
         out.status[i] = static_cast<std::uint8_t>(r.status);
         out.failed_checks[i] = static_cast<std::uint8_t>(r.failed_checks);

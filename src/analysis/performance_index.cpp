@@ -78,17 +78,21 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   if (options.spacing_factor > 0 &&
       design.width < options.spacing_factor * design.needles_per_row * n.base_diameter * (1 - 1e-12)) {
     failed.push_back(PerformanceStatus::ConstraintViolated);
-    failures.push_back(fmt::format("violates w >= beta*n*D2: width {} < {:.4g}*{}*{} = {}", um(design.width),
-                                   options.spacing_factor, design.needles_per_row, um(n.base_diameter),
-                                   um(options.spacing_factor * design.needles_per_row * n.base_diameter)));
+    if (options.explain) {
+      failures.push_back(fmt::format("violates w >= beta*n*D2: width {} < {:.4g}*{}*{} = {}", um(design.width),
+                                     options.spacing_factor, design.needles_per_row, um(n.base_diameter),
+                                     um(options.spacing_factor * design.needles_per_row * n.base_diameter)));
+    }
   }
 
   // Eq 4.23: ideal permeation depth.
   r.permeation_depth = ideal_permeation_depth(n.hollow(), n.length, r.deformation, conditions.target_depth);
   if (r.permeation_depth <= 0) {
     failed.push_back(PerformanceStatus::TooShort);
-    failures.push_back(fmt::format("does not reach the target depth: L = {} < d + T = {} + {}", um(n.length),
-                                   um(r.deformation), um(conditions.target_depth)));
+    if (options.explain) {
+      failures.push_back(fmt::format("does not reach the target depth: L = {} < d + T = {} + {}", um(n.length),
+                                     um(r.deformation), um(conditions.target_depth)));
+    }
   }
 
   // Tables 4.2–4.4: embedded volume, Q, hole and gap volumes, fractional skin volume.
@@ -101,16 +105,20 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   r.fractional_skin_volume = fractional_skin_volume(n, h, options.gap_ratio, r.pitch);
 
   // §4.3, §5.2: buckling (φ) and bending (ω) under an insertion at angle θ.
-  r.buckling = critical_buckling_load(n, design.material, options.buckling, known_tapered_factor);
+  BucklingOptions buckling = options.buckling;
+  buckling.explain = options.explain;
+  r.buckling = critical_buckling_load(n, design.material, buckling, known_tapered_factor);
   r.buckling_force = angled_buckling_force(r.puncture_force, conditions.angle);
   r.buckling_ok = options.buckling_safety_factor * r.buckling_force < r.buckling.critical_load;  // Eq 4.5
   if (!r.buckling_ok) {
     failed.push_back(PerformanceStatus::Buckles);
-    failures.push_back(fmt::format("buckles: force {:.4g} N >= critical buckling load {:.4g} N{}", r.buckling_force,
-                                   r.buckling.critical_load,
-                                   options.buckling_safety_factor > 1
-                                       ? fmt::format(" / safety factor {:.3g}", options.buckling_safety_factor)
-                                       : ""));
+    if (options.explain) {
+      failures.push_back(fmt::format("buckles: force {:.4g} N >= critical buckling load {:.4g} N{}", r.buckling_force,
+                                     r.buckling.critical_load,
+                                     options.buckling_safety_factor > 1
+                                         ? fmt::format(" / safety factor {:.3g}", options.buckling_safety_factor)
+                                         : ""));
+    }
   }
   r.bending_force = angled_bending_force(r.puncture_force, conditions.angle);
   if (design.material.allowable_stress) {
@@ -118,18 +126,22 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
     r.bending_ok = options.bending_safety_factor * r.bending_force < *r.critical_bending_load;
     if (!*r.bending_ok) {
       failed.push_back(PerformanceStatus::Bends);
-      failures.push_back(fmt::format("bends: lateral force {:.4g} N >= critical bending load {:.4g} N",
-                                     r.bending_force, *r.critical_bending_load));
+      if (options.explain) {
+        failures.push_back(fmt::format("bends: lateral force {:.4g} N >= critical bending load {:.4g} N",
+                                       r.bending_force, *r.critical_bending_load));
+      }
     }
   } else if (r.bending_force > 0) {
-    r.notes.push_back("bending not assessed: the material has no allowable_stress");
+    if (options.explain) r.notes.push_back("bending not assessed: the material has no allowable_stress");
   } else {
     r.bending_ok = true;  // no lateral force at θ = 0
-    r.notes.push_back("bending load not assessed (no allowable_stress); no lateral force at angle 0");
+    if (options.explain) {
+      r.notes.push_back("bending load not assessed (no allowable_stress); no lateral force at angle 0");
+    }
   }
   if (r.buckling.note.size()) r.notes.push_back(r.buckling.note);
 
-  if (failures.empty()) {
+  if (failed.empty()) {
     // Eq 4.25 / Eq 5.9.
     const double pitch = options.index_pitch.value_or(r.pitch);
     r.performance_index = r.q_factor / (pitch * pitch * r.permeation_depth);
@@ -138,7 +150,7 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
     r.performance_index = 0;
     r.status = failed.front();
     for (PerformanceStatus check : failed) r.failed_checks |= 1u << static_cast<unsigned>(check);
-    r.reason = fmt::format("{}", fmt::join(failures, "; "));
+    if (options.explain) r.reason = fmt::format("{}", fmt::join(failures, "; "));
   }
   return r;
 }

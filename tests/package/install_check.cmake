@@ -1,8 +1,8 @@
 # Installs the built needlekit into a scratch prefix, then configures, builds and runs a consumer project that uses
-# find_package(needlekit) (and meshes, through the installed Gmsh module), runs the installed tool on a command
-# that meshes: both must open the module installed in the prefix; and (with -DPYTHON=...) imports the installed
+# find_package(needlekit) (and meshes, through the installed Gmsh module), and runs the installed tool on a command
+# that meshes: both must open the module installed in the prefix. With -DPYTHON=..., it also imports the installed
 # Python module from the prefix's PYTHON_DIR (lib/python3.X/dist-packages: where Debian's python3 looks under
-# /usr/local) and evaluates a design.
+# /usr/local), evaluates a design and meshes a block through the prefix's Gmsh module.
 # Arguments: -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... [-DPYTHON=/usr/bin/python3 -DPYTHON_DIR=...]
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
@@ -47,17 +47,21 @@ endif()
 expect_module_from_prefix("the installed needlekit" "${log}")
 message(STATUS "find_package(needlekit) consumer and installed tool (with the Gmsh module): ok")
 if(PYTHON)
-  set(script "import needlekit, sys\n"
-             "assert needlekit.__file__.startswith(sys.argv[1]), needlekit.__file__\n"
-             "d = needlekit.ArrayDesign(needle=needlekit.NeedleGeometry(shape='cone', tip_diameter='30 um', "
-             "base_diameter='150 um', length='500 um'), material='silicon', width='1 cm')\n"
-             "pi = needlekit.performance_index(d).performance_index * 1e-6\n"
-             "assert abs(pi / 1.288e-4 - 1) < 5e-4, pi  # dissertation 6.3.1, Table 6.1 solid cone\n")
-  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR}
+  string(CONCAT script "import needlekit, sys\n"
+                "assert needlekit.__file__.startswith(sys.argv[1]), needlekit.__file__\n"
+                "d = needlekit.ArrayDesign(needle=needlekit.NeedleGeometry(shape='cone', tip_diameter='30 um', "
+                "base_diameter='150 um', length='500 um'), material='silicon', width='1 cm')\n"
+                "pi = needlekit.performance_index(d).performance_index * 1e-6\n"
+                "assert abs(pi / 1.288e-4 - 1) < 5e-4, pi  # dissertation 6.3.1, Table 6.1 solid cone\n"
+                "block = needlekit.LayeredBlockOptions(width='1 mm', length='1 mm', size_at_site='100 um', "
+                "size_far='250 um', threads=1)\n"
+                "assert len(needlekit.layered_block_mesh(block).mesh.tets) > 100\n")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR} LD_DEBUG=files
                           ${PYTHON} -c "${script}" ${WORK_DIR}/prefix
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE log)
   if(rc)
-    message(FATAL_ERROR "importing the installed Python module failed:\n${out}\n${err}")
+    message(FATAL_ERROR "importing the installed Python module failed:\n${out}\n${log}")
   endif()
-  message(STATUS "installed Python module: ok")
+  expect_module_from_prefix("the installed Python module" "${log}")
+  message(STATUS "installed Python module (with the Gmsh module): ok")
 endif()

@@ -50,6 +50,8 @@ struct BucklingOptions {
   // Use the Johnson formula when a cylinder's slenderness L_e/r is below C_c and the material has a yield strength.
   // The dissertation's Table 4.1 uses Euler only (set false to reproduce it exactly; Table 6.3 is unaffected).
   bool johnson_for_short_columns = true;
+  // false: BucklingResult::note is left empty (the numbers are the same; saves formatting it)
+  bool explain = true;
 };
 
 struct BucklingResult {

@@ -36,6 +36,9 @@ struct PerformanceIndexOptions {
   // Pitch used in the index (not in the constraint). Empty: w/n. The published-compatibility switch of the
   // optimizer sets it to w_max/n (notes, "Compatibility quirk").
   std::optional<double> index_pitch;
+  // false: reason and notes are left empty (every number, the status and failed_checks are the same): for
+  // evaluate_many, which returns numbers and codes only and would spend most of its time formatting messages
+  bool explain = true;
 };
 
 enum class PerformanceStatus {
