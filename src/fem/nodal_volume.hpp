@@ -1,0 +1,70 @@
+// Internal: the averaged nodal volume tetrahedron (Bonet & Burton 1998, "A simple average nodal pressure tetrahedral
+// element for incompressible and nearly incompressible dynamic explicit applications", Commun Numer Meth Eng 14,
+// 437-449; the nodal-averaged J of FEBio's UT4) for linear tetrahedra, as a potential for implicit Newton.
+//
+// The neo-Hookean energy is split into the element part W_e = μ/2 (I1 - 3) - μ ln J, evaluated per element as
+// usual, and the volumetric part U(J) = λ/2 (ln J)^2 — the term whose large modulus locks linear tetrahedra as
+// ν → 1/2 — evaluated at the nodes on the nodal volume ratio
+//     J̄_a = v_a / V_a,   v_a = Σ_{e∋a} J_e V_e / 4,   V_a = Σ_{e∋a} V_e / 4        (Bonet & Burton, Eqs 8-10)
+// with λ_a = Σ_{e∋a} λ_e V_e / 4 / V_a. Total energy Π = Σ_e V_e W_e(F_e) + Σ_a V_a U_a(J̄_a). One volume constraint
+// per node instead of per element removes the locking (about one constraint per unknown for tets instead of five
+// or six). A homogeneous deformation gives J̄_a = J_e = J everywhere: the standard law exactly.
+//
+// With h_b = F_e^-T ∇N_b (so ∂J_e/∂u_b = J_e h_b) and g_a = ∂v_a/∂u = Σ_{e∋a} V_e/4 J_e h_e:
+//     force   f = Σ_e V_e p̄_e J_e h_e + element part,   p̄_e = (1/4) Σ_{a∈e} U_a'(J̄_a)
+//     tangent K = Σ_e V_e p̄_e J_e (h_b h_c^T - h_c h_b^T) + Σ_a U_a''(J̄_a) / V_a g_a g_a^T + element part.
+// The last term couples every pair of nodes of a node's patch: the tangent's pattern is the mesh's two-ring.
+#pragma once
+#include <tbb/task_arena.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "function_space.hpp"
+#include "sparse_pattern.hpp"
+
+namespace needlekit::fem::detail {
+
+class NodalVolumeAverage {
+public:
+  // `treated`: per element, 1 when its volumetric term is averaged at the nodes (linear tetrahedra only). Sets the
+  // treated elements' λ in space.lame to 0 (the element part keeps μ only) and keeps λ for the nodes.
+  NodalVolumeAverage(FunctionSpace& space, const std::vector<char>& treated);
+  int element_count() const { return element_count_; }
+  bool treated(int element) const { return treated_[static_cast<size_t>(element)] != 0; }
+
+  // From the displacement u: J_e, J_e h_e of the treated elements, J̄_a, the pressures and (with_tangent) g_a.
+  // The volumetric energy into `energy`. False when some J_e or J̄_a <= 0 (inverted).
+  bool update(const Eigen::VectorXd& u, bool with_tangent, double& energy, tbb::task_arena& arena);
+  // p̄_e (Pa) and J_e h_e of a treated element at the last update.
+  double element_pressure(int element) const { return element_pressure_[static_cast<size_t>(element)]; }
+  double element_volume_ratio(int element) const { return element_j_[static_cast<size_t>(element)]; }
+  const Eigen::Matrix<double, 3, 4>& element_jh(int element) const { return element_jh_[static_cast<size_t>(element)]; }
+
+  // Adds Σ_a U_a''/V_a g_a g_a^T into the upper-triangle `values` (columns in parallel, each written by one task:
+  // deterministic whatever the number of threads).
+  void add_patch_tangent(const std::vector<int>& free_index, const UpperPattern& pattern, std::vector<double>& values,
+                         tbb::task_arena& arena) const;
+  // The linear predictor's coupling of the patch term to the prescribed dofs: kdup += K_fp dup.
+  void add_prescribed_coupling(const std::vector<int>& free_index, const Eigen::VectorXd& dup,
+                               Eigen::VectorXd& kdup) const;
+
+  // Node patches as groups for the sparse pattern: patch_pointers (nodes + 1) into patch_nodes (sorted).
+  const std::vector<int>& patch_pointers() const { return patch_pointers_; }
+  const std::vector<int>& patch_nodes() const { return patch_nodes_; }
+
+private:
+  const FunctionSpace& space_;
+  std::vector<char> treated_;
+  int element_count_ = 0;
+  std::vector<int> node_element_pointers_, node_elements_;  // node -> treated elements containing it
+  std::vector<int> patch_pointers_, patch_nodes_;           // node -> nodes of its patch (itself included)
+  std::vector<double> node_volume_, node_lambda_;           // V_a (m^3), λ_a (Pa)
+  std::vector<double> element_j_, element_pressure_;
+  std::vector<Eigen::Matrix<double, 3, 4>> element_jh_;
+  std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, Pa/m^3
+  std::vector<Eigen::Vector3d> patch_gradient_;             // g_a restricted to each patch node, aligned with
+                                                            // patch_nodes_
+};
+
+}  // namespace needlekit::fem::detail
