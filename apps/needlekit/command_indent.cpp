@@ -35,7 +35,9 @@ constexpr const char* kCaseFileHelp = R"(CASE file (TOML; every dimensional valu
                boundary = "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller"
   [solver]     optional: residual_tolerance = 1e-6, displacement_tolerance = 1e-5, energy_tolerance = 1e-8,
                max_iterations = 25, max_cutbacks = 8, predictor = "secant" | "linearised", linear_solver = "auto" |
-               "two-grid" | "cholesky-cg" | "cholesky", penalty_factor = 100, threads = 0
+               "two-grid" | "cholesky-cg" | "cholesky", volumetric = "auto" | "element" | "nodal-average" (auto: linear
+               tetrahedra of layers with poisson_ratio >= 0.45 average the volume at the nodes, locking-free),
+               penalty_factor = 100, threads = 0
   [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = { first = "a.csv",
                second = "b.csv", crack_area = "6661 um2" } (Eq 3.16 from two insertions; CSV depth_um,force_N))";
 

@@ -30,7 +30,7 @@ public:
   // `treated`: per element, 1 when its volumetric term is averaged at the nodes (linear tetrahedra only). Sets the
   // treated elements' λ in space.lame to 0 (the element part keeps μ only) and keeps λ for the nodes.
   NodalVolumeAverage(FunctionSpace& space, const std::vector<char>& treated);
-  bool empty() const { return element_count_ == 0; }
+  int element_count() const { return element_count_; }
   bool treated(int element) const { return treated_[static_cast<size_t>(element)] != 0; }
 
   // From the displacement u: J_e, J_e h_e of the treated elements, J̄_a, the pressures and (with_tangent) g_a.
@@ -62,7 +62,7 @@ private:
   std::vector<double> node_volume_, node_lambda_;           // V_a (m^3), λ_a (Pa)
   std::vector<double> element_j_, element_pressure_;
   std::vector<Eigen::Matrix<double, 3, 4>> element_jh_;
-  std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, N/m^4... (J/m^6 · m^3)
+  std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, Pa/m^3
   std::vector<Eigen::Vector3d> patch_gradient_;             // g_a restricted to each patch node, aligned with
                                                             // patch_nodes_
 };

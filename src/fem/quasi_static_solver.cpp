@@ -64,6 +64,22 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
             valid = false;
             continue;
           }
+          if constexpr (N == 4) {
+            if (nodal && nodal->treated(e)) {
+              // Volumetric term on the nodal volume ratios (nodal_volume.hpp): force V_e p̄_e J_e h_b and tangent
+              // V_e p̄_e J_e (h_b h_c^T - h_c h_b^T); the patch term is added after the element loop.
+              const double pv = nodal->element_pressure(e) * space.volumes[e];
+              const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
+              fe += pv * jh;
+              if (want_tangent) {
+                const double scale = pv / nodal->element_volume_ratio(e);
+                for (int b = 0; b < 4; ++b)
+                  for (int cc = 0; cc < 4; ++cc)
+                    ke.template block<3, 3>(3 * b, 3 * cc) +=
+                        scale * (jh.col(b) * jh.col(cc).transpose() - jh.col(cc) * jh.col(b).transpose());
+              }
+            }
+          }
           en += we;
           for (int a = 0; a < N; ++a) fint.segment<3>(3 * c[a]) += fe.col(a);
           if (!want_tangent) continue;
@@ -97,8 +113,19 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
 QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::VectorXd& uu, double disp,
                                                                 bool want_force, bool want_tangent,
                                                                 const Eigen::VectorXd* dup, Eigen::VectorXd* kdup) {
+  double volumetric_energy = 0;
+  if (nodal && !nodal->update(uu, want_tangent, volumetric_energy, arena)) {
+    Eval inverted;
+    inverted.valid = false;
+    return inverted;
+  }
   Eval ev = space.nodes_per_element == 4 ? element_pass<4>(uu, want_force, want_tangent, dup, kdup)
                                          : element_pass<10>(uu, want_force, want_tangent, dup, kdup);
+  ev.strain_energy += volumetric_energy;
+  if (ev.valid && nodal && want_tangent) {
+    nodal->add_patch_tangent(dofs.free_index, system->pattern(), system->values(), arena);
+    if (kdup) nodal->add_prescribed_coupling(dofs.free_index, *dup, *kdup);
+  }
   if (ev.valid && contact)
     ev.contact_energy = contact->evaluate(space.nodes, uu, disp, want_force, want_tangent, fcontact,
                                           dofs.free_index, system->pattern(), system->values());
@@ -229,13 +256,29 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   m.dofs = detail::dof_map(detail::fixed_dofs(m.space, o.boundary, tol), tips);
   check(!m.dofs.free_dofs.empty(), "tissue mesh: every degree of freedom is constrained");
 
+  // Linear tetrahedra near incompressibility: the volumetric term on nodal-averaged volume ratios.
+  if (o.order == ElementOrder::Linear && o.law == MaterialLaw::NeoHookean &&
+      o.volumetric != VolumetricFormulation::Element) {
+    std::vector<char> treated(mesh.tets.size(), 0);
+    bool any = false;
+    for (size_t e = 0; e < mesh.tets.size(); ++e) {
+      treated[e] = o.volumetric == VolumetricFormulation::NodalAverage ||
+                   mesh.layers[mesh.tet_layer[e]].poisson_ratio >= kNearlyIncompressible;
+      any = any || treated[e];
+    }
+    if (any) m.nodal = std::make_unique<detail::NodalVolumeAverage>(m.space, treated);
+  }
   LinearSolver solver = o.linear_solver;
   if (solver == LinearSolver::Automatic)
-    solver = coarse || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
-  m.system = std::make_unique<detail::TangentSystem>(m.space.connectivity, m.space.nodes_per_element, nnode,
-                                                     m.dofs.free_index, solver,
-                                                     m.space.nodes_per_element == 10 ? &m.space.corners : coarse, m.opt,
-                                                     m.arena);
+    solver = (coarse && !m.nodal) || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
+  check(!(m.nodal && solver == LinearSolver::TwoGrid),
+        "solver linear_solver = \"two-grid\": the nodal-averaged volume of the nearly incompressible layers (poisson_ratio "
+        ">= 0.45) couples each node's patch, which the two-grid solver's coarse level does not; expected "
+        "linear_solver = \"auto\", \"cholesky-cg\" or \"cholesky\", or volumetric = \"element\"");
+  m.system = std::make_unique<detail::TangentSystem>(
+      m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index, solver,
+      m.space.nodes_per_element == 10 ? &m.space.corners : coarse, m.opt, m.arena,
+      m.nodal ? &m.nodal->patch_pointers() : nullptr, m.nodal ? &m.nodal->patch_nodes() : nullptr);
 
   m.u = Eigen::VectorXd::Zero(m.ndof);
   m.fint = Eigen::VectorXd::Zero(m.ndof);
@@ -262,6 +305,29 @@ int QuasiStaticSolver::dof_count() const { return impl_->ndof; }
 LinearSolver QuasiStaticSolver::linear_solver() const { return impl_->system->solver(); }
 double QuasiStaticSolver::factor_nonzeros() const { return impl_->system->factor_nonzeros(); }
 double QuasiStaticSolver::factor_flops() const { return impl_->system->factor_flops(); }
+int QuasiStaticSolver::nodal_average_elements() const { return impl_->nodal ? impl_->nodal->element_count() : 0; }
+
+QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vector<Eigen::Vector3d>& u,
+                                                                  double indenter_displacement) {
+  auto& m = *impl_;
+  Eigen::VectorXd uu(m.ndof);
+  for (size_t n = 0; n < u.size() && 3 * n < static_cast<size_t>(m.ndof); ++n) uu.segment<3>(3 * n) = u[n];
+  Linearization out;
+  const Impl::Eval ev = m.evaluate(uu, indenter_displacement, true, true);
+  out.valid = ev.valid;
+  out.energy = ev.potential();
+  out.gradient = m.free_residual();
+  const auto& pattern = m.system->pattern();
+  const auto& values = m.system->values();
+  const Eigen::Index n = static_cast<Eigen::Index>(m.dofs.free_dofs.size());
+  out.tangent = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index c = 0; c < n; ++c)
+    for (int64_t k = pattern.column_pointers[c]; k < pattern.column_pointers[c + 1]; ++k) {
+      const Eigen::Index r = pattern.row_indices[k];
+      out.tangent(r, c) = out.tangent(c, r) = values[static_cast<size_t>(k)];
+    }
+  return out;
+}
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->dofs.free_dofs.size()); }
 
 ElementFields QuasiStaticSolver::element_fields() const {
@@ -289,6 +355,11 @@ ElementFields QuasiStaticSolver::element_fields() const {
       if (!s.valid) continue;
       sigma += w * cauchy_stress(f, s.second_piola_kirchhoff);
       energy += w * s.energy_density;
+    }
+    if (m.nodal && m.nodal->treated(static_cast<int>(e))) {
+      // The averaged volumetric part: Cauchy pressure p̄_e = mean U'(J̄) of the element's nodes (its stored energy
+      // lives at the nodes and is left out of the element's density).
+      sigma += w_sum * m.nodal->element_pressure(static_cast<int>(e)) * Eigen::Matrix3d::Identity();
     }
     out.cauchy_stress[e] = sigma / w_sum;
     out.von_mises_stress[e] = von_mises_stress(out.cauchy_stress[e]);

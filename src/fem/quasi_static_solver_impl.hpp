@@ -12,6 +12,7 @@
 #include "boundary_conditions.hpp"
 #include "function_space.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
+#include "nodal_volume.hpp"
 #include "surface_contact.hpp"
 #include "tangent_system.hpp"
 
@@ -42,6 +43,7 @@ struct QuasiStaticSolver::Impl {
   detail::DofMap dofs;
   std::vector<Needle> needles;
   std::unique_ptr<detail::SurfaceContact> contact;  // Surface
+  std::unique_ptr<detail::NodalVolumeAverage> nodal;  // linear tetrahedra with the nodal-averaged volume
   tbb::task_arena arena;
   std::unique_ptr<detail::TangentSystem> system;
   int ndof = 0;

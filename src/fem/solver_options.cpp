@@ -26,6 +26,13 @@ std::string to_string(BoundaryCondition c) {
     default: return "sides-and-bottom-fixed";
   }
 }
+std::string to_string(VolumetricFormulation f) {
+  switch (f) {
+    case VolumetricFormulation::Element: return "element";
+    case VolumetricFormulation::NodalAverage: return "nodal-average";
+    default: return "auto";
+  }
+}
 std::string to_string(StepStatus status) {
   switch (status) {
     case StepStatus::Converged: return "converged";
@@ -69,6 +76,13 @@ BoundaryCondition boundary_condition_from_string(const std::string& t, const std
              "\"quarter-symmetry\"");
 }
 
+VolumetricFormulation volumetric_formulation_from_string(const std::string& t, const std::string& what) {
+  if (t == "auto") return VolumetricFormulation::Automatic;
+  if (t == "element") return VolumetricFormulation::Element;
+  if (t == "nodal-average") return VolumetricFormulation::NodalAverage;
+  bad_choice(what, t, "\"auto\", \"element\" or \"nodal-average\"");
+}
+
 namespace {
 template <class T>
 void check(bool ok, const char* field, T value, const char* expected) {
@@ -95,6 +109,18 @@ void SolverOptions::validate() const {
   check(linear_tolerance > 0 && linear_tolerance < 1, "linear_tolerance", linear_tolerance, "(0, 1)");
   check(threads >= 0, "threads", threads, ">= 0");
   check(two_grid_refresh_iterations >= 1, "two_grid_refresh_iterations", two_grid_refresh_iterations, ">= 1");
+  if (volumetric == VolumetricFormulation::NodalAverage) {
+    if (law != MaterialLaw::NeoHookean)
+      throw InvalidInput("solver volumetric = \"nodal-average\" averages the neo-Hookean law's volumetric term: "
+                         "expected law = \"neo-hookean\" (or volumetric = \"element\")");
+    if (order != ElementOrder::Linear)
+      throw InvalidInput("solver volumetric = \"nodal-average\" is for linear tetrahedra: expected element = "
+                         "\"linear\" (quadratic tetrahedra integrate the volume per element)");
+    if (linear_solver == LinearSolver::TwoGrid)
+      throw InvalidInput("solver volumetric = \"nodal-average\" couples each node's patch, which the two-grid "
+                         "solver's coarse level does not: expected linear_solver = \"cholesky-cg\", \"cholesky\" "
+                         "or \"auto\"");
+  }
 }
 
 }  // namespace needlekit::fem

@@ -3,15 +3,21 @@
 namespace needlekit::fem::detail {
 
 UpperPattern upper_pattern(const std::vector<int>& connectivity, int nodes_per_element, int node_count,
-                           const std::vector<int>& free_index) {
+                           const std::vector<int>& free_index, const std::vector<int>* group_pointers,
+                           const std::vector<int>* group_nodes) {
   const size_t ne = connectivity.size() / static_cast<size_t>(nodes_per_element);
   std::vector<std::vector<int>> adjacent(static_cast<size_t>(node_count));  // per column node, row nodes <= it
-  for (size_t e = 0; e < ne; ++e) {
-    const int* c = &connectivity[e * static_cast<size_t>(nodes_per_element)];
-    for (int a = 0; a < nodes_per_element; ++a)
-      for (int b = 0; b < nodes_per_element; ++b)
+  const auto couple = [&](const int* c, int n) {
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
         if (c[b] <= c[a]) adjacent[static_cast<size_t>(c[a])].push_back(c[b]);
-  }
+  };
+  for (size_t e = 0; e < ne; ++e) couple(&connectivity[e * static_cast<size_t>(nodes_per_element)], nodes_per_element);
+  if (group_pointers)
+    for (size_t g = 0; g + 1 < group_pointers->size(); ++g) {
+      const int begin = (*group_pointers)[g], end = (*group_pointers)[g + 1];
+      if (end > begin) couple(group_nodes->data() + begin, end - begin);
+    }
   int64_t free_count = 0;
   for (int index : free_index) free_count += index >= 0;
   UpperPattern p;

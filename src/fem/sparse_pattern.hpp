@@ -14,8 +14,11 @@ struct UpperPattern {
 
 // `connectivity`: nodes_per_element node indices per element; `free_index`: per dof (3 * node + component) its
 // index among the free dofs, or -1. Two free dofs couple when their nodes share an element.
+// `group_pointers`/`group_nodes` (optional, CSR): further groups of nodes that couple all their free dofs (the node
+// patches of the nodal-averaged tetrahedron).
 UpperPattern upper_pattern(const std::vector<int>& connectivity, int nodes_per_element, int node_count,
-                           const std::vector<int>& free_index);
+                           const std::vector<int>& free_index, const std::vector<int>* group_pointers = nullptr,
+                           const std::vector<int>* group_nodes = nullptr);
 
 // Position in the pattern's arrays of the entry (row, column), row <= column; the entry must exist.
 inline int64_t entry_position(const UpperPattern& p, int64_t row, int64_t column) {

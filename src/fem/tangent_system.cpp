@@ -31,9 +31,10 @@ constexpr int kProductParts = 8;
 
 TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_count, const std::vector<int>& free_index,
                              LinearSolver solver, const mesh::CoarseLevel* coarse, const SolverOptions& options,
-                             tbb::task_arena& arena)
+                             tbb::task_arena& arena, const std::vector<int>* group_pointers,
+                             const std::vector<int>* group_nodes)
     : options_(options), arena_(arena), solver_(solver) {
-  pattern_ = upper_pattern(conn, nn, node_count, free_index);
+  pattern_ = upper_pattern(conn, nn, node_count, free_index, group_pointers, group_nodes);
   values_.assign(pattern_.row_indices.size(), 0.0);
   rows32_.assign(pattern_.row_indices.begin(), pattern_.row_indices.end());
   if (values_.size() >= static_cast<size_t>(std::numeric_limits<int32_t>::max()))

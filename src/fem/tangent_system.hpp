@@ -22,9 +22,11 @@ class TangentSystem {
 public:
   // `connectivity`: nodes_per_element node indices per element; `free_index`: per dof its free index or -1;
   // `solver`: resolved (not Automatic); `coarse`: the two-grid solver's coarse level (TwoGrid only).
+  // `group_pointers`/`group_nodes`: further node groups that couple (upper_pattern), or null.
   TangentSystem(const std::vector<int>& connectivity, int nodes_per_element, int node_count,
                 const std::vector<int>& free_index, LinearSolver solver, const mesh::CoarseLevel* coarse,
-                const SolverOptions& options, tbb::task_arena& arena);
+                const SolverOptions& options, tbb::task_arena& arena, const std::vector<int>* group_pointers = nullptr,
+                const std::vector<int>* group_nodes = nullptr);
 
   // The stored upper-triangle entries; assembly adds into them (zero() first).
   std::vector<double>& values() { return values_; }

@@ -115,6 +115,7 @@ void validate(const IndentationCase& c) {
                        "[mesh] split = true (or quadratic elements, or another linear_solver)");
   }
   if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
+  c.solver.validate();
   validate(c.puncture);
 }
 

@@ -132,6 +132,14 @@ void read_model(const Section& section, fem::SolverOptions& solver) {
 
 // [solver]: Newton tolerances and strategy (fem::SolverOptions; defaults and meanings in quasi_static_solver.hpp).
 void read_solver(const Section& section, fem::SolverOptions& solver) {
+  // Surface-contact options do not apply to the tip-node rule ([model] is read before [solver]).
+  if (solver.contact == fem::ContactModel::TipNodes) {
+    for (std::string_view key : {"penalty_factor", "penetration_tolerance"}) {
+      if (const toml::node* node = section.optional(key)) {
+        section.fail(*node, key, "applies to [model] contact = \"surface\" only, the case uses contact = \"tip-nodes\"");
+      }
+    }
+  }
   const auto fraction = [&](std::string_view key, double& target) {
     if (const toml::node* node = section.optional(key)) {
       const double value = number_at_least(section, *node, key, 0.0);
@@ -161,6 +169,12 @@ void read_solver(const Section& section, fem::SolverOptions& solver) {
                                                          {"cholesky", fem::LinearSolver::Cholesky},
                                                          {"cholesky-cg", fem::LinearSolver::CholeskyCg},
                                                          {"two-grid", fem::LinearSolver::TwoGrid}});
+  }
+  if (const toml::node* node = section.optional("volumetric")) {
+    solver.volumetric = choice_of<fem::VolumetricFormulation>(section, *node, "volumetric",
+                                                              {{"auto", fem::VolumetricFormulation::Automatic},
+                                                               {"element", fem::VolumetricFormulation::Element},
+                                                               {"nodal-average", fem::VolumetricFormulation::NodalAverage}});
   }
   if (const toml::node* node = section.optional("penalty_factor")) {
     const double value = number_at_least(section, *node, "penalty_factor", 0.0);
@@ -253,7 +267,8 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   }
   if (const auto solver = top.optional_subsection(
           "solver", {"residual_tolerance", "displacement_tolerance", "energy_tolerance", "penetration_tolerance",
-                     "max_iterations", "max_cutbacks", "predictor", "linear_solver", "penalty_factor", "threads"})) {
+                     "max_iterations", "max_cutbacks", "predictor", "linear_solver", "volumetric", "penalty_factor",
+                     "threads"})) {
     read_solver(*solver, result.solver);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {

@@ -105,10 +105,13 @@ TEST(IndentationCase, SolverSection) {
   const auto with_solver = [](std::string_view lines) {
     return replaced(kCase, "[puncture]", "[solver]\n" + std::string(lines) + "[puncture]");
   };
-  const auto c = parse(with_solver("residual_tolerance = 1e-8\ndisplacement_tolerance = 1e-7\n"
-                                   "energy_tolerance = 1e-12\npenetration_tolerance = 0.01\nmax_iterations = 40\n"
-                                   "max_cutbacks = 3\npredictor = \"linearised\"\nlinear_solver = \"cholesky\"\n"
-                                   "penalty_factor = 10\nthreads = 1\n"));
+  const std::string all = with_solver("residual_tolerance = 1e-8\ndisplacement_tolerance = 1e-7\n"
+                                      "energy_tolerance = 1e-12\npenetration_tolerance = 0.01\nmax_iterations = 40\n"
+                                      "max_cutbacks = 3\npredictor = \"linearised\"\nlinear_solver = \"cholesky\"\n"
+                                      "penalty_factor = 10\nthreads = 1\n");
+  // The contact options apply to surface contact only: with kCase's tip nodes they are an error naming the key.
+  EXPECT_THAT(error_of(all), HasSubstr("key 'solver.penalty_factor': applies to [model] contact = \"surface\""));
+  const auto c = parse(replaced(all, "contact = \"tip-nodes\"", "contact = \"surface\""));
   EXPECT_DOUBLE_EQ(c.solver.residual_tolerance, 1e-8);
   EXPECT_DOUBLE_EQ(c.solver.displacement_tolerance, 1e-7);
   EXPECT_DOUBLE_EQ(c.solver.energy_tolerance, 1e-12);
@@ -121,6 +124,12 @@ TEST(IndentationCase, SolverSection) {
   EXPECT_EQ(c.solver.threads, 1);
   EXPECT_THAT(error_of(with_solver("residual_tolerance = 1.5\n")),
               HasSubstr("case.toml:35: key 'solver.residual_tolerance': 1.5 is out of range, expected a number in (0, 1)"));
+  EXPECT_THAT(error_of(with_solver("volumetric = \"mixed\"\n")),
+              HasSubstr("key 'solver.volumetric': unknown value 'mixed', expected one of: auto, element, nodal-average"));
+  // An option that does not apply to the chosen model (kCase: St Venant-Kirchhoff, quadratic) is an error before anything runs.
+  EXPECT_THAT(error_of(with_solver("volumetric = \"nodal-average\"\n")),
+              HasSubstr("solver volumetric = \"nodal-average\" averages the neo-Hookean law's volumetric term"));
+  EXPECT_EQ(parse(with_solver("volumetric = \"element\"\n")).solver.volumetric, fem::VolumetricFormulation::Element);
   EXPECT_THAT(error_of(with_solver("predictor = \"cubic\"\n")),
               HasSubstr("key 'solver.predictor': unknown value 'cubic', expected one of: secant, linearised"));
   EXPECT_THAT(error_of(with_solver("max_iterations = 0\n")),

@@ -53,6 +53,17 @@ enum class LinearSolver {
                // level): memory and time per iteration linear in the mesh size. Linear elements need a coarse level;
                // quadratic ones use their corner nodes as the coarse level
 };
+// How the volumetric part of the neo-Hookean law is integrated on linear tetrahedra.
+enum class VolumetricFormulation {
+  Automatic,     // NodalAverage for linear tetrahedra of layers with poisson_ratio >= kNearlyIncompressible under the
+                 // neo-Hookean law; Element otherwise
+  Element,       // per element, as every other term (linear tetrahedra lock as nu -> 0.5)
+  NodalAverage,  // λ/2 (ln J)^2 on the nodal-averaged volume ratio (Bonet & Burton 1998; FEBio's UT4 without its
+                 // isochoric stabilisation): locking-free linear tetrahedra. Linear elements and neo-Hookean only
+};
+// Poisson's ratio from which VolumetricFormulation::Automatic averages the volume at the nodes.
+inline constexpr double kNearlyIncompressible = 0.45;
+
 enum class BoundaryCondition {
   SidesAndBottomFixed,    // §3.4: every node on the four sides and the bottom is fixed; top free
   BottomFixed,            // bottom fixed, sides free
@@ -67,12 +78,16 @@ std::string to_string(ElementOrder order);
 std::string to_string(ContactModel contact);
 std::string to_string(LinearSolver solver);
 std::string to_string(BoundaryCondition condition);
+std::string to_string(VolumetricFormulation formulation);
 // Parse "linear" | "quadratic"; "tip-nodes" | "surface";
 // "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" |
 // "quarter-symmetry". Throw InvalidInput naming `what`.
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
 BoundaryCondition boundary_condition_from_string(const std::string& text, const std::string& what = "boundary");
+// "auto" | "element" | "nodal-average".
+VolumetricFormulation volumetric_formulation_from_string(const std::string& text,
+                                                         const std::string& what = "volumetric");
 
 // A rigid needle. `surface` is closed and outward-oriented, already placed in the tissue frame at zero indenter
 // displacement (its tip on or above the top surface z = 0); the needle translates by d * direction.
@@ -92,6 +107,7 @@ struct SolverProgress {
 struct SolverOptions {
   MaterialLaw law = MaterialLaw::StVenantKirchhoff;   // constitutive law
   ElementOrder order = ElementOrder::Linear;          // element order
+  VolumetricFormulation volumetric = VolumetricFormulation::Automatic;  // linear tetrahedra near incompressibility
   ContactModel contact = ContactModel::TipNodes;      // needle model
   BoundaryCondition boundary = BoundaryCondition::SidesAndBottomFixed;  // on the mesh's bounding box faces
   double boundary_tolerance = 1e-9;      // m, >= 0: a node is on a box face within this distance (plus 1e-9 of
@@ -227,6 +243,21 @@ public:
   int dof_count() const;        // 3 * nodes
   int free_dof_count() const;   // unknowns of the linear systems
   LinearSolver linear_solver() const;  // the one in use (never Automatic)
+  // Linear tetrahedra whose volume is averaged at the nodes (VolumetricFormulation), of all elements.
+  int nodal_average_elements() const;
+
+  // The total potential energy (strain + contact), its gradient over the free dofs (the residual) and its dense
+  // tangent at the displacement `u` (one vector per node of nodes(); prescribed dofs as given) with the needles at
+  // `indenter_displacement`: for verification on small meshes (tangent vs finite differences). Uses the solver's
+  // work space: call advance_to (which re-evaluates its converged state) before reading outputs again.
+  struct Linearization {
+    bool valid = true;            // false: an element or a nodal volume inverted
+    double energy = 0;            // J
+    Eigen::VectorXd gradient;     // N, per free dof
+    Eigen::MatrixXd tangent;      // N/m, free x free, symmetric
+  };
+  Linearization linearization(const std::vector<Eigen::Vector3d>& u, double indenter_displacement);
+
   // Of the Cholesky factor in use (TwoGrid: the coarse level's): its entries (about 8 bytes each) and the
   // floating-point operations of one numeric factorization.
   double factor_nonzeros() const;
