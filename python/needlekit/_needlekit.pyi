@@ -2074,6 +2074,73 @@ class PunctureEvent:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class PunctureForceLaw:
+    """The puncture force F(A) of the analytic engine ([tissue] puncture_force)."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def intercept(self) -> float:
+        """N, intercept of the linear laws"""
+    @intercept.setter
+    def intercept(self, value: Any) -> None: ...
+    @property
+    def kind(self) -> PunctureForceLawKind:
+        ...
+    @kind.setter
+    def kind(self, value: Any) -> None: ...
+    @property
+    def slope(self) -> float:
+        """N/m^2 (area laws) or N/m (diameter laws), SI"""
+    @slope.setter
+    def slope(self, value: Any) -> None: ...
+    @property
+    def table_force(self) -> List[float]:
+        """N, table law's forces"""
+    @table_force.setter
+    def table_force(self, value: Any) -> None: ...
+    @property
+    def table_tip_diameter(self) -> List[float]:
+        """m, table law's tip diameters"""
+    @table_tip_diameter.setter
+    def table_tip_diameter(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def valid_max_tip_diameter(self) -> Optional[float]:
+        """m or None, largest equivalent tip diameter the law was measured on"""
+    @valid_max_tip_diameter.setter
+    def valid_max_tip_diameter(self, value: Any) -> None: ...
+    @property
+    def valid_min_tip_diameter(self) -> float:
+        """m, smallest equivalent tip diameter the law was measured on"""
+    @valid_min_tip_diameter.setter
+    def valid_min_tip_diameter(self, value: Any) -> None: ...
+
+class PunctureForceLawKind:
+    """The puncture-force laws (puncture_force_laws()).
+
+Members:
+
+  Eq4_2
+
+  Romgens2014
+
+  LinearArea
+
+  LinearDiameter
+
+  Table"""
+    Eq4_2: ClassVar[PunctureForceLawKind]
+    Romgens2014: ClassVar[PunctureForceLawKind]
+    LinearArea: ClassVar[PunctureForceLawKind]
+    LinearDiameter: ClassVar[PunctureForceLawKind]
+    Table: ClassVar[PunctureForceLawKind]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class PunctureModel:
     """The tissue's puncture model (§4.2, Eqs 4.1-4.3)."""
     def __init__(self, **kwargs) -> None:
@@ -2084,15 +2151,10 @@ class PunctureModel:
     @alpha.setter
     def alpha(self, value: Any) -> None: ...
     @property
-    def force_intercept(self) -> float:
-        """N, intercept of F(A)"""
-    @force_intercept.setter
-    def force_intercept(self, value: Any) -> None: ...
-    @property
-    def force_slope(self) -> float:
-        """N/m^2, slope of F(A) (Eq 4.2)"""
-    @force_slope.setter
-    def force_slope(self, value: Any) -> None: ...
+    def force_law(self) -> PunctureForceLaw:
+        """F(A): Eq 4.2 by default"""
+    @force_law.setter
+    def force_law(self, value: Any) -> None: ...
     @property
     def name(self) -> str:
         ...
@@ -2867,6 +2929,9 @@ def pre_puncture_curve(result: IndentationResult) -> PrePunctureCurve:
 
 def puncture_force(tip_area: float, model: PunctureModel) -> float:
     """F(A) in N, signed (Eq 4.2)."""
+
+def puncture_force_law_preset(kind: PunctureForceLawKind) -> PunctureForceLaw:
+    ...
 
 def puncture_model_preset(name: str, what: str = 'tissue.model') -> PunctureModel:
     ...

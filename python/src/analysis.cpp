@@ -8,6 +8,7 @@
 #include "needlekit/analysis/design_optimizer.hpp"
 #include "needlekit/analysis/design_space.hpp"
 #include "needlekit/analysis/performance_index.hpp"
+#include "needlekit/analysis/puncture_force_law.hpp"
 #include "needlekit/analysis/puncture_model.hpp"
 #include "needlekit/analysis/sensitivity_sweep.hpp"
 #include "needlekit/io/result_writers.hpp"
@@ -49,19 +50,38 @@ void def_range(Class& cls, const char* name, GridRange DesignSpace::*member, Dim
 }
 
 void bind_puncture_and_buckling(py::module_& m) {
+  py::enum_<PunctureForceLawKind>(m, "PunctureForceLawKind", "The puncture-force laws (puncture_force_laws()).")
+      .value("Eq4_2", PunctureForceLawKind::Eq4_2)
+      .value("Romgens2014", PunctureForceLawKind::Romgens2014)
+      .value("LinearArea", PunctureForceLawKind::LinearArea)
+      .value("LinearDiameter", PunctureForceLawKind::LinearDiameter)
+      .value("Table", PunctureForceLawKind::Table);
+  py::class_<PunctureForceLaw> law(m, "PunctureForceLaw",
+                                   "The puncture force F(A) of the analytic engine ([tissue] puncture_force).");
+  def_keyword_init<PunctureForceLaw>(law);
+  law.def_readwrite("kind", &PunctureForceLaw::kind);
+  law.def_readwrite("slope", &PunctureForceLaw::slope, "N/m^2 (area laws) or N/m (diameter laws), SI");
+  def_quantity(law, "intercept", &PunctureForceLaw::intercept, Dimension::Force, "N, intercept of the linear laws");
+  law.def_readwrite("table_tip_diameter", &PunctureForceLaw::table_tip_diameter, "m, table law's tip diameters");
+  law.def_readwrite("table_force", &PunctureForceLaw::table_force, "N, table law's forces");
+  def_quantity(law, "valid_min_tip_diameter", &PunctureForceLaw::valid_min_tip_diameter, Dimension::Length,
+               "m, smallest equivalent tip diameter the law was measured on");
+  law.def_readwrite("valid_max_tip_diameter", &PunctureForceLaw::valid_max_tip_diameter,
+                    "m or None, largest equivalent tip diameter the law was measured on");
+  m.def("puncture_force_law_preset", &puncture_force_law_preset, py::arg("kind"));
+
   py::class_<PunctureModel> model(m, "PunctureModel", "The tissue's puncture model (§4.2, Eqs 4.1-4.3).");
   def_keyword_init<PunctureModel>(model);
   model.def_readwrite("name", &PunctureModel::name);
   def_quantity(model, "alpha", &PunctureModel::alpha, Dimension::Force, "N, alpha of F(d) = alpha*exp(tau*d) (Eq 4.1)");
   def_quantity(model, "tau", &PunctureModel::tau, Dimension::InverseLength, "1/m, tau (6.25 /mm for skin)");
-  def_quantity(model, "force_slope", &PunctureModel::force_slope, Dimension::Pressure, "N/m^2, slope of F(A) (Eq 4.2)");
-  def_quantity(model, "force_intercept", &PunctureModel::force_intercept, Dimension::Force, "N, intercept of F(A)");
+  model.def_readwrite("force_law", &PunctureModel::force_law, "F(A): Eq 4.2 by default");
   def_quantity(model, "small_tip_slope", &PunctureModel::small_tip_slope, Dimension::InverseLength,
                "1/m, K of the small-tip branch d = K*A");
   m.def("skin_puncture_model", &skin_puncture_model);
   m.def("brain_puncture_model", &brain_puncture_model);
   m.def("puncture_model_preset", &puncture_model_preset, py::arg("name"), py::arg("what") = "tissue.model");
-  m.def("puncture_force", &puncture_force, py::arg("tip_area"), py::arg("model"), "F(A) in N, signed (Eq 4.2).");
+  m.def("puncture_force", py::overload_cast<double, const PunctureModel&>(&puncture_force), py::arg("tip_area"), py::arg("model"), "F(A) in N, signed (Eq 4.2).");
   py::class_<SkinDeformation>(m, "SkinDeformation")
       .def_readonly("depth", &SkinDeformation::depth, "m, d")
       .def_readonly("small_tip_branch", &SkinDeformation::small_tip_branch);
