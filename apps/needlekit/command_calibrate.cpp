@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "shell_quote.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
@@ -60,12 +61,6 @@ Exit code 3 when the fit does not converge (results written), 2 on bad input (no
 std::string plot_script() {
   if (const char* path = std::getenv("NEEDLEKIT_CALIBRATION_PLOT_SCRIPT")) return path;
   return std::string(NEEDLEKIT_SCRIPTS_DIR) + "/plot_calibration.py";
-}
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
 }
 
 std::string interval_text(const calibration::FittedParameter& p) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "shell_quote.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
@@ -55,12 +56,6 @@ struct InsertArguments {
 std::string plot_script() {
   if (const char* path = std::getenv("NEEDLEKIT_PLOT_SCRIPT")) return path;
   return std::string(NEEDLEKIT_SCRIPTS_DIR) + "/plot_force_curve.py";
-}
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
 }
 
 void run_insert(const InsertArguments& arguments) {
