@@ -3,7 +3,6 @@
 // CSV/JSON with the phases and puncture markers and plotted as a PNG (scripts/plot_force_curve.py).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -15,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "child_process.hpp"
 #include "commands.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
@@ -26,7 +27,9 @@
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
+#include "terminal_warnings.hpp"
 
 #ifndef NEEDLEKIT_SCRIPTS_DIR
 #define NEEDLEKIT_SCRIPTS_DIR "scripts"
@@ -59,12 +62,6 @@ struct InsertArguments {
 std::string plot_script() {
   if (const char* path = std::getenv("NEEDLEKIT_PLOT_SCRIPT")) return path;
   return std::string(NEEDLEKIT_SCRIPTS_DIR) + "/plot_force_curve.py";
-}
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
 }
 
 // The pre-puncture curve of needle i of an FE run: its own reaction force against its own depth (the FE depth is
@@ -112,6 +109,8 @@ void run_insert(const InsertArguments& arguments) {
   if (arguments.steps > 0) indentation_case.steps = arguments.steps;
   indentation_case.stop_at_puncture = true;
   insertion::validate(indentation_case);
+  print_warnings(io::indentation_scale_warnings(indentation_case));
+  create_output_directory(arguments.out_dir);  // before the FE run: a directory that cannot be written fails fast
 
   // The post-puncture load of the needle (checked before the FE runs: a bad mesh fails fast).
   insertion::TriangleClassificationOptions classification = settings.classification;
@@ -140,9 +139,11 @@ void run_insert(const InsertArguments& arguments) {
     options.progress = [&progress](const insertion::IndentationProgress& p) { progress.update(p.fraction); };
     fe = insertion::run_indentation(indentation_case, options);
     progress.finish();
-    if (fe->steps.empty())
-      throw InvalidInput(fmt::format("{}: the FE indentation converged no load step ({}); nothing to insert",
-                                     case_path.string(), fe->reason));
+    if (fe->steps.empty()) {  // a numerical failure with nothing to keep: exit 3, no file
+      fmt::print(stderr, "needlekit: {}: the FE indentation converged no load step ({}); nothing to insert\n",
+                 case_path.string(), fe->reason);
+      throw CommandOutcome{ExitCode::NumericalFailure};
+    }
     for (std::size_t i = 0; i < count; ++i)
       needles[i].pre_puncture = needle_pre_curve(*fe, i, indentation_case.needles[i].tip_height - lowest);
   }
@@ -165,10 +166,13 @@ void run_insert(const InsertArguments& arguments) {
   json["scale"] = settings.scale;
   json["final_depth_um"] = settings.final_depth * 1e6;
   json["pre_puncture_source"] = fe ? "fe" : "csv";
+  json["notes"] = io::indentation_scale_warnings(indentation_case);
   if (fe) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
                   {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds}};
   }
+  const bool fe_failed = fe && fe->status == insertion::IndentationStatus::SolverFailed;
+  json["complete"] = !fe_failed;  // false: the curve stops where the FE failed (exit code 3)
   const auto& c = loads.classification;
   json["classification"] = {{"alpha", c.alpha.size()},   {"beta", c.beta.size()},
                             {"side", c.side},            {"back", c.back},
@@ -181,39 +185,37 @@ void run_insert(const InsertArguments& arguments) {
     json["fit"] = {{"scale", fit->scale}, {"stiffness_N_per_mm2", fit->stiffness * 1e-6},
                    {"rms_error_N", fit->rms_error}, {"relative_rms", fit->relative_rms}, {"samples", fit->samples}};
 
+  // Outputs: CSV, JSON and the plot appear together or not at all (StagedFiles: temporary names, renamed at the end).
   const std::filesystem::path dir(arguments.out_dir);
-  std::filesystem::create_directories(dir);
   const std::filesystem::path csv_path = dir / (indentation_case.name + "_insertion.csv");
   const std::filesystem::path json_path = dir / (indentation_case.name + "_insertion.json");
   const std::filesystem::path png_path = dir / (indentation_case.name + "_insertion.png");
   std::vector<std::string> files{csv_path.string(), json_path.string()};
   if (!arguments.no_plot) files.push_back(png_path.string());
   json["files"] = files;
-  io::write_text_file_atomically(csv_path, io::insertion_curve_csv(curve));
-  io::write_text_file_atomically(json_path, json.dump(2) + "\n");
+  StagedFiles outputs;
+  const std::filesystem::path staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
+  outputs.write(json_path, json.dump(2) + "\n");
   if (!arguments.no_plot) {
-    std::vector<std::string> command{"/usr/bin/python3", plot_script(), csv_path.string(), png_path.string(),
-                                     "--title", fmt::format("{}: K = {:.4g} N/mm2, S = {:.4g}", indentation_case.name,
-                                                            settings.stiffness * 1e-6, settings.scale)};
+    std::vector<std::string> command{"/usr/bin/python3", plot_script(), staged_csv.string(),
+                                     outputs.stage(png_path).string(), "--title",
+                                     fmt::format("{}: K = {:.4g} N/mm2, S = {:.4g}", indentation_case.name,
+                                                 settings.stiffness * 1e-6, settings.scale)};
     if (settings.measured) {
       command.push_back("--measured");
       command.push_back(settings.measured->string());
     }
-    std::string line;
-    for (const auto& part : command) line += shell_quote(part) + " ";
-    line += "1>&2";
-    if (std::system(line.c_str()) != 0) {
-      std::error_code ignored;
-      std::filesystem::remove(csv_path, ignored);
-      std::filesystem::remove(json_path, ignored);
+    if (run_program(command) != 0) {
       throw IoError(fmt::format("{}: the plot script {} failed (is python3-matplotlib installed? --no-plot skips the "
                                 "plot)",
                                 png_path.string(), plot_script()));
     }
   }
+  outputs.commit();
 
   if (arguments.json) {
     fmt::print("{}\n", json.dump(2));
+    if (fe_failed) throw CommandOutcome{ExitCode::NumericalFailure};  // the curve up to the FE's failure is kept
     return;
   }
   fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
@@ -230,6 +232,7 @@ void run_insert(const InsertArguments& arguments) {
                settings.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error,
                100 * fit->relative_rms);
   fmt::print("wrote {}\n", fmt::join(files, ", "));
+  if (fe_failed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
 
 }  // namespace

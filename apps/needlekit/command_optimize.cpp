@@ -8,6 +8,7 @@
 #include "file_format_help.hpp"
 #include "needlekit/analysis/design_optimizer.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "progress_bar.hpp"
@@ -53,9 +54,9 @@ void run_optimize(const OptimizeArguments& arguments) {
   options.published_compat = arguments.published_compat;
   options.threads = arguments.threads;
   ProgressBar progress("optimize");
-  options.progress = [&progress](double fraction) {
+  options.progress = [&progress](double fraction) {  // from worker threads: the bar draws, Ctrl-C cancels
     progress.update(fraction);
-    return true;
+    return !interrupt_requested();
   };
   analysis::OptimizerResult result;
   try {
@@ -63,7 +64,7 @@ void run_optimize(const OptimizeArguments& arguments) {
   } catch (const InvalidInput& error) {
     throw InvalidInput(fmt::format("{}: {}", arguments.space_path, error.what()));
   }
-  progress.finish();
+  progress.finish();  // after Ctrl-C: throws Interrupted, nothing written
 
   const nlohmann::json json = io::optimizer_json(space, result);
   if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
@@ -97,7 +98,7 @@ void add_optimize_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--out", arguments->out_path, "also write the JSON result to FILE (written only on success)")
       ->type_name("FILE");
-  command->footer(kSpaceFileHelp);
+  command->footer(space_file_help());
   command->callback([arguments] { run_optimize(*arguments); });
 }
 
