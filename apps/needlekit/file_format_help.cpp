@@ -83,7 +83,7 @@ std::string indentation_case_help() {
   return fmt::format(
       R"(CASE file (TOML; every dimensional value is a string with its unit, a bare number is an error):
   name = "flat punch"                optional, names the output files (default: the file name)
-  [needle]     shape, tip_diameter, base_diameter, bore_diameter, length as in design files (no material: the
+  [needle]     shape, tip_diameter, base_diameter, bore_diameter, length as in design files (material is ignored: the
                needle is rigid), or mesh = "needle.stl" + mesh_unit = "um" (needle frame: axis z, tip at max z)
                tip_height = "0 um"       >= 0, the tip's height above the surface at the start
   [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
