@@ -11,8 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "child_process.hpp"
 #include "commands.hpp"
-#include "shell_quote.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
@@ -110,7 +111,7 @@ void run_calibrate(const CalibrateArguments& arguments) {
 
   nlohmann::json json = calibration::calibration_json(problem, result);
   const std::filesystem::path dir(arguments.out_dir);
-  std::filesystem::create_directories(dir);
+  create_output_directory(dir);
   const std::filesystem::path json_path = dir / (problem.name + "_calibration.json");
   const std::filesystem::path csv_path = dir / (problem.name + "_calibration_curves.csv");
   const std::filesystem::path png_path = dir / (problem.name + "_calibration.png");
@@ -118,20 +119,22 @@ void run_calibrate(const CalibrateArguments& arguments) {
   if (!arguments.no_plot) files.push_back(png_path.string());
   if (!arguments.write_case.empty()) files.push_back(arguments.write_case);
   json["files"] = files;
-  io::write_text_file_atomically(csv_path, calibration::calibration_curves_csv(problem, result));
-  io::write_text_file_atomically(json_path, json.dump(2) + "\n");
+  StagedFiles outputs;  // all or none: a failed plot or an interrupt leaves no partial set
+  const std::filesystem::path staged_csv = outputs.write(csv_path, calibration::calibration_curves_csv(problem, result));
+  outputs.write(json_path, json.dump(2) + "\n");
   if (!arguments.write_case.empty())
-    io::write_text_file_atomically(arguments.write_case, calibration::calibrated_case_text(problem, 0, result.values()));
+    outputs.write(arguments.write_case, calibration::calibrated_case_text(problem, 0, result.values()));
   if (!arguments.no_plot) {
-    const std::string line = fmt::format("/usr/bin/python3 {} {} {} --title {} 1>&2", shell_quote(plot_script()),
-                                         shell_quote(csv_path.string()), shell_quote(png_path.string()),
-                                         shell_quote(fmt::format("{}: measured vs fitted", problem.name)));
-    if (std::system(line.c_str()) != 0) {
+    const std::vector<std::string> command{"/usr/bin/python3", plot_script(), staged_csv.string(),
+                                           outputs.stage(png_path).string(), "--title",
+                                           fmt::format("{}: measured vs fitted", problem.name)};
+    if (run_program(command) != 0) {
       throw IoError(fmt::format("{}: the plot script {} failed (is python3-matplotlib installed? --no-plot skips "
                                 "the plot)",
                                 png_path.string(), plot_script()));
     }
   }
+  outputs.commit();
   if (arguments.json) {
     fmt::print("{}\n", json.dump(2));
   } else {

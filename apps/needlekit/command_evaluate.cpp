@@ -9,6 +9,8 @@
 #include "needlekit/analysis/performance_index.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/scale_warnings.hpp"
+#include "terminal_warnings.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -79,8 +81,10 @@ void print_table(const io::DesignFile& file, const analysis::PerformanceIndexRes
 
 void run_evaluate(const EvaluateArguments& arguments) {
   const io::DesignFile file = io::read_design_file(arguments.design_path);
-  const analysis::PerformanceIndexResult result =
-      analysis::performance_index(file.design, file.conditions, file.options);
+  analysis::PerformanceIndexResult result = analysis::performance_index(file.design, file.conditions, file.options);
+  const std::vector<std::string> warnings = io::needle_scale_warnings(file.design.needle);
+  result.notes.insert(result.notes.end(), warnings.begin(), warnings.end());
+  print_warnings(warnings);
   const nlohmann::json json = io::performance_json(file.design, result);
   if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
   if (arguments.json) {

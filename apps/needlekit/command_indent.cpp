@@ -9,37 +9,16 @@
 #include <string>
 
 #include "commands.hpp"
+#include "file_format_help.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/indentation_output.hpp"
+#include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
+#include "terminal_warnings.hpp"
 
 namespace needlekit::cli {
 namespace {
-
-constexpr const char* kCaseFileHelp = R"(CASE file (TOML; every dimensional value is a string with its unit, a bare number is an error):
-  name = "flat punch"                optional, names the output files (default: the file name)
-  [needle]     shape, tip_diameter, base_diameter, bore_diameter, length as in design files (material is ignored:
-               the needle is rigid), or mesh = "needle.stl" + mesh_unit = "um" (needle frame: axis z, tip at max z)
-               tip_height = "0 um"       >= 0, the tip's height above the surface at the start
-  [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
-  [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = "skin" |
-               "silicone-0.2mpa" | ... or [[tissue.layers]] name, thickness (the last may be "rest"),
-               youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
-  [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
-               (one needle per site without [[needles]]), split = true (mesh at twice the sizes and split every tet
-               into eight: the two-grid solver, for large meshes), or file = "tissue.msh" + unit (layers = physical
-               groups)
-  [loading]    depth = "200 um" (required), steps = 20, continue_after_puncture = false
-  [model]      law = "neo-hookean" | "svk", contact = "surface" | "tip-nodes", element = "linear" | "quadratic",
-               boundary = "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller"
-  [solver]     optional: residual_tolerance = 1e-6, displacement_tolerance = 1e-5, energy_tolerance = 1e-8,
-               max_iterations = 25, max_cutbacks = 8, predictor = "secant" | "linearised", linear_solver = "auto" |
-               "two-grid" | "cholesky-cg" | "cholesky", volumetric = "auto" | "element" | "nodal-average" (auto: linear
-               tetrahedra of layers with poisson_ratio >= 0.45 average the volume at the nodes, locking-free),
-               penalty_factor = 100, threads = 0
-  [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = { first = "a.csv",
-               second = "b.csv", crack_area = "6661 um2" } (Eq 3.16 from two insertions; CSV depth_um,force_N))";
 
 struct IndentArguments {
   std::string case_path;
@@ -67,6 +46,7 @@ void run_indent(const IndentArguments& arguments) {
   }
   if (arguments.steps > 0) indentation_case.steps = arguments.steps;
   insertion::validate(indentation_case);
+  print_warnings(io::indentation_scale_warnings(indentation_case));
 
   std::optional<io::IndentationWriter> writer;
   if (!arguments.out_dir.empty()) writer.emplace(arguments.out_dir, indentation_case);
@@ -83,15 +63,11 @@ void run_indent(const IndentArguments& arguments) {
   const insertion::IndentationResult result = insertion::run_indentation(indentation_case, options);
   progress.finish();
   if (writer) writer->finish(result);
-  // A run that stopped on a numerical failure ends with its own exit code, after everything it kept is written and
-  // printed.
-  const auto outcome = [&result] {
-    if (result.status == insertion::IndentationStatus::SolverFailed) throw CommandOutcome{ExitCode::NumericalFailure};
-  };
-
+  // A load step that did not converge: the completed steps are kept and printed, the exit code is 3.
+  const bool failed = result.status == insertion::IndentationStatus::SolverFailed;
   if (arguments.json) {
     fmt::print("{}\n", io::indentation_json(indentation_case, result).dump(2));
-    outcome();
+    if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
     return;
   }
   fmt::print("{}: {} tetrahedra, {} nodes, {} unknowns ({} solver); mesh {:.2f} s, total {:.2f} s\n",
@@ -111,14 +87,11 @@ void run_indent(const IndentArguments& arguments) {
   }
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
-    // Name the ParaView series only when it was written (a run that fails in its first step writes no step).
-    const std::filesystem::path series = std::filesystem::path(arguments.out_dir) / (indentation_case.name + ".pvd");
-    const auto& files = writer->files();
-    const bool has_series = std::find(files.begin(), files.end(), series) != files.end();
-    fmt::print("wrote {} files to {}{}\n", files.size(), arguments.out_dir,
-               has_series ? fmt::format(" (open {} in ParaView)", series.filename().string()) : std::string());
+    const bool series = !result.steps.empty();  // the .pvd exists once a step was written
+    fmt::print("wrote {} files to {}{}\n", writer->files().size(), arguments.out_dir,
+               series ? fmt::format(" (open {}.pvd in ParaView)", indentation_case.name) : "");
   }
-  outcome();
+  if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
 
 }  // namespace
@@ -136,7 +109,7 @@ void add_indent_command(CLI::App& app) {
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--depth", arguments->depth, "override [loading] depth, e.g. \"50 um\"");
   command->add_option("--steps", arguments->steps, "override [loading] steps")->check(CLI::Range(1, 100000));
-  command->footer(kCaseFileHelp);
+  command->footer(indentation_case_help());
   command->callback([arguments] { run_indent(*arguments); });
 }
 

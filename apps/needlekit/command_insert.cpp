@@ -12,8 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "child_process.hpp"
 #include "commands.hpp"
-#include "shell_quote.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
@@ -21,7 +22,9 @@
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
+#include "terminal_warnings.hpp"
 
 #ifndef NEEDLEKIT_SCRIPTS_DIR
 #define NEEDLEKIT_SCRIPTS_DIR "scripts"
@@ -70,6 +73,10 @@ void run_insert(const InsertArguments& arguments) {
     indentation_case.block.size_far = units::parse_quantity(arguments.size_far, units::Dimension::Length, "--size-far");
   if (arguments.steps > 0) indentation_case.steps = arguments.steps;
   indentation_case.stop_at_puncture = true;
+  insertion::validate(indentation_case);
+  const std::vector<std::string> notes = io::indentation_scale_warnings(indentation_case);
+  print_warnings(notes);
+  create_output_directory(arguments.out_dir);  // before the FE run: a directory that cannot be written fails fast
 
   std::optional<ProgressBar> progress;
   if (!c.options.pre_puncture) progress.emplace(fmt::format("insert {}: FE indentation", indentation_case.name));
@@ -81,8 +88,8 @@ void run_insert(const InsertArguments& arguments) {
   const bool failed = result.status == insertion::CompleteInsertionStatus::SolverFailed;
   const std::size_t count = indentation_case.needles.size();
 
-  // Outputs: JSON always; CSV and the plot when the curve has samples (the FE converged at least one step). On a
-  // plot failure the CSV and JSON are removed again.
+  // Outputs: JSON always; CSV and the plot when the curve has samples (the FE converged at least one step). All are
+  // staged and renamed together: on a plot failure or an interrupt none is written.
   nlohmann::json json = io::insertion_curve_json(curve);
   json["status"] = insertion::to_string(result.status);
   json["reason"] = result.reason;
@@ -94,6 +101,8 @@ void run_insert(const InsertArguments& arguments) {
   json["case_scale"] = c.options.model.scale;
   json["final_depth_um"] = c.options.curve.final_depth * 1e6;
   json["pre_puncture_source"] = fe ? "fe" : "csv";
+  json["complete"] = !failed;  // false: the curve stops where the FE failed (exit code 3)
+  json["notes"] = notes;
   if (fe) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
                   {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds},
@@ -114,7 +123,6 @@ void run_insert(const InsertArguments& arguments) {
                    {"rms_error_N", fit->rms_error}, {"relative_rms", fit->relative_rms}, {"samples", fit->samples}};
 
   const std::filesystem::path dir(arguments.out_dir);
-  std::filesystem::create_directories(dir);
   const std::filesystem::path csv_path = dir / (indentation_case.name + "_insertion.csv");
   const std::filesystem::path json_path = dir / (indentation_case.name + "_insertion.json");
   const std::filesystem::path png_path = dir / (indentation_case.name + "_insertion.png");
@@ -124,30 +132,28 @@ void run_insert(const InsertArguments& arguments) {
   files.push_back(json_path.string());
   if (has_curve && !arguments.no_plot) files.push_back(png_path.string());
   json["files"] = files;
-  if (has_curve) io::write_text_file_atomically(csv_path, io::insertion_curve_csv(curve));
-  io::write_text_file_atomically(json_path, json.dump(2) + "\n");
+  StagedFiles outputs;
+  std::filesystem::path staged_csv;
+  if (has_curve) staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
+  outputs.write(json_path, json.dump(2) + "\n");
   if (has_curve && !arguments.no_plot) {
     const std::string s = fit ? fmt::format("S = {:.4g} (fitted; case {:.4g})", result.scale, c.options.model.scale)
                               : fmt::format("S = {:.4g}", result.scale);
-    std::vector<std::string> command{"/usr/bin/python3", plot_script(), csv_path.string(), png_path.string(),
-                                     "--title", fmt::format("{}: K = {:.4g} N/mm2, {}", indentation_case.name,
-                                                            result.stiffness * 1e-6, s)};
+    std::vector<std::string> command{"/usr/bin/python3", plot_script(), staged_csv.string(),
+                                     outputs.stage(png_path).string(), "--title",
+                                     fmt::format("{}: K = {:.4g} N/mm2, {}", indentation_case.name,
+                                                 result.stiffness * 1e-6, s)};
     if (c.measured) {
       command.push_back("--measured");
       command.push_back(c.measured->string());
     }
-    std::string line;
-    for (const auto& part : command) line += shell_quote(part) + " ";
-    line += "1>&2";
-    if (std::system(line.c_str()) != 0) {
-      std::error_code ignored;
-      std::filesystem::remove(csv_path, ignored);
-      std::filesystem::remove(json_path, ignored);
+    if (run_program(command) != 0) {
       throw IoError(fmt::format("{}: the plot script {} failed (is python3-matplotlib installed? --no-plot skips the "
                                 "plot)",
                                 png_path.string(), plot_script()));
     }
   }
+  outputs.commit();
 
   if (arguments.json) {
     fmt::print("{}\n", json.dump(2));

@@ -56,7 +56,7 @@ void add_mesh_command(CLI::App& app) {
   command->add_option("--axial-segments", arguments->axial_segments, "segments along the length, >= 1")
       ->default_val(16)
       ->check(CLI::Range(1, 1 << 16));
-  command->footer(kDesignFileHelp);
+  command->footer(design_file_help());
   command->callback([arguments] { run_mesh(*arguments); });
 }
 

@@ -8,6 +8,7 @@
 #include "file_format_help.hpp"
 #include "needlekit/analysis/design_optimizer.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
@@ -120,9 +121,9 @@ void run_optimize(const OptimizeArguments& arguments) {
   options.threads = arguments.threads;
   if (file.robust) return run_robust(arguments, file, options);
   ProgressBar progress("optimize");
-  options.progress = [&progress](double fraction) {
+  options.progress = [&progress](double fraction) {  // from worker threads: the bar draws, Ctrl-C cancels
     progress.update(fraction);
-    return true;
+    return !interrupt_requested();
   };
   analysis::OptimizerResult result;
   try {
@@ -130,7 +131,7 @@ void run_optimize(const OptimizeArguments& arguments) {
   } catch (const InvalidInput& error) {
     throw InvalidInput(fmt::format("{}: {}", arguments.space_path, error.what()));
   }
-  progress.finish();
+  progress.finish();  // after Ctrl-C: throws Interrupted, nothing written
 
   const nlohmann::json json = io::optimizer_json(space, result);
   if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");

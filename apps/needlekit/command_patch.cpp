@@ -1,22 +1,28 @@
 // `needlekit patch CASE.toml`: fit a rigid or flexible microneedle patch onto a body surface and evaluate every
 // needle (dissertation ch. 5, §6.4); `--sweep max_spring_energy=A:B:N` writes the Fig 6.25 curve.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "commands.hpp"
+#include "file_format_help.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
+#include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/scale_warnings.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
 #include "progress_bar.hpp"
+#include "terminal_warnings.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -61,19 +67,6 @@ Sweep parse_sweep(const std::string& text) {
                                    text));
   }
   return sweep;
-}
-
-// The attribution section of the mesh folder's README.md (kept wherever the meshes or renderings are shipped).
-std::string attribution_of(const std::filesystem::path& mesh) {
-  std::ifstream in(mesh.parent_path() / "README.md");
-  if (!in) return {};
-  std::string line, text;
-  bool inside = false;
-  while (std::getline(in, line)) {
-    if (line.rfind("## ", 0) == 0) inside = line.find("ttribution") != std::string::npos;
-    if (inside) text += line + "\n";
-  }
-  return text;
 }
 
 void print_summary(const io::PatchCase& c, const nlohmann::json& s) {
@@ -137,6 +130,11 @@ void run_patch(const PatchArguments& arguments) {
   // A fit that did not converge (the equilibrium solver's iteration limit) ends the command with exit code 3 once
   // everything is written; the other statuses (the patch leaves the surface, springs over E_cri) are outcomes.
   bool not_converged = false;
+  // Warnings: implausible scales (a unit mistake?) and a mesh without a licence or attribution.
+  std::vector<std::string> warnings = io::patch_scale_warnings(surface.mesh(), patch::patch_design(c.design));
+  const std::optional<io::MeshAttribution> attribution = io::mesh_attribution(c.mesh);
+  if (!attribution) warnings.push_back(io::missing_attribution_warning(c.mesh));
+  print_warnings(warnings);
 
   if (sweep) {
     std::string csv =
@@ -161,10 +159,12 @@ void run_patch(const PatchArguments& arguments) {
       progress.update(static_cast<double>(i + 1) / sweep->count);
     }
     progress.finish();
-    if (!arguments.out_dir.empty()) {
-      std::filesystem::create_directories(arguments.out_dir);
-      io::write_text_file_atomically(std::filesystem::path(arguments.out_dir) / "sweep.csv", csv);
-      io::write_text_file_atomically(std::filesystem::path(arguments.out_dir) / "sweep.json", points.dump(2) + "\n");
+    if (!arguments.out_dir.empty()) {  // both files or none
+      create_output_directory(arguments.out_dir);
+      StagedFiles outputs;
+      outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.csv", csv);
+      outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.json", points.dump(2) + "\n");
+      outputs.commit();
     }
     if (arguments.json) {
       fmt::print("{}\n", points.dump(2));
@@ -185,26 +185,27 @@ void run_patch(const PatchArguments& arguments) {
           ? nlohmann::json(nullptr)
           : nlohmann::json{{"max", geodesics.strain_abs.max}, {"mean", geodesics.strain_abs.mean}};
   summary["spring_geodesics_not_converged"] = geodesics.not_converged;
-  if (!arguments.out_dir.empty()) {
+  summary["notes"] = warnings;
+  if (!arguments.out_dir.empty()) {  // every file or none (StagedFiles: temporary names, renamed at the end)
     const std::filesystem::path out(arguments.out_dir);
-    std::error_code error;
-    std::filesystem::create_directories(out, error);
-    if (error) throw IoError(fmt::format("{}: cannot create the output folder: {}", out.string(), error.message()));
+    // Created only now: a placement that fails (bad input, exit 2) leaves no folder behind. A fit takes milliseconds.
+    create_output_directory(out);
     const double diagonal = std::hypot(r.design.width_u, r.design.width_v);
-    const io::VtuGrid surface_part = io::surface_grid(surface, r.frame.surface_point, diagonal);
-    const io::VtuGrid patch_part = io::patch_grid(r.design, r.fit, geodesics.strain);
-    const io::VtuGrid needles_part = io::needles_grid(r.evaluation);
-    io::write_text_file_atomically(out / "needles.csv", io::patch_needles_csv(r.design, r.fit, r.evaluation));
-    io::write_text_file_atomically(out / "summary.json", summary.dump(2) + "\n");
-    io::write_vtu(surface_part, out / "surface.vtu");
-    io::write_vtu(patch_part, out / "patch.vtu");
-    io::write_vtu(needles_part, out / "needles.vtu");
-    const std::string attribution = attribution_of(c.mesh);
-    if (!attribution.empty()) {
-      io::write_text_file_atomically(out / "ATTRIBUTION.md",
-                                     fmt::format("surface.vtu is a part of {}.\n\n{}", c.mesh.filename().string(),
-                                                 attribution));
+    StagedFiles outputs;
+    outputs.write(out / "needles.csv", io::patch_needles_csv(r.design, r.fit, r.evaluation));
+    outputs.write(out / "surface.vtu",
+                  io::vtu_document(io::surface_grid(surface, r.frame.surface_point, diagonal), out / "surface.vtu"));
+    outputs.write(out / "patch.vtu",
+                  io::vtu_document(io::patch_grid(r.design, r.fit, geodesics.strain), out / "patch.vtu"));
+    outputs.write(out / "needles.vtu", io::vtu_document(io::needles_grid(r.evaluation), out / "needles.vtu"));
+    if (attribution) {
+      outputs.write(out / "ATTRIBUTION.md",
+                    fmt::format("surface.vtu is a part of {} ({}).\n\n- {}\n\n{}\n", c.mesh.filename().string(),
+                                attribution->readme.lexically_normal().string(), fmt::join(attribution->entries, "\n- "),
+                                fmt::join(attribution->notices, "\n")));
     }
+    outputs.write(out / "summary.json", summary.dump(2) + "\n");
+    outputs.commit();
   }
   if (arguments.json) {
     fmt::print("{}\n", summary.dump(2));
@@ -230,16 +231,7 @@ void add_patch_command(CLI::App& app) {
                       "sweep the flexible patch's spring-energy cap, e.g. max_spring_energy=0.005mJ:0.05mJ:10 "
                       "(the Fig 6.25 curve)")
       ->type_name("SPEC");
-  command->footer(
-      "Case file (quantities are strings with units):\n"
-      "  [surface]  mesh = \"neck.obj\" (OBJ/STL/PLY/OFF, relative to the case file); unit = \"m\" | \"mm\" | \"15.8 mm\";\n"
-      "             center_vertex = 2243 or center = [\"x mm\", \"y mm\", \"z mm\"]; rotation = \"0 deg\";\n"
-      "             approach = \"-z\" (default) | \"normal\"\n"
-      "  [patch]    kind = \"rigid\" | \"flexible\" | \"equilibrium\"; size = \"10 mm\"; needles_per_row = 10;\n"
-      "             spring_constant = \"1 N/mm\" or { u = , v = , diagonal = }; max_spring_energy = \"0.05 mJ\";\n"
-      "             first_node = \"first-contact\" | \"corner\"; walk = \"cutting-plane\" | \"unfolding\";\n"
-      "             load = \"0.0712 N\" (equilibrium: force per node)\n"
-      "  [needle], [tissue], [insertion]  as in design files (see needlekit evaluate --help)");
+  command->footer(patch_case_help());
   command->callback([arguments] { run_patch(*arguments); });
 }
 

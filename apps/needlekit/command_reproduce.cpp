@@ -6,13 +6,9 @@
 // (report.html last), so that a failure or Ctrl-C leaves no half-written report: an interrupted run removes its
 // staging folder and exits with 130.
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -21,25 +17,20 @@
 #include <thread>
 #include <vector>
 
+#include "child_process.hpp"
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "progress_bar.hpp"
 #include "reproduce_report.hpp"
 #include "reproduce_sections.hpp"
-
-extern char** environ;
 
 namespace needlekit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using reproduce::Interrupted;
 using reproduce::RunContext;
 using reproduce::SectionReport;
-
-std::atomic<bool> g_interrupted{false};
-
-extern "C" void on_interrupt(int) { g_interrupted.store(true); }
 
 struct ReproduceArguments {
   bool quick = false;
@@ -109,26 +100,18 @@ void publish(const fs::path& staging, const fs::path& out) {
 
 // Runs `python script staging` and waits; SIGINT reaches the script too (same process group).
 void run_report_script(const std::string& python, const fs::path& script, const fs::path& staging) {
-  std::vector<std::string> argv_text = {python, script.string(), staging.string()};
-  std::vector<char*> argv;
-  for (std::string& text : argv_text) argv.push_back(text.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (::posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+  int exit_code = 0;
+  try {
+    exit_code = run_program({python, script.string(), staging.string()});
+  } catch (const IoError&) {
     throw IoError(fmt::format("cannot run '{}' for the report figures (install python3 with matplotlib: "
                               "scripts/install-deps)",
                               python));
   }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw IoError("waiting for the report script failed");
-  }
-  if (g_interrupted.load()) throw Interrupted();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error(fmt::format("the report script {} failed ({}); the run's data were not published",
-                                         script.string(),
-                                         WIFEXITED(status) ? fmt::format("exit code {}", WEXITSTATUS(status))
-                                                           : fmt::format("signal {}", WTERMSIG(status))));
+  if (exit_code != 0) {
+    throw std::runtime_error(fmt::format("the report script {} failed (exit code {}); the run's data were not "
+                                         "published",
+                                         script.string(), exit_code));
   }
 }
 
@@ -152,7 +135,7 @@ SectionReport run_section(const std::string& label,
   } catch (const Interrupted&) {
     throw;
   } catch (const std::exception& error) {
-    if (g_interrupted.load()) throw Interrupted();
+    throw_if_interrupted();
     report = SectionReport(label, label);
     report.failed(error.what());
   }
@@ -193,7 +176,6 @@ void run_reproduce(const ReproduceArguments& arguments) {
   // The meshes of §6.4: those the patch examples name, or the files of the same names in --meshes.
   context.meshes = arguments.meshes_dir;
   context.published = &published;
-  context.interrupted = &g_interrupted;
   for (const fs::path& mesh : reproduce::section_6_4_mesh_files(context)) {
     if (!fs::is_regular_file(mesh)) {
       throw IoError(fmt::format("mesh file not found: {} (needed by §6.4; pass --meshes DIR, the folder with the "
@@ -202,13 +184,6 @@ void run_reproduce(const ReproduceArguments& arguments) {
     }
   }
   context.staging = create_staging(out);
-
-  struct sigaction action {};
-  action.sa_handler = on_interrupt;
-  sigemptyset(&action.sa_mask);
-  struct sigaction previous_int {}, previous_term {};
-  ::sigaction(SIGINT, &action, &previous_int);
-  ::sigaction(SIGTERM, &action, &previous_term);
 
   int failed_sections = 0;
   try {
@@ -254,24 +229,21 @@ void run_reproduce(const ReproduceArguments& arguments) {
   } catch (const Interrupted&) {
     std::error_code ignored;
     fs::remove_all(context.staging, ignored);
-    fmt::print(stderr, "\nneedlekit: interrupted: the run was stopped, no report was written and its partial results "
-                       "were removed ({} is unchanged)\n",
+    fmt::print(stderr, "\nneedlekit: the run was stopped: no report was written and its partial results were removed "
+                       "({} is unchanged)\n",
                out.string());
-    std::exit(130);
+    throw;
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(context.staging, ignored);
-    ::sigaction(SIGINT, &previous_int, nullptr);
-    ::sigaction(SIGTERM, &previous_term, nullptr);
     throw;
   }
-  ::sigaction(SIGINT, &previous_int, nullptr);
-  ::sigaction(SIGTERM, &previous_term, nullptr);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print("report: {} (self-contained; data and figures under {}/); {} run took {:.1f} s\n",
              (out / "report.html").string(), out.string(), arguments.quick ? "quick" : "full", seconds);
-  if (failed_sections > 0) {
-    throw std::runtime_error(fmt::format("{} section(s) failed; the report says why", failed_sections));
+  if (failed_sections > 0) {  // the report and the other sections are kept: a failure with results, exit 3
+    fmt::print(stderr, "needlekit: {} section(s) failed; the report says why\n", failed_sections);
+    throw CommandOutcome{ExitCode::NumericalFailure};
   }
 }
 
@@ -301,8 +273,8 @@ void add_reproduce_command(CLI::App& app) {
                       "Python 3 with matplotlib that draws the figures (default: /usr/bin/python3)")
       ->type_name("EXE");
   command->footer(
-      "Exit codes: 0 done; 2 bad input (output directory not writable, mesh file missing); 130 interrupted (Ctrl-C: "
-      "nothing is left behind); 1 a section failed (the report is written and says why).");
+      "Exit codes: 0 done; 2 bad input (output directory not writable, mesh file missing); 3 a section failed (the "
+      "report is written and says why); 130 interrupted (Ctrl-C, SIGTERM: nothing is left behind).");
   command->callback([arguments] { run_reproduce(*arguments); });
 }
 

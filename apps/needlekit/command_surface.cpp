@@ -13,6 +13,8 @@
 #include <Eigen/Geometry>
 
 #include "commands.hpp"
+#include "needlekit/io/scale_warnings.hpp"
+#include "terminal_warnings.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/geometry/geodesic_distance.hpp"
@@ -78,6 +80,9 @@ void run_surface(const SurfaceArguments& arguments) {
   out["size_mm"] = {box.sizes().x() / mm, box.sizes().y() / mm, box.sizes().z() / mm};
   out["median_edge_mm"] = edges[edges.size() / 2] / mm;
   out["load_ms"] = load_ms;
+  const std::vector<std::string> warnings = io::surface_scale_warnings(m, "--unit");
+  out["notes"] = warnings;
+  print_warnings(warnings);
   if (arguments.geodesic.size() == 2) {
     const auto from = vertex_location(surface, arguments.geodesic[0], "first");
     const auto to = vertex_location(surface, arguments.geodesic[1], "second");

@@ -13,6 +13,8 @@
 #include "needlekit/core/units.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/scale_warnings.hpp"
+#include "terminal_warnings.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -57,6 +59,7 @@ analysis::SweepOptions parse_vary(std::string_view text) {
 void run_sweep(const SweepArguments& arguments) {
   const analysis::SweepOptions sweep = parse_vary(arguments.vary);
   const io::DesignFile file = io::read_design_file(arguments.design_path);
+  print_warnings(io::needle_scale_warnings(file.design.needle));
   const analysis::SweepResult result = analysis::sensitivity_sweep(file.design, file.conditions, file.options, sweep);
   const std::string csv = io::sweep_csv(result);
   if (!arguments.csv_path.empty()) io::write_text_file_atomically(arguments.csv_path, csv);
@@ -76,10 +79,11 @@ void add_sweep_command(CLI::App& app) {
   command->add_option("DESIGN", arguments->design_path, "design file (TOML), format below")->required();
   command
       ->add_option("--vary", arguments->vary,
-                   "the parameter and its inclusive range, step > 0, with units: tip_diameter, base_diameter, "
-                   "bore_diameter, length, width, target_depth (e.g. 50um:300um:10um); angle (e.g. "
-                   "0deg:60deg:5deg); needles_per_row (whole numbers, e.g. 5:25:1). A cylinder's tip and base vary "
-                   "together. Points whose design is invalid are reported as constraint_violated")
+                   fmt::format("the parameter and its inclusive range, step > 0, with units (e.g. "
+                               "base_diameter=50um:300um:10um, angle=0deg:60deg:5deg, needles_per_row=5:25:1); "
+                               "PARAM = {}. A cylinder's tip and base vary together. Points whose design is invalid "
+                               "are reported as constraint_violated",
+                               choices_of(analysis::kSweepParameterNames)))
       ->type_name("PARAM=FROM:TO:STEP")
       ->required();
   command->add_option("--csv", arguments->csv_path,

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "needlekit/core/atomic_file.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/tet_mesh_vtu.hpp"
 #include "needlekit/io/tissue_config.hpp"
@@ -43,10 +45,9 @@ void run_tissue_mesh(const TissueMeshArguments& arguments) {
   io::TissueCase tissue = io::read_tissue_case(arguments.case_path);
   tissue.block.threads = arguments.threads;
   const mesh::LayeredBlockOptions& options = tissue.block;
+  create_output_directory(arguments.out_dir);  // before meshing: a directory that cannot be written fails fast
   const mesh::LayeredBlockResult result = io::tissue_mesh(tissue);
-  std::error_code error;
-  std::filesystem::create_directories(arguments.out_dir, error);
-  if (error) throw IoError(fmt::format("{}: cannot create the output folder: {}", arguments.out_dir, error.message()));
+  throw_if_interrupted();  // Gmsh cannot be stopped midway: Ctrl-C during meshing ends here, nothing written
   const std::filesystem::path file = std::filesystem::path(arguments.out_dir) / "tissue.vtu";
   io::write_vtu(io::tet_mesh_grid(result.mesh), file);
 

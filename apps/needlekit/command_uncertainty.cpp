@@ -119,7 +119,7 @@ void add_uncertainty_command(CLI::App& app) {
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + "\n" + kDesignFileHelp);
+  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + "\n" + design_file_help());
   command->callback([arguments] { run_uncertainty(*arguments); });
 }
 

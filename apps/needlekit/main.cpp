@@ -1,13 +1,15 @@
 // needlekit command-line tool: parses the subcommand and turns library exceptions into messages and exit codes:
 // needlekit::ExitCode (core/exit_codes.hpp): 0 success, 2 bad input (InvalidInput, IoError, command-line errors),
 // 3 a numerical failure whose results were kept (a command throws cli::CommandOutcome after writing them),
-// 130 interrupted, 1 an unexpected internal error.
+// 130 interrupted (SIGINT/SIGTERM set needlekit's interrupt flag, core/interrupt.hpp; the command stops at its next
+// check with needlekit::Interrupted, every file it wrote complete), 1 an unexpected internal error.
 #include <fmt/format.h>
 
 #include <exception>
 
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 
 namespace {
 
@@ -23,6 +25,7 @@ int report_error(std::string_view kind, std::string_view message, int exit_code)
 }  // namespace
 
 int main(int argc, char** argv) {
+  needlekit::install_interrupt_handlers();  // first: a signal from now on stops the command cleanly
   CLI::App app{"needlekit: design and analysis of microneedle arrays (P. Boonma, NC State 2012). Every dimensional "
                "input carries its unit (\"70 um\", \"169 GPa\").",
                "needlekit"};
@@ -49,6 +52,9 @@ int main(int argc, char** argv) {
     return report_error("error", fmt::format("{} (see needlekit --help)", error.what()), code(ExitCode::InvalidInput));
   } catch (const needlekit::cli::CommandOutcome& outcome) {
     return code(outcome.exit_code);
+  } catch (const needlekit::Interrupted&) {
+    return report_error("interrupted", "stopped on request (SIGINT/SIGTERM); every file written is complete",
+                        code(ExitCode::Interrupted));
   } catch (const needlekit::InvalidInput& error) {
     return report_error("error", error.what(), code(ExitCode::InvalidInput));
   } catch (const needlekit::IoError& error) {

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fmt/format.h>
 
+#include "needlekit/core/interrupt.hpp"
+
 namespace needlekit::cli {
 namespace {
 constexpr int kBarWidth = 40;
@@ -18,6 +20,7 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::update(double fraction) {
+  if (std::this_thread::get_id() == owner_) throw_if_interrupted();
   const int percent = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100);
   if (terminal_) {
     if (percent == shown_percent_) return;

@@ -1,7 +1,12 @@
 // A progress bar on stderr for long runs: redrawn in place when stderr is a terminal, otherwise one line per quarter
 // so that logs stay short.
+//
+// It is also where the CLI's long loops stop on Ctrl-C / SIGTERM: update() and finish(), called on the thread that
+// made the bar, throw needlekit::Interrupted once an interrupt was requested (core/interrupt.hpp). Calls from worker
+// threads only draw (an exception must not leave a worker thread); their callers check interrupt_requested().
 #pragma once
 #include <string>
+#include <thread>
 
 namespace needlekit::cli {
 
@@ -12,14 +17,15 @@ public:
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
-  // Shows the fraction done, in [0, 1].
+  // Shows the fraction done, in [0, 1]; throws Interrupted as above.
   void update(double fraction);
-  // Shows 100 % and ends the line.
+  // Shows 100 % and ends the line; throws Interrupted as above.
   void finish();
 
 private:
   std::string label_;
   bool terminal_;
+  std::thread::id owner_ = std::this_thread::get_id();
   int shown_percent_ = -1;  // terminal: the last percentage drawn
   int shown_quarter_ = 0;   // log: the last quarter printed (1..4)
   bool line_open_ = false;  // terminal: the bar is drawn and the line not ended

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/result_writers.hpp"
 
 namespace needlekit::cli::reproduce {
@@ -52,7 +53,7 @@ const PublishedValue& PublishedValues::at(const std::string& id) const {
 }
 
 void RunContext::check_interrupt() const {
-  if (interrupted != nullptr && interrupted->load()) throw Interrupted();
+  throw_if_interrupted();
 }
 
 std::string RunContext::write(const std::filesystem::path& relative, std::string_view content) const {

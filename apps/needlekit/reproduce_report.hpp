@@ -6,7 +6,6 @@
 // by at most one unit of the last printed digit ("42.9" -> 0.1, "1.288e-4" -> 1e-7); a printed 0 needs an exact 0.
 // One unit covers both rounding and the truncation the text uses (42.98 um is printed 42.9).
 #pragma once
-#include <atomic>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -44,12 +43,6 @@ private:
   std::map<std::string, PublishedValue> values_;
 };
 
-// Thrown between steps of a run after Ctrl-C.
-class Interrupted : public std::runtime_error {
-public:
-  Interrupted() : std::runtime_error("interrupted") {}
-};
-
 struct RunContext {
   bool quick = false;
   bool with_calibration = false;  // --with-calibration: the §6.2 rows after calibration (tens of FE runs)
@@ -57,9 +50,8 @@ struct RunContext {
   std::filesystem::path resources;  // the needlekit tree: docs/published, examples, scripts
   std::filesystem::path meshes;     // --meshes: folder of the §6.4 body surface meshes (empty: as the examples say)
   const PublishedValues* published = nullptr;
-  const std::atomic<bool>* interrupted = nullptr;
 
-  // Throws Interrupted after Ctrl-C.
+  // Throws needlekit::Interrupted after Ctrl-C / SIGTERM (core/interrupt.hpp).
   void check_interrupt() const;
   // Writes `content` to staging/relative (creating folders); returns `relative` for the JSON.
   std::string write(const std::filesystem::path& relative, std::string_view content) const;

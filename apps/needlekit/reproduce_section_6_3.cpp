@@ -11,6 +11,7 @@
 #include "needlekit/analysis/design_optimizer.hpp"
 #include "needlekit/analysis/performance_index.hpp"
 #include "needlekit/analysis/sensitivity_sweep.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
@@ -247,7 +248,7 @@ void table_6_3(const RunContext& context, SectionReport& report, const SectionPr
       options.top = 10;
       options.published_compat = compat;
       options.threads = 0;
-      options.progress = [&context](double) { return !(context.interrupted && context.interrupted->load()); };
+      options.progress = [](double) { return !interrupt_requested(); };
       const analysis::OptimizerResult result = analysis::optimize_design(space, options);
       context.check_interrupt();
       if (result.status != analysis::OptimizerStatus::Optimal) {

@@ -2,6 +2,7 @@
 // the colour maps of Fig 6.26 and the skull patches of Fig 6.27, on the body surface meshes of the patch examples.
 // The forces that follow from F(A) and the angle alone (Eqs 4.2, 5.3, 5.4) are checked against the printed ones.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <optional>
@@ -15,6 +16,7 @@
 
 #include "needlekit/analysis/performance_index.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
+#include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
@@ -40,27 +42,11 @@ io::PatchCase read_case(const RunContext& context, const std::string& example) {
   return c;
 }
 
-// The attribution lines of the mesh folder's README.md that name this mesh's family (kept under its renderings).
+// The attribution lines of the mesh folder's README.md that name this mesh (kept under its renderings).
 std::string attribution_of(const std::filesystem::path& mesh) {
-  const std::string name = mesh.filename().string();
-  const std::string family = name.rfind("vh_male", 0) == 0 ? "vh_male" : name.substr(0, name.find('_'));
-  std::ifstream in(mesh.parent_path() / "README.md");
-  std::string line, text;
-  bool inside = false;
-  bool bullet = false;  // inside a matching bullet (its continuation lines are indented)
-  while (std::getline(in, line)) {
-    if (line.rfind("## ", 0) == 0) inside = line.find("ttribution") != std::string::npos;
-    if (!inside) continue;
-    if (line.rfind("- ", 0) == 0) {
-      bullet = line.rfind("- `" + family, 0) == 0;
-      if (bullet) text += (text.empty() ? "" : " ") + line.substr(2);
-    } else if (bullet && line.rfind("  ", 0) == 0) {
-      text += " " + line.substr(line.find_first_not_of(' '));
-    } else {
-      bullet = false;
-    }
-  }
-  return text.empty() ? fmt::format("Mesh: {}", name) : "Mesh attribution: " + text;
+  const std::optional<io::MeshAttribution> attribution = io::mesh_attribution(mesh);
+  if (!attribution) return fmt::format("Mesh: {} ({})", mesh.filename().string(), io::missing_attribution_warning(mesh));
+  return fmt::format("Mesh attribution: {}", fmt::join(attribution->entries, " "));
 }
 
 // Loaded surfaces, by file and unit (the neck is used by four examples).

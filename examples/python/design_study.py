@@ -54,9 +54,11 @@ curves = {
 }
 figure, axes = plt.subplots(1, 4, figsize=(16, 3.8), sharey=True)
 summary = {"table_6_1_cone_performance_index_per_um": evaluated.performance_index * 1e-6,
-           "optimum": {"needles_per_row": best.needles_per_row, "tip_diameter_um": best.tip_diameter * 1e6,
-                       "base_diameter_um": best.base_diameter * 1e6, "width_um": best.width * 1e6,
-                       "length_um": best.length * 1e6, "performance_index_per_um": best.performance_index * 1e-6},
+           # SI floats shown in um, rounded to 1e-9 um so that the grid's 70 um reads 70, not 70.00000000000001
+           "optimum": {"needles_per_row": best.needles_per_row, "tip_diameter_um": round(best.tip_diameter * 1e6, 9),
+                       "base_diameter_um": round(best.base_diameter * 1e6, 9), "width_um": round(best.width * 1e6, 9),
+                       "length_um": round(best.length * 1e6, 9),
+                       "performance_index_per_um": best.performance_index * 1e-6},
            "sensitivity": {}}
 for axis, (name, values) in zip(axes, curves.items()):
     values = np.unique(np.append(values, around[name]))  # the curve passes through the optimum

@@ -1,7 +1,6 @@
 #include "needlekit/analysis/sensitivity_sweep.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <string>
@@ -12,27 +11,7 @@
 namespace needlekit::analysis {
 namespace {
 
-constexpr std::array<std::pair<SweepParameter, std::string_view>, 8> kNames{{
-    {SweepParameter::TipDiameter, "tip_diameter"},
-    {SweepParameter::BaseDiameter, "base_diameter"},
-    {SweepParameter::BoreDiameter, "bore_diameter"},
-    {SweepParameter::Length, "length"},
-    {SweepParameter::Width, "width"},
-    {SweepParameter::NeedlesPerRow, "needles_per_row"},
-    {SweepParameter::Angle, "angle"},
-    {SweepParameter::TargetDepth, "target_depth"},
-}};
-
 constexpr double kMaxPoints = 1e6;
-
-// `value` rounded to 12 significant digits, so that a decimal sweep lands exactly on the decimal values a user
-// compares with: 100 um + 1·50 um is then the same double as a base diameter given as "150 um", not 1 ulp above it.
-double decimal_rounded(double value) {
-  const std::string text = fmt::format("{:.12g}", value);
-  double rounded = value;
-  std::from_chars(text.data(), text.data() + text.size(), rounded);
-  return rounded;
-}
 
 // The values from, from + step, ..., <= to, with the checks of SweepOptions.
 std::vector<double> sweep_values(const SweepOptions& sweep) {
@@ -59,7 +38,8 @@ std::vector<double> sweep_values(const SweepOptions& sweep) {
   }
   std::vector<double> values(static_cast<std::size_t>(count));
   for (std::size_t i = 0; i < values.size(); ++i) {
-    values[i] = decimal_rounded(sweep.from + static_cast<double>(i) * sweep.step);
+    // 12 digits: 100 um + 1·50 um is then the same double as a base diameter given as "150 um", not 1 ulp above it.
+    values[i] = units::round_to_12_digits(sweep.from + static_cast<double>(i) * sweep.step);
   }
   return values;
 }
@@ -88,20 +68,10 @@ void apply(SweepParameter parameter, double value, ArrayDesign& design, Insertio
 
 }  // namespace
 
-std::string_view to_string(SweepParameter parameter) {
-  for (const auto& [p, name] : kNames) {
-    if (p == parameter) return name;
-  }
-  return "?";
-}
+std::string_view to_string(SweepParameter parameter) { return name_of(kSweepParameterNames, parameter); }
 
 SweepParameter sweep_parameter_from_string(std::string_view text, std::string_view what) {
-  for (const auto& [parameter, name] : kNames) {
-    if (name == text) return parameter;
-  }
-  std::vector<std::string_view> names;
-  for (const auto& entry : kNames) names.push_back(entry.second);
-  throw InvalidInput(fmt::format("{}: unknown parameter '{}', expected one of: {}", what, text, fmt::join(names, ", ")));
+  return value_of(kSweepParameterNames, text, what);
 }
 
 units::Dimension sweep_parameter_dimension(SweepParameter parameter) {

@@ -144,7 +144,23 @@ double parse_quantity(std::string_view text, Dimension expected, std::string_vie
   if (expected == Dimension::Dimensionless) {
     throw InvalidInput(fmt::format("{}: '{}' carries a unit but a dimensionless number is expected", what, text));
   }
-  return value * unit_factor(unit, expected, what);
+  return to_si(value, unit_factor(unit, expected, what));
+}
+
+double to_si(double value, double factor) {
+  // A decimal submultiple (um = 1e-6 m) divides by its exactly representable inverse: 200 / 1e6 is the double
+  // nearest to 0.0002, which prints back as 200 um; 200 * 1e-6 is 1 ulp below it (199.99999999999997 um).
+  const double inverse = std::round(1.0 / factor);
+  if (factor < 1 && inverse <= 1e15 && inverse * factor == 1.0) return value / inverse;
+  return value * factor;
+}
+
+double round_to_12_digits(double value) {
+  if (!std::isfinite(value) || value == 0) return value;
+  const std::string text = fmt::format("{:.12g}", value);
+  double rounded = value;
+  std::from_chars(text.data(), text.data() + text.size(), rounded);
+  return rounded;
 }
 
 std::string format(double value_si, std::string_view unit, int significant_digits) {

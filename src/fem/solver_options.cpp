@@ -6,33 +6,12 @@
 
 namespace needlekit::fem {
 
-std::string to_string(MaterialLaw law) { return law == MaterialLaw::NeoHookean ? "neo-hookean" : "svk"; }
-std::string to_string(ElementOrder order) { return order == ElementOrder::Quadratic ? "quadratic" : "linear"; }
-std::string to_string(ContactModel contact) { return contact == ContactModel::Surface ? "surface" : "tip-nodes"; }
-std::string to_string(LinearSolver solver) {
-  switch (solver) {
-    case LinearSolver::Cholesky: return "cholesky";
-    case LinearSolver::CholeskyCg: return "cholesky-cg";
-    case LinearSolver::TwoGrid: return "two-grid";
-    default: return "auto";
-  }
-}
-std::string to_string(BoundaryCondition c) {
-  switch (c) {
-    case BoundaryCondition::BottomFixed: return "bottom-fixed";
-    case BoundaryCondition::BottomFixedSidesRoller: return "bottom-fixed-sides-roller";
-    case BoundaryCondition::SymmetryPlanes: return "symmetry-planes";
-    case BoundaryCondition::QuarterSymmetry: return "quarter-symmetry";
-    default: return "sides-and-bottom-fixed";
-  }
-}
-std::string to_string(VolumetricFormulation f) {
-  switch (f) {
-    case VolumetricFormulation::Element: return "element";
-    case VolumetricFormulation::NodalAverage: return "nodal-average";
-    default: return "auto";
-  }
-}
+std::string to_string(MaterialLaw law) { return std::string(name_of(kMaterialLawNames, law)); }
+std::string to_string(ElementOrder order) { return std::string(name_of(kElementOrderNames, order)); }
+std::string to_string(ContactModel contact) { return std::string(name_of(kContactModelNames, contact)); }
+std::string to_string(LinearSolver solver) { return std::string(name_of(kLinearSolverNames, solver)); }
+std::string to_string(BoundaryCondition c) { return std::string(name_of(kBoundaryConditionNames, c)); }
+std::string to_string(VolumetricFormulation f) { return std::string(name_of(kVolumetricFormulationNames, f)); }
 std::string to_string(StepStatus status) {
   switch (status) {
     case StepStatus::Converged: return "converged";
@@ -45,42 +24,21 @@ std::string to_string(StepStatus status) {
   return "unknown";
 }
 
-namespace {
-[[noreturn]] void bad_choice(const std::string& what, const std::string& text, const std::string& expected) {
-  throw InvalidInput(what + " = \"" + text + "\": expected " + expected);
-}
-}  // namespace
 MaterialLaw material_law_from_string(const std::string& t, const std::string& what) {
-  if (t == "svk" || t == "st-venant-kirchhoff") return MaterialLaw::StVenantKirchhoff;
-  if (t == "neo-hookean") return MaterialLaw::NeoHookean;
-  bad_choice(what, t, "\"svk\" or \"neo-hookean\"");
+  if (t == "st-venant-kirchhoff") return MaterialLaw::StVenantKirchhoff;  // the long name, kept as an alias
+  return value_of(kMaterialLawNames, t, what);
 }
 ElementOrder element_order_from_string(const std::string& t, const std::string& what) {
-  if (t == "linear") return ElementOrder::Linear;
-  if (t == "quadratic") return ElementOrder::Quadratic;
-  bad_choice(what, t, "\"linear\" or \"quadratic\"");
+  return value_of(kElementOrderNames, t, what);
 }
 ContactModel contact_model_from_string(const std::string& t, const std::string& what) {
-  if (t == "tip-nodes") return ContactModel::TipNodes;
-  if (t == "surface") return ContactModel::Surface;
-  bad_choice(what, t, "\"tip-nodes\" or \"surface\"");
+  return value_of(kContactModelNames, t, what);
 }
 BoundaryCondition boundary_condition_from_string(const std::string& t, const std::string& what) {
-  if (t == "sides-and-bottom-fixed") return BoundaryCondition::SidesAndBottomFixed;
-  if (t == "bottom-fixed") return BoundaryCondition::BottomFixed;
-  if (t == "bottom-fixed-sides-roller") return BoundaryCondition::BottomFixedSidesRoller;
-  if (t == "symmetry-planes") return BoundaryCondition::SymmetryPlanes;
-  if (t == "quarter-symmetry") return BoundaryCondition::QuarterSymmetry;
-  bad_choice(what, t,
-             "\"sides-and-bottom-fixed\", \"bottom-fixed\", \"bottom-fixed-sides-roller\", \"symmetry-planes\" or "
-             "\"quarter-symmetry\"");
+  return value_of(kBoundaryConditionNames, t, what);
 }
-
 VolumetricFormulation volumetric_formulation_from_string(const std::string& t, const std::string& what) {
-  if (t == "auto") return VolumetricFormulation::Automatic;
-  if (t == "element") return VolumetricFormulation::Element;
-  if (t == "nodal-average") return VolumetricFormulation::NodalAverage;
-  bad_choice(what, t, "\"auto\", \"element\" or \"nodal-average\"");
+  return value_of(kVolumetricFormulationNames, t, what);
 }
 
 namespace {

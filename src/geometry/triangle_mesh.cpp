@@ -12,11 +12,11 @@
 #include <functional>
 #include <iterator>
 #include <limits>
-#include <random>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 
 namespace needlekit::geometry {
@@ -313,28 +313,7 @@ void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, doub
     bytes.append(2, '\0');  // attribute byte count
   }
 
-  // Write next to the target and rename, so that readers never see a partial file.
-  std::random_device random;
-  const std::filesystem::path temporary =
-      path.parent_path() / fmt::format(".{}.{:08x}.tmp", path.filename().string(), random());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(fmt::format("{}: cannot open '{}' for writing", path.string(), temporary.string()));
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw IoError(fmt::format("{}: writing the STL failed", path.string()));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw IoError(fmt::format("{}: cannot move the written STL into place: {}", path.string(), ec.message()));
-  }
+  write_file_atomically(path, bytes);  // readers never see a partial file
 }
 
 TriangleMesh welded_mesh(const TriangleMesh& mesh) {

@@ -74,6 +74,17 @@ PuncturePoint puncture_in_first_step(fem::QuasiStaticSolver& solver, const Inden
 
 }  // namespace
 
+double tissue_height(const IndentationCase& c) {
+  if (c.tissue_mesh) {
+    double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& p : c.tissue_mesh->nodes) top = std::max(top, p.z()), bottom = std::min(bottom, p.z());
+    return c.tissue_mesh->nodes.empty() ? 0.0 : top - bottom;
+  }
+  double height = 0;
+  for (const mesh::TissueLayer& layer : c.block.layers) height += layer.thickness;
+  return height;
+}
+
 std::string to_string(IndentationStatus status) {
   switch (status) {
     case IndentationStatus::Punctured: return "punctured";
@@ -108,6 +119,25 @@ void validate(const IndentationCase& c) {
   }
   if (!std::isfinite(c.depth) || !(c.depth > 0)) {
     throw InvalidInput(fmt::format("loading.depth: {} is not positive, expected a depth > 0", um(c.depth)));
+  }
+  const double height = tissue_height(c);
+  if (height > 0 && !(c.depth < height)) {
+    throw InvalidInput(fmt::format("loading.depth: {} reaches through the {} high tissue block, expected a depth below "
+                                   "its height (tissue.height or the layers' thicknesses)",
+                                   um(c.depth), um(height)));
+  }
+  if (!c.tissue_mesh) {  // the mesh sizes under the case file's keys (the CLI's overrides land here too)
+    for (const auto& [key, size] : {std::pair{"mesh.size_at_tip", c.block.size_at_site},
+                                    std::pair{"mesh.size_far", c.block.size_far}}) {
+      if (!std::isfinite(size) || !(size > 0)) {
+        throw InvalidInput(fmt::format("{}: {} is not positive, expected a size > 0", key, um(size)));
+      }
+    }
+    if (c.block.size_far < c.block.size_at_site) {
+      throw InvalidInput(fmt::format("mesh.size_far: {} is smaller than mesh.size_at_tip = {}, expected size_far >= "
+                                     "size_at_tip",
+                                     um(c.block.size_far), um(c.block.size_at_site)));
+    }
   }
   if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
       (c.tissue_mesh || !c.block.split)) {

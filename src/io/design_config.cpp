@@ -41,16 +41,11 @@ void read_insertion(const Section& section, DesignFile& file) {
   }
   if (const toml::node* node = section.optional("end_condition")) {
     file.options.buckling.end_condition =
-        choice_of<analysis::EndCondition>(section, *node, "end_condition",
-                                          {{"fixed-free", analysis::EndCondition::FixedFree},
-                                           {"fixed-pinned", analysis::EndCondition::FixedPinned},
-                                           {"fixed-fixed", analysis::EndCondition::FixedFixed}});
+        choice_of(section, *node, "end_condition", analysis::kEndConditionNames);
   }
   if (const toml::node* node = section.optional("effective_length")) {
     file.options.buckling.effective_length =
-        choice_of<analysis::EffectiveLengthValue>(section, *node, "effective_length",
-                                                  {{"theoretical", analysis::EffectiveLengthValue::Theoretical},
-                                                   {"practical", analysis::EffectiveLengthValue::Practical}});
+        choice_of(section, *node, "effective_length", analysis::kEffectiveLengthNames);
   }
   if (const toml::node* node = section.optional("johnson")) {
     file.options.buckling.johnson_for_short_columns = boolean_of(section, *node, "johnson");
@@ -210,6 +205,20 @@ DesignFile read_needle_tables(const toml::table& root, const Section& top, const
           "insertion", {"angle", "target_depth", "application", "buckling_safety_factor", "bending_safety_factor",
                         "end_condition", "effective_length", "johnson"})) {
     read_insertion(*insertion, result);
+    // Options of the uniform-column formulas (Eqs 2.28, 2.35) do not apply to a cone's or a bevel's tapered column
+    // (Eq 2.36 with m computed from its exact end conditions): an error, not silently ignored.
+    if (result.design.needle.shape != needle::Shape::Cylinder) {
+      for (std::string_view key : {"effective_length", "johnson"}) {
+        if (const toml::node* node = insertion->optional(key)) {
+          insertion->fail(*node, key,
+                          fmt::format("does not apply to a {}: it selects a uniform column's formula (cylinders "
+                                      "only), while a {}'s buckling load is the eigenvalue of its own tapered column; "
+                                      "remove it",
+                                      needle::to_string(result.design.needle.shape),
+                                      needle::to_string(result.design.needle.shape)));
+        }
+      }
+    }
   }
 
   validate_at_keys(root, file, needle.table(), [&] {

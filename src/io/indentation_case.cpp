@@ -108,80 +108,63 @@ std::vector<insertion::NeedleSite> read_sites(const Section& top, double default
 
 void read_model(const Section& section, fem::SolverOptions& solver) {
   if (const toml::node* node = section.optional("law")) {
-    solver.law = choice_of<fem::MaterialLaw>(section, *node, "law",
-                                             {{"svk", fem::MaterialLaw::StVenantKirchhoff},
-                                              {"st-venant-kirchhoff", fem::MaterialLaw::StVenantKirchhoff},
-                                              {"neo-hookean", fem::MaterialLaw::NeoHookean}});
+    solver.law = choice_of(section, *node, "law", fem::kMaterialLawNames);
   }
   if (const toml::node* node = section.optional("contact")) {
-    solver.contact = choice_of<fem::ContactModel>(
-        section, *node, "contact", {{"tip-nodes", fem::ContactModel::TipNodes}, {"surface", fem::ContactModel::Surface}});
+    solver.contact = choice_of(section, *node, "contact", fem::kContactModelNames);
   }
   if (const toml::node* node = section.optional("element")) {
-    solver.order = choice_of<fem::ElementOrder>(
-        section, *node, "element", {{"linear", fem::ElementOrder::Linear}, {"quadratic", fem::ElementOrder::Quadratic}});
+    solver.order = choice_of(section, *node, "element", fem::kElementOrderNames);
   }
   if (const toml::node* node = section.optional("boundary")) {
-    solver.boundary = choice_of<fem::BoundaryCondition>(
-        section, *node, "boundary",
-        {{"sides-and-bottom-fixed", fem::BoundaryCondition::SidesAndBottomFixed},
-         {"bottom-fixed", fem::BoundaryCondition::BottomFixed},
-         {"bottom-fixed-sides-roller", fem::BoundaryCondition::BottomFixedSidesRoller}});
+    solver.boundary = choice_of(section, *node, "boundary", fem::kBoundaryConditionNames);
   }
 }
 
 // [solver]: Newton tolerances and strategy (fem::SolverOptions; defaults and meanings in quasi_static_solver.hpp).
 void read_solver(const Section& section, fem::SolverOptions& solver) {
-  // Surface-contact options do not apply to the tip-node rule ([model] is read before [solver]).
-  if (solver.contact == fem::ContactModel::TipNodes) {
-    for (std::string_view key : {"penalty_factor", "penetration_tolerance"}) {
-      if (const toml::node* node = section.optional(key)) {
-        section.fail(*node, key, "applies to [model] contact = \"surface\" only, the case uses contact = \"tip-nodes\"");
+  for (const auto& parameter : kSolverTolerances) {  // declared once in indentation_case.hpp
+    if (const toml::node* node = section.optional(parameter.key)) {
+      if (!node->is_number()) {
+        section.fail(*node, parameter.key,
+                     fmt::format("{} is not a number, expected a number {}", describe(*node), parameter.range()));
       }
+      const double value = *node->value<double>();
+      if (!parameter.accepts(value)) {
+        section.fail(*node, parameter.key,
+                     fmt::format("{} is out of range, expected a number {}", describe(*node), parameter.range()));
+      }
+      solver.*parameter.field = value;
     }
   }
-  const auto fraction = [&](std::string_view key, double& target) {
-    if (const toml::node* node = section.optional(key)) {
-      const double value = number_at_least(section, *node, key, 0.0);
-      if (!(value > 0 && value < 1)) {
-        section.fail(*node, key, fmt::format("{} is out of range, expected a number in (0, 1)", value));
+  for (const auto& parameter : kSolverCounts) {
+    if (const toml::node* node = section.optional(parameter.key)) {
+      const std::int64_t value = integer_of(section, *node, parameter.key);
+      if (!parameter.accepts(static_cast<double>(value)) || value > INT_MAX) {
+        section.fail(*node, parameter.key,
+                     fmt::format("{} is out of range, expected an integer {}", value, parameter.range()));
       }
-      target = value;
+      solver.*parameter.field = static_cast<int>(value);
     }
-  };
-  fraction("residual_tolerance", solver.residual_tolerance);
-  fraction("displacement_tolerance", solver.displacement_tolerance);
-  fraction("energy_tolerance", solver.energy_tolerance);
-  fraction("penetration_tolerance", solver.penetration_tolerance);
-  if (const toml::node* node = section.optional("max_iterations")) {
-    solver.max_iterations = integer_at_least(section, *node, "max_iterations", 1);
-  }
-  if (const toml::node* node = section.optional("max_cutbacks")) {
-    solver.max_cutbacks = integer_at_least(section, *node, "max_cutbacks", 0);
   }
   if (const toml::node* node = section.optional("predictor")) {
-    solver.extrapolate_predictor =
-        choice_of<bool>(section, *node, "predictor", {{"secant", true}, {"linearised", false}});
+    solver.extrapolate_predictor = choice_of(section, *node, "predictor", kPredictorNames);
   }
   if (const toml::node* node = section.optional("linear_solver")) {
-    solver.linear_solver = choice_of<fem::LinearSolver>(section, *node, "linear_solver",
-                                                        {{"auto", fem::LinearSolver::Automatic},
-                                                         {"cholesky", fem::LinearSolver::Cholesky},
-                                                         {"cholesky-cg", fem::LinearSolver::CholeskyCg},
-                                                         {"two-grid", fem::LinearSolver::TwoGrid}});
+    solver.linear_solver = choice_of(section, *node, "linear_solver", fem::kLinearSolverNames);
   }
   if (const toml::node* node = section.optional("volumetric")) {
-    solver.volumetric = choice_of<fem::VolumetricFormulation>(section, *node, "volumetric",
-                                                              {{"auto", fem::VolumetricFormulation::Automatic},
-                                                               {"element", fem::VolumetricFormulation::Element},
-                                                               {"nodal-average", fem::VolumetricFormulation::NodalAverage}});
+    solver.volumetric = choice_of(section, *node, "volumetric", fem::kVolumetricFormulationNames);
   }
-  if (const toml::node* node = section.optional("penalty_factor")) {
-    const double value = number_at_least(section, *node, "penalty_factor", 0.0);
-    if (!(value > 0)) section.fail(*node, "penalty_factor", "0 is out of range, expected a number > 0");
-    solver.penalty_factor = value;
+  if (solver.contact != fem::ContactModel::Surface) {  // settings of the surface contact: not silently ignored
+    for (std::string_view key : {"penalty_factor", "penetration_tolerance"}) {
+      if (const toml::node* node = section.optional(key)) {
+        section.fail(*node, key,
+                     fmt::format("applies only to [model] contact = \"surface\", but contact = \"{}\"; remove it",
+                                 name_of(fem::kContactModelNames, solver.contact)));
+      }
+    }
   }
-  if (const toml::node* node = section.optional("threads")) solver.threads = integer_at_least(section, *node, "threads", 0);
 }
 
 // toughness_from = { first = "a.csv", second = "b.csv", crack_area = "6661 um2", min_depth?, max_depth? }: J of
@@ -265,11 +248,11 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   if (const auto model = top.optional_subsection("model", {"law", "contact", "element", "boundary"})) {
     read_model(*model, result.solver);
   }
-  if (const auto solver = top.optional_subsection(
-          "solver", {"residual_tolerance", "displacement_tolerance", "energy_tolerance", "penetration_tolerance",
-                     "max_iterations", "max_cutbacks", "predictor", "linear_solver", "volumetric", "penalty_factor",
-                     "threads"})) {
-    read_solver(*solver, result.solver);
+  if (const toml::node* node = top.optional("solver")) {
+    std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric"};
+    for (const auto& parameter : kSolverTolerances) keys.push_back(parameter.key);
+    for (const auto& parameter : kSolverCounts) keys.push_back(parameter.key);
+    read_solver(top.subsection(*node, "solver", keys), result.solver);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
     result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);

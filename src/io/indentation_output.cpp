@@ -6,8 +6,10 @@
 #include <sstream>
 #include <utility>
 
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/scale_warnings.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -15,8 +17,6 @@ namespace {
 nlohmann::json number_or_null(const std::optional<double>& value, double scale) {
   return value ? nlohmann::json(*value * scale) : nlohmann::json(nullptr);
 }
-
-std::string to_name(fem::MaterialLaw law) { return law == fem::MaterialLaw::NeoHookean ? "neo-hookean" : "svk"; }
 
 }  // namespace
 
@@ -158,11 +158,11 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["elements"] = result.elements;
   json["nodes"] = result.nodes;
   json["dofs"] = result.dofs;
-  json["linear_solver"] = fem::to_string(result.linear_solver);
-  json["law"] = to_name(c.solver.law);
-  json["element"] = c.solver.order == fem::ElementOrder::Quadratic ? "quadratic" : "linear";
-  json["contact"] = c.solver.contact == fem::ContactModel::Surface ? "surface" : "tip-nodes";
-  json["boundary"] = fem::to_string(c.solver.boundary);
+  json["linear_solver"] = name_of(fem::kLinearSolverNames, result.linear_solver);
+  json["law"] = name_of(fem::kMaterialLawNames, c.solver.law);
+  json["element"] = name_of(fem::kElementOrderNames, c.solver.order);
+  json["contact"] = name_of(fem::kContactModelNames, c.solver.contact);
+  json["boundary"] = name_of(fem::kBoundaryConditionNames, c.solver.boundary);
   nlohmann::json needles = nlohmann::json::array();
   for (const insertion::NeedleSite& site : c.needles) {
     needles.push_back({{"x_um", site.position.x() * 1e6}, {"y_um", site.position.y() * 1e6},
@@ -181,6 +181,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
                        {"mean_quality", q.mean_quality}});
   }
   json["mesh_quality"] = quality;
+  json["notes"] = indentation_scale_warnings(c);
   json["mesh_seconds"] = result.mesh_seconds;
   json["setup_seconds"] = result.setup_seconds;
   json["total_seconds"] = result.total_seconds;
@@ -189,12 +190,13 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
 
 IndentationWriter::IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& c)
     : directory_(std::move(directory)), case_(c) {
-  std::error_code error;
-  std::filesystem::create_directories(directory_, error);
-  if (error) throw IoError(fmt::format("{}: cannot create the output directory: {}", directory_.string(), error.message()));
+  create_output_directory(directory_);
 }
 
-void IndentationWriter::set_mesh(const mesh::TetMesh& tissue) { tissue_ = tissue; }
+void IndentationWriter::set_mesh(const mesh::TetMesh& tissue) {
+  tissue_ = tissue;
+  partial_.elements = static_cast<int>(tissue.tets.size());
+}
 
 void IndentationWriter::remember(const std::filesystem::path& path) {
   if (std::find(files_.begin(), files_.end(), path) == files_.end()) files_.push_back(path);
@@ -213,9 +215,22 @@ void IndentationWriter::write_step(const insertion::IndentationStep& step, const
   for (const std::string& name : {tissue_name, needle_name, case_.name + ".pvd", case_.name + "_needles.pvd"}) {
     remember(directory_ / name);
   }
-  // The curves so far, so that an interrupted run keeps them too.
+  // The curves so far, so that an interrupted run keeps them too, and a result that says they are incomplete until
+  // finish() replaces it.
   partial_.steps.push_back(step);
   write_curves(partial_);
+  nlohmann::json json = indentation_json(case_, partial_);
+  json["status"] = "incomplete";
+  json["reason"] = fmt::format("the run had completed {} of {} load steps when this was written; it stopped there "
+                               "(interrupted or killed) or is still running",
+                               partial_.steps.size(), case_.steps);
+  write_result(json);
+}
+
+void IndentationWriter::write_result(const nlohmann::json& json) {
+  const std::filesystem::path path = directory_ / (case_.name + "_result.json");
+  write_text_file_atomically(path, json.dump(2) + "\n");
+  remember(path);
 }
 
 void IndentationWriter::write_curves(const insertion::IndentationResult& result) {
@@ -235,7 +250,7 @@ void IndentationWriter::finish(const insertion::IndentationResult& result) {
   };
   write_curves(result);
   write("_puncture.json", puncture_json(case_, result).dump(2) + "\n");
-  write("_result.json", indentation_json(case_, result).dump(2) + "\n");
+  write_result(indentation_json(case_, result));
 }
 
 }  // namespace needlekit::io

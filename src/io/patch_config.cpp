@@ -44,16 +44,13 @@ void read_surface(const Section& t, const std::filesystem::path& base, PatchCase
     c.placement.rotation = quantity_of(t, *node, "rotation", Dimension::Angle);
   }
   if (const toml::node* node = t.optional("approach")) {
-    c.placement.approach = choice_of<patch::Approach>(
-        t, *node, "approach", {{"-z", patch::Approach::MinusZ}, {"normal", patch::Approach::SurfaceNormal}});
+    c.placement.approach = choice_of(t, *node, "approach", patch::kApproachNames);
   }
 }
 
 void read_patch(const Section& t, PatchCase& c) {
-  c.fit.kind = choice_of<patch::PatchKind>(t, t.required("kind", "\"rigid\", \"flexible\" or \"equilibrium\""), "kind",
-                                           {{"rigid", patch::PatchKind::Rigid},
-                                            {"flexible", patch::PatchKind::Flexible},
-                                            {"equilibrium", patch::PatchKind::Equilibrium}});
+  c.fit.kind = choice_of(t, t.required("kind", "one of: " + choices_of(patch::kPatchKindNames)), "kind",
+                         patch::kPatchKindNames);
   c.design.width_u = c.design.width_v = positive_quantity(t, "size", Dimension::Length);
   const toml::node& count = t.required("needles_per_row", "an integer >= 2");
   c.design.needles_u = c.design.needles_v = integer_at_least(t, count, "needles_per_row", 2);
@@ -74,17 +71,28 @@ void read_patch(const Section& t, PatchCase& c) {
            fmt::format("missing for a flexible patch, expected {}", expected_quantity(Dimension::Energy)));
   }
   if (const toml::node* node = t.optional("first_node")) {
-    c.fit.flexible.first_node = choice_of<patch::FirstNode>(
-        t, *node, "first_node", {{"first-contact", patch::FirstNode::FirstContact}, {"corner", patch::FirstNode::Corner}});
+    c.fit.flexible.first_node = choice_of(t, *node, "first_node", patch::kFirstNodeNames);
   }
   if (const toml::node* node = t.optional("walk")) {
-    c.fit.flexible.walk = choice_of<patch::WalkMethod>(
-        t, *node, "walk", {{"cutting-plane", patch::WalkMethod::CuttingPlane}, {"unfolding", patch::WalkMethod::Unfolding}});
+    c.fit.flexible.walk = choice_of(t, *node, "walk", patch::kWalkMethodNames);
   }
   if (const auto load = optional_positive_quantity(t, "load", Dimension::Force)) {
     c.fit.equilibrium.node_load = *load;
     c.load_given = true;
   }
+  // Keys of one kind of patch given for another: an error rather than silently ignored.
+  const auto only_for = [&](patch::PatchKind kind, std::initializer_list<std::string_view> keys) {
+    if (c.fit.kind == kind) return;
+    for (std::string_view key : keys) {
+      if (const toml::node* node = t.optional(key)) {
+        t.fail(*node, key,
+               fmt::format("applies only to kind = \"{}\", but kind = \"{}\"; remove it", patch::to_string(kind),
+                           patch::to_string(c.fit.kind)));
+      }
+    }
+  };
+  only_for(patch::PatchKind::Flexible, {"max_spring_energy", "first_node", "walk"});
+  only_for(patch::PatchKind::Equilibrium, {"load"});
 }
 
 }  // namespace

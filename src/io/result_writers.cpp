@@ -1,26 +1,21 @@
 #include "needlekit/io/result_writers.hpp"
 
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <fmt/format.h>
-#include <fstream>
 
-#include "needlekit/core/errors.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/units.hpp"
 
 namespace needlekit::io {
 namespace {
 
-// SI to the dissertation's units.
-constexpr double um(double metres) { return metres * 1e6; }
-constexpr double um2(double square_metres) { return square_metres * 1e12; }
-constexpr double um3(double cubic_metres) { return cubic_metres * 1e18; }
-constexpr double per_um(double per_metre) { return per_metre * 1e-6; }
-constexpr double gpa(double pascals) { return pascals * 1e-9; }
-constexpr double mpa(double pascals) { return pascals * 1e-6; }
+// SI to the dissertation's units, to 12 significant digits (a value the user gave comes back as given).
+double um(double metres) { return units::round_to_12_digits(metres * 1e6); }
+double um2(double square_metres) { return units::round_to_12_digits(square_metres * 1e12); }
+double um3(double cubic_metres) { return units::round_to_12_digits(cubic_metres * 1e18); }
+double per_um(double per_metre) { return units::round_to_12_digits(per_metre * 1e-6); }
+double gpa(double pascals) { return units::round_to_12_digits(pascals * 1e-9); }
+double mpa(double pascals) { return units::round_to_12_digits(pascals * 1e-6); }
 
 template <class Value, class Convert>
 nlohmann::json optional_json(const std::optional<Value>& value, Convert&& convert) {
@@ -187,25 +182,7 @@ nlohmann::json sweep_json(const analysis::SweepResult& sweep) {
 }
 
 void write_text_file_atomically(const std::filesystem::path& path, std::string_view content) {
-  const std::filesystem::path temporary =
-      path.parent_path() / fmt::format("{}.tmp-{}", path.filename().string(), ::getpid());
-  std::error_code ignored;
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(fmt::format("{}: cannot write: {}", path.string(), std::strerror(errno)));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      std::filesystem::remove(temporary, ignored);
-      throw IoError(fmt::format("{}: cannot write: {}", path.string(), std::strerror(errno)));
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, ignored);
-    throw IoError(fmt::format("{}: cannot write: {}", path.string(), error.message()));
-  }
+  write_file_atomically(path, content);
 }
 
 }  // namespace needlekit::io

@@ -119,6 +119,12 @@ TissueCase tissue_case_of(const toml::table& root, std::string_view file, const 
   TissueCase tissue;
   mesh::LayeredBlockOptions& o = tissue.block;
   o.layers = materials::skin_layers();
+  if (!root.get("tissue")) {  // an empty file would mesh the default block without a word
+    throw InvalidInput(fmt::format("{}:1: missing table [tissue], expected a table [tissue] with preset = \"{}\" "
+                                   "(or another of: {}) or [[tissue.layers]]",
+                                   file, materials::tissue_preset_names().front(),
+                                   fmt::join(materials::tissue_preset_names(), ", ")));
+  }
   if (const toml::node* node = root.get("tissue")) {
     const Section tissue = table_of(*node, "tissue", file, {"width", "length", "height", "preset", "layers"});
     if (auto w = optional_positive_quantity(tissue, "width", Dimension::Length)) o.width = *w;

@@ -21,6 +21,7 @@
 
 #include "needlekit/analysis/puncture_model.hpp"
 #include "needlekit/analysis/skin_permeation.hpp"
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/materials/needle_material.hpp"
@@ -71,6 +72,9 @@ class Section {
 public:
   Section(const toml::table& table, std::string path, std::string_view file,
           std::initializer_list<std::string_view> allowed_keys)
+      : Section(table, std::move(path), file, std::vector<std::string_view>(allowed_keys)) {}
+  Section(const toml::table& table, std::string path, std::string_view file,
+          const std::vector<std::string_view>& allowed_keys)
       : table_(table), path_(std::move(path)), file_(file) {
     for (auto&& [key, node] : table_) {
       bool known = false;
@@ -106,6 +110,10 @@ public:
 
   Section subsection(const toml::node& node, std::string_view key,
                      std::initializer_list<std::string_view> allowed_keys) const {
+    return subsection(node, key, std::vector<std::string_view>(allowed_keys));
+  }
+  Section subsection(const toml::node& node, std::string_view key,
+                     const std::vector<std::string_view>& allowed_keys) const {
     if (!node.is_table()) {
       fail(node, key, fmt::format("{} is not a table, expected a table with keys {}", describe(node),
                                   fmt::join(allowed_keys, ", ")));
@@ -214,16 +222,14 @@ inline bool boolean_of(const Section& section, const toml::node& node, std::stri
   return node.as_boolean()->get();
 }
 
-template <class Value>
-Value choice_of(const Section& section, const toml::node& node, std::string_view key,
-                std::initializer_list<std::pair<std::string_view, Value>> choices) {
-  std::vector<std::string_view> names;
-  for (const auto& [name, value] : choices) names.push_back(name);
-  const std::string text = text_of(section, node, key, fmt::format("one of: {}", fmt::join(names, ", ")));
-  for (const auto& [name, value] : choices) {
-    if (text == name) return value;
+// One of the names of an enum's table (core/enum_table.hpp), the same table that the help and the JSON use.
+template <class Value, std::size_t N>
+Value choice_of(const Section& section, const toml::node& node, std::string_view key, const EnumTable<Value, N>& table) {
+  const std::string text = text_of(section, node, key, "one of: " + choices_of(table));
+  for (const EnumEntry<Value>& entry : table) {
+    if (entry.name == text) return entry.value;
   }
-  section.fail(node, key, fmt::format("unknown value '{}', expected one of: {}", text, fmt::join(names, ", ")));
+  section.fail(node, key, fmt::format("unknown value '{}', expected one of: {}", text, choices_of(table)));
 }
 
 // Runs a library validation and reports its InvalidInput at `node`'s line.
@@ -238,9 +244,8 @@ void validate_at_node(const Section& section, const toml::node& node, Validation
 // ---- the parts shared by both files -------------------------------------------------------------------------------
 
 inline needle::Shape shape_of(const Section& section, std::string_view key) {
-  const toml::node& node = section.required(key, "\"cylinder\", \"cone\" or \"bevel\"");
-  const std::string text = text_of(section, node, key, "\"cylinder\", \"cone\" or \"bevel\"");
-  return section.at(node, [&] { return needle::shape_from_string(text, section.what(key)); });
+  return choice_of(section, section.required(key, "one of: " + choices_of(needle::kShapeNames)), key,
+                   needle::kShapeNames);
 }
 
 inline materials::NeedleMaterial material_of(const Section& parent, std::string_view key) {

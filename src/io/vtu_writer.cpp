@@ -11,7 +11,7 @@
 #include <string>
 
 #include "needlekit/core/errors.hpp"
-#include "needlekit/io/result_writers.hpp"
+#include "needlekit/core/atomic_file.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -77,7 +77,7 @@ std::string data_array_xml(const AppendedArray& a, std::uint64_t offset) {
 
 }  // namespace
 
-void write_vtu(const VtuGrid& grid, const std::filesystem::path& path) {
+std::string vtu_document(const VtuGrid& grid, const std::filesystem::path& path) {
   const std::size_t points = grid.points.size();
   const std::size_t cells = grid.cells.size();
   if (grid.cell_types.size() != cells) {
@@ -155,10 +155,14 @@ void write_vtu(const VtuGrid& grid, const std::filesystem::path& path) {
     if (arrays[k].bytes > 0) std::memcpy(at + sizeof(std::uint64_t), arrays[k].data, arrays[k].bytes);
   }
   xml += "\n  </AppendedData>\n</VTKFile>\n";
-  write_text_file_atomically(path, xml);
+  return xml;
 }
 
-void write_pvd(const std::vector<PvdEntry>& entries, const std::filesystem::path& path) {
+void write_vtu(const VtuGrid& grid, const std::filesystem::path& path) {
+  write_file_atomically(path, vtu_document(grid, path));
+}
+
+std::string pvd_document(const std::vector<PvdEntry>& entries) {
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -168,7 +172,11 @@ void write_pvd(const std::vector<PvdEntry>& entries, const std::filesystem::path
                        xml_escaped(e.file.generic_string()));
   }
   xml += "  </Collection>\n</VTKFile>\n";
-  write_text_file_atomically(path, xml);
+  return xml;
+}
+
+void write_pvd(const std::vector<PvdEntry>& entries, const std::filesystem::path& path) {
+  write_file_atomically(path, pvd_document(entries));
 }
 
 }  // namespace needlekit::io

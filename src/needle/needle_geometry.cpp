@@ -9,21 +9,9 @@
 
 namespace needlekit::needle {
 
-std::string_view to_string(Shape shape) {
-  switch (shape) {
-    case Shape::Cylinder: return "cylinder";
-    case Shape::Cone: return "cone";
-    case Shape::Bevel: return "bevel";
-  }
-  return "?";
-}
+std::string_view to_string(Shape shape) { return name_of(kShapeNames, shape); }
 
-Shape shape_from_string(std::string_view text, std::string_view what) {
-  if (text == "cylinder") return Shape::Cylinder;
-  if (text == "cone") return Shape::Cone;
-  if (text == "bevel") return Shape::Bevel;
-  throw InvalidInput(fmt::format("{}: unknown needle shape '{}', expected one of: cylinder, cone, bevel", what, text));
-}
+Shape shape_from_string(std::string_view text, std::string_view what) { return value_of(kShapeNames, text, what); }
 
 void validate(const NeedleGeometry& n, std::string_view where) {
   auto positive = [&](double v, std::string_view key) {

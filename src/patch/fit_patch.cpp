@@ -6,21 +6,10 @@
 
 namespace needlekit::patch {
 
-std::string_view to_string(PatchKind kind) {
-  switch (kind) {
-    case PatchKind::Rigid: return "rigid";
-    case PatchKind::Flexible: return "flexible";
-    case PatchKind::Equilibrium: return "equilibrium";
-  }
-  return "?";
-}
+std::string_view to_string(PatchKind kind) { return name_of(kPatchKindNames, kind); }
 
 PatchKind patch_kind_from_string(std::string_view text, std::string_view what) {
-  for (const PatchKind kind : {PatchKind::Rigid, PatchKind::Flexible, PatchKind::Equilibrium}) {
-    if (text == to_string(kind)) return kind;
-  }
-  throw InvalidInput(fmt::format("{}: unknown patch kind '{}', expected \"rigid\", \"flexible\" or \"equilibrium\"",
-                                 what, text));
+  return value_of(kPatchKindNames, text, what);
 }
 
 FittedPatch fit_patch(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,

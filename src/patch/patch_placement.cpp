@@ -8,13 +8,7 @@
 
 namespace needlekit::patch {
 
-std::string_view to_string(Approach approach) {
-  switch (approach) {
-    case Approach::MinusZ: return "-z";
-    case Approach::SurfaceNormal: return "normal";
-  }
-  return "?";
-}
+std::string_view to_string(Approach approach) { return name_of(kApproachNames, approach); }
 
 PatchFrame patch_frame(const geometry::SurfaceMesh& surface, const Placement& placement, double patch_diagonal,
                        double needle_length) {

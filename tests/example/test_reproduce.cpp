@@ -4,8 +4,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -16,6 +14,7 @@
 #include <string>
 #include <thread>
 #include "../support/cli_run.hpp"
+#include "../support/cli_signal.hpp"
 
 using needlekit::test::CliRun;
 using needlekit::test::file_text;
@@ -199,31 +198,17 @@ TEST(ReproduceBadInput, MissingMeshFolderExitsWithCode2BeforeRunning) {
 // report and no staging folder left behind.
 TEST(ReproduceBadInput, CtrlCLeavesNoHalfWrittenReport) {
   const fs::path dir = fresh_dir("sigint");
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::setpgid(0, 0);
-    ::chdir(dir.c_str());
-    std::FILE* err = std::freopen("stderr.txt", "w", stderr);
-    std::FILE* out = std::freopen("stdout.txt", "w", stdout);
-    (void)err;
-    (void)out;
-    ::execl(NEEDLEKIT_CLI, NEEDLEKIT_CLI, "reproduce", "--quick", "--out", "out", static_cast<char*>(nullptr));
-    std::_Exit(127);
-  }
-  ::setpgid(pid, pid);
-  // Wait until the run is under way (its staging folder exists), then interrupt it.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (!leaves_staging_behind(dir / "out") && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  ::kill(-pid, SIGINT);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130) << file_text(dir / "stderr.txt");
-  EXPECT_THAT(file_text(dir / "stderr.txt"), HasSubstr("interrupted"));
+  // Interrupted once the run is under way (its staging folder exists).
+  const CliRun run = needlekit::test::run_cli_and_signal(
+      dir, {"reproduce", "--quick", "--out", "out"},
+      [&] {
+        if (!leaves_staging_behind(dir / "out")) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        return true;
+      },
+      SIGINT);
+  EXPECT_EQ(run.exit_code, 130) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("interrupted"));
   EXPECT_FALSE(fs::exists(dir / "out" / "report.html"));
   EXPECT_FALSE(leaves_staging_behind(dir / "out"));
   fs::remove_all(dir);

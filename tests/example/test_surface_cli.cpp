@@ -47,20 +47,22 @@ std::string cube_obj(bool flip_one) {
 TEST(SurfaceCli, ReportsACubeAndTheGeodesicBetweenOppositeCorners) {
   const auto dir = needlekit::test::scratch_directory("surface_cli_cube");
   needlekit::test::write_text(dir / "cube.obj", cube_obj(false));
-  const auto [code, out] = run_cli("surface '" + (dir / "cube.obj").string() + "' --unit mm --json --geodesic 0 7");
+  // In cm (a 2 mm cube would be an implausibly small body surface: a warning on the merged output).
+  const auto [code, out] = run_cli("surface '" + (dir / "cube.obj").string() + "' --unit cm --json --geodesic 0 7");
   ASSERT_EQ(code, 0) << out;
   const auto report = nlohmann::json::parse(out);
   EXPECT_EQ(report["vertices"], 8);
   EXPECT_EQ(report["triangles"], 12);
   EXPECT_EQ(report["closed"], true);
   EXPECT_EQ(report["coincident_vertices"], 0);
-  EXPECT_NEAR(report["area_mm2"].get<double>(), 24.0, 1e-9);
-  EXPECT_NEAR(report["volume_mm3"].get<double>(), 8.0, 1e-9);
-  EXPECT_NEAR(report["size_mm"][0].get<double>(), 2.0, 1e-12);
-  // Opposite corners of a 2 mm cube: across two faces unfolded into a 2 x 4 rectangle, sqrt(20) mm.
+  EXPECT_NEAR(report["area_mm2"].get<double>(), 2400.0, 1e-7);
+  EXPECT_NEAR(report["volume_mm3"].get<double>(), 8000.0, 1e-6);
+  EXPECT_NEAR(report["size_mm"][0].get<double>(), 20.0, 1e-11);
+  EXPECT_TRUE(report["notes"].empty());
+  // Opposite corners of a 2 cm cube: across two faces unfolded into a 2 x 4 rectangle, sqrt(20) cm.
   EXPECT_EQ(report["geodesic"]["status"], "converged");
-  EXPECT_NEAR(report["geodesic"]["distance_mm"].get<double>(), std::sqrt(20.0), 1e-9);
-  EXPECT_NEAR(report["geodesic"]["euclidean_mm"].get<double>(), std::sqrt(12.0), 1e-12);
+  EXPECT_NEAR(report["geodesic"]["distance_mm"].get<double>(), 10 * std::sqrt(20.0), 1e-8);
+  EXPECT_NEAR(report["geodesic"]["euclidean_mm"].get<double>(), 10 * std::sqrt(12.0), 1e-11);
 }
 
 TEST(SurfaceCli, WeldsSplitSeams) {
@@ -72,11 +74,11 @@ TEST(SurfaceCli, WeldsSplitSeams) {
   ASSERT_NE(top, std::string::npos);
   obj.replace(top, 16, "f 9 10 11\nf 10 12 11\n");
   needlekit::test::write_text(dir / "seams.obj", obj);
-  const auto split = run_cli("surface '" + (dir / "seams.obj").string() + "' --unit mm --json");
+  const auto split = run_cli("surface '" + (dir / "seams.obj").string() + "' --unit cm --json");
   ASSERT_EQ(split.first, 0) << split.second;
   EXPECT_EQ(nlohmann::json::parse(split.second)["closed"], false);
   EXPECT_EQ(nlohmann::json::parse(split.second)["coincident_vertices"], 4);
-  const auto welded = run_cli("surface '" + (dir / "seams.obj").string() + "' --unit mm --json --weld");
+  const auto welded = run_cli("surface '" + (dir / "seams.obj").string() + "' --unit cm --json --weld");
   ASSERT_EQ(welded.first, 0) << welded.second;
   EXPECT_EQ(nlohmann::json::parse(welded.second)["closed"], true);
   EXPECT_EQ(nlohmann::json::parse(welded.second)["vertices"], 8);

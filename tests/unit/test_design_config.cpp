@@ -154,7 +154,9 @@ TEST(DesignConfig, Figure6_20ExamplesGiveTheFigureRanges) {
 }
 
 TEST(DesignConfig, InlineMaterialTissueAndInsertionOptions) {
-  std::string text = replaced(kDesign, "material = \"silicon\"",
+  std::string text = replaced(replaced(kDesign, "shape = \"cone\"", "shape = \"cylinder\""),
+                              "base_diameter = \"150 um\"\n", "");
+  text = replaced(text, "material = \"silicon\"",
                               "material = { name = \"SU-8\", youngs_modulus = \"4 GPa\", allowable_stress = \"40 MPa\" }");
   text = replaced(text, "model = \"skin\"", "model = { alpha = \"0.0013 N\", tau = \"8.5 /mm\", small_tip_slope = \"0.05 /um\" }");
   text = replaced(text, "target_depth = \"50 um\"",
@@ -176,6 +178,18 @@ TEST(DesignConfig, InlineMaterialTissueAndInsertionOptions) {
   EXPECT_FALSE(file.options.buckling.johnson_for_short_columns);
 }
 
+// The uniform-column options (effective length factor K, Johnson's formula) do not apply to a cone's tapered column:
+// an error naming the key, where they were silently ignored before.
+TEST(DesignConfig, OptionsThatDoNotApplyToTheShapeAreErrors) {
+  for (const char* option : {"effective_length = \"practical\"", "johnson = false"}) {
+    const std::string text = replaced(kDesign, "target_depth = \"50 um\"", std::string("target_depth = \"50 um\"\n") + option);
+    EXPECT_THAT([&] { io::parse_design_toml(text, "cone.toml"); },
+                testing::ThrowsMessage<InvalidInput>(HasSubstr("cone.toml:17: key 'insertion.")));
+    EXPECT_THAT([&] { io::parse_design_toml(text, "cone.toml"); },
+                testing::ThrowsMessage<InvalidInput>(HasSubstr("does not apply to a cone")));
+  }
+}
+
 TEST(DesignConfig, BadValuesNameFileLineAndKey) {
   const BadCase cases[] = {
       {"tip_diameter = \"30 um\"", "tip_diameter = \"-30 um\"", "bad.toml:3:", "'needle.tip_diameter'", "positive"},
@@ -190,7 +204,7 @@ TEST(DesignConfig, BadValuesNameFileLineAndKey) {
        "smaller"},
       {"length = \"500 um\"", "bore_diameter = \"200 um\"\nlength = \"500 um\"", "bad.toml:5:",
        "'needle.bore_diameter'", "smaller"},
-      {"shape = \"cone\"", "shape = \"pyramid\"", "bad.toml:2:", "'needle.shape'", "cylinder, cone, bevel"},
+      {"shape = \"cone\"", "shape = \"pyramid\"", "bad.toml:2:", "'needle.shape'", "\"cylinder\" | \"cone\" | \"bevel\""},
       {"material = \"silicon\"", "material = \"unobtainium\"", "bad.toml:6:", "'needle.material'", "silicon"},
       {"tip_diameter = \"30 um\"", "tip_diameter = \"30 furlongs\"", "bad.toml:3:", "'needle.tip_diameter'",
        "unknown unit"},

@@ -241,6 +241,11 @@ model = "brain"
   EXPECT_THAT(error_of("max_spring_energy = \"0.05 mJ\"", ""), HasSubstr("missing for a flexible patch"));
   EXPECT_THAT(error_of("[tissue]", "[tissues]"), HasSubstr("unknown table 'tissues'"));
   EXPECT_THAT(error_of("length = \"1000 um\"", "length = \"1000\""), HasSubstr("needle.length"));
+  // Keys of another kind of patch are errors, not silently ignored.
+  EXPECT_THAT(error_of("kind = \"flexible\"\n", "kind = \"rigid\"\n"),
+              HasSubstr("key 'patch.max_spring_energy': applies only to kind = \"flexible\", but kind = \"rigid\""));
+  EXPECT_THAT(error_of("max_spring_energy = \"0.05 mJ\"", "max_spring_energy = \"0.05 mJ\"\nload = \"0.07 N\""),
+              HasSubstr("key 'patch.load': applies only to kind = \"equilibrium\""));
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -35,10 +37,14 @@ TEST(ResultWriters, PerformanceJsonIsInDissertationUnits) {
   const analysis::ArrayDesign design = table_6_1_cone();
   const auto result = analysis::performance_index(design, {});
   const nlohmann::json json = io::performance_json(design, result);
-  EXPECT_DOUBLE_EQ(json["tip_area_um2"].get<double>(), result.tip_area * 1e12);
-  EXPECT_DOUBLE_EQ(json["deformation_um"].get<double>(), result.deformation * 1e6);
-  EXPECT_DOUBLE_EQ(json["performance_index_per_um"].get<double>(), result.performance_index * 1e-6);
-  EXPECT_DOUBLE_EQ(json["embedded_volume_um3"].get<double>(), result.embedded_volume * 1e18);
+  // To 12 significant digits (the writers round, so that inputs come back with the user's digits).
+  const auto expect_12_digits = [](double json_value, double expected) {
+    EXPECT_NEAR(json_value, expected, 5e-12 * std::abs(expected)) << "expected " << expected;
+  };
+  expect_12_digits(json["tip_area_um2"].get<double>(), result.tip_area * 1e12);
+  expect_12_digits(json["deformation_um"].get<double>(), result.deformation * 1e6);
+  expect_12_digits(json["performance_index_per_um"].get<double>(), result.performance_index * 1e-6);
+  expect_12_digits(json["embedded_volume_um3"].get<double>(), result.embedded_volume * 1e18);
   EXPECT_EQ(json["status"], "ok");
   EXPECT_EQ(json["shape"], "cone");
   EXPECT_EQ(json["youngs_modulus_GPa"].get<double>(), 169.0);

@@ -63,8 +63,15 @@ TEST(TissueConfig, LayersWithUnitsAndRest) {
   EXPECT_TRUE(o.split);
 }
 
+// An empty case file is an error naming what is missing (it used to mesh the default block without a word).
+TEST(TissueConfig, AnEmptyCaseNamesTheMissingTissueTable) {
+  EXPECT_THAT([] { parse(""); }, testing::ThrowsMessage<InvalidInput>(HasSubstr("case.toml:1: missing table [tissue]")));
+  EXPECT_THAT([] { parse("[mesh]\nsize_at_tip = \"40 um\"\n"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("expected a table [tissue] with preset = ")));
+}
+
 TEST(TissueConfig, DefaultsAndPresets) {
-  const mesh::LayeredBlockOptions o = parse("");
+  const mesh::LayeredBlockOptions o = parse("[tissue]\n");
   EXPECT_FALSE(o.split);
   ASSERT_EQ(o.layers.size(), 3u);
   EXPECT_DOUBLE_EQ(o.layers[1].youngs_modulus, 0.134e6);
@@ -94,9 +101,9 @@ TEST(TissueConfig, ErrorsNameLineAndKey) {
   expect_error("[[tissue.layers]]\nname = \"a\"\nthickness = \"5 um\"\nyoungs_modulus = \"1 MPa\"\npoisson_ratio = 0.5\n",
                "case.toml:5: key 'tissue.layers[0].poisson_ratio': 0.5 is out of range, expected a number in (-1, 0.5)");
   expect_error("[tissue]\npreset = \"liver\"\n", "case.toml:2: key 'tissue.preset': unknown tissue preset 'liver'");
-  expect_error("[mesh]\nsize_at_tip = \"50 um\"\nsize_far = \"20 um\"\n",
-               "case.toml:3: key 'mesh.size_far': 20 um is smaller than size_at_tip = 50 um");
-  expect_error("[mesh]\nsites = [[\"2000 um\", \"0 um\"]]\n",
+  expect_error("[tissue]\n[mesh]\nsize_at_tip = \"50 um\"\nsize_far = \"20 um\"\n",
+               "case.toml:4: key 'mesh.size_far': 20 um is smaller than size_at_tip = 50 um");
+  expect_error("[tissue]\n[mesh]\nsites = [[\"2000 um\", \"0 um\"]]\n",
                "key 'mesh.sites[0]': (2000, 0) um is not inside the 3000 x 3000 um top surface");
   expect_error("[tissue]\nheight = \"1 mm\"\n[[tissue.layers]]\nname = \"a\"\nthickness = \"5 um\"\n"
                "youngs_modulus = \"1 MPa\"\n",
@@ -125,7 +132,7 @@ TEST(TissueConfig, UserMshFileWithNamedLayers) {
               testing::ThrowsMessage<InvalidInput>(HasSubstr("names a mesh file, expected a parametric block")));
 
   // In mm the top is still z = 0 but the layers are missing; shifted up, the top is not z = 0.
-  std::ofstream(dir / "case.toml") << "[mesh]\nfile = \"user.msh\"\nunit = \"mm\"\n";
+  std::ofstream(dir / "case.toml") << "[tissue]\n[mesh]\nfile = \"user.msh\"\nunit = \"mm\"\n";
   EXPECT_THAT([&] { io::tissue_mesh(io::read_tissue_case(dir / "case.toml")); },
               testing::ThrowsMessage<InvalidInput>(HasSubstr("no physical volume group named \"stratum corneum\"")));
   std::ofstream(dir / "up.msh")
@@ -134,8 +141,8 @@ TEST(TissueConfig, UserMshFileWithNamedLayers) {
   std::ofstream(dir / "case.toml") << "[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nfile = \"up.msh\"\n";
   EXPECT_THAT([&] { io::tissue_mesh(io::read_tissue_case(dir / "case.toml")); },
               testing::ThrowsMessage<InvalidInput>(HasSubstr("up.msh: the mesh's top is at z = 10 um; expected")));
-  std::ofstream(dir / "case.toml") << "[mesh]\nfile = \"up.msh\"\nsize_far = \"100 um\"\n";
+  std::ofstream(dir / "case.toml") << "[tissue]\n[mesh]\nfile = \"up.msh\"\nsize_far = \"100 um\"\n";
   EXPECT_THAT([&] { io::read_tissue_case(dir / "case.toml"); },
-              testing::ThrowsMessage<InvalidInput>(HasSubstr("case.toml:3: key 'mesh.size_far': given together with file")));
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("case.toml:4: key 'mesh.size_far': given together with file")));
   std::filesystem::remove_all(dir);
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "needlekit/analysis/column_eigenvalue.hpp"
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/materials/needle_material.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 
@@ -13,6 +14,10 @@ enum class EffectiveLengthValue {
   Theoretical,  // K = 2.0 (fixed-free), 0.7 (fixed-pinned), 0.5 (fixed-fixed)  [Mott 2008]
   Practical,    // K = 2.1, 0.8, 0.65
 };
+inline constexpr EnumTable<EffectiveLengthValue, 2> kEffectiveLengthNames{{
+    {EffectiveLengthValue::Theoretical, "theoretical", "K = 2.0, 0.7, 0.5 (fixed-free, fixed-pinned, fixed-fixed)"},
+    {EffectiveLengthValue::Practical, "practical", "K = 2.1, 0.8, 0.65 (Mott 2008's recommended values)"},
+}};
 
 // The names of [insertion] end_condition and effective_length ("fixed-free", "theoretical", ...).
 std::string_view to_string(EndCondition end_condition);

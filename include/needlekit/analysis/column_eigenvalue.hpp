@@ -4,6 +4,8 @@
 #pragma once
 #include <functional>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::analysis {
 
 enum class EndCondition {
@@ -11,6 +13,11 @@ enum class EndCondition {
   FixedPinned,  // base clamped, tip pinned (K = 0.7)
   FixedFixed,   // both clamped (K = 0.5)
 };
+inline constexpr EnumTable<EndCondition, 3> kEndConditionNames{{
+    {EndCondition::FixedFree, "fixed-free", "base clamped, tip free (the dissertation's, K = 2)"},
+    {EndCondition::FixedPinned, "fixed-pinned", "base clamped, tip pinned (K = 0.7)"},
+    {EndCondition::FixedFixed, "fixed-fixed", "both ends clamped (K = 0.5)"},
+}};
 
 struct ColumnEigenvalueOptions {
   EndCondition end_condition = EndCondition::FixedFree;

@@ -5,13 +5,23 @@
 #include <vector>
 
 #include "needlekit/analysis/performance_index.hpp"
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/core/units.hpp"
 
 namespace needlekit::analysis {
 
 enum class SweepParameter { TipDiameter, BaseDiameter, BoreDiameter, Length, Width, NeedlesPerRow, Angle, TargetDepth };
+inline constexpr EnumTable<SweepParameter, 8> kSweepParameterNames{{
+    {SweepParameter::TipDiameter, "tip_diameter", "D1 (length)"},
+    {SweepParameter::BaseDiameter, "base_diameter", "D2 (length)"},
+    {SweepParameter::BoreDiameter, "bore_diameter", "D3 (length)"},
+    {SweepParameter::Length, "length", "L (length)"},
+    {SweepParameter::Width, "width", "w, the array's width (length)"},
+    {SweepParameter::NeedlesPerRow, "needles_per_row", "n (a count)"},
+    {SweepParameter::Angle, "angle", "insertion angle (angle)"},
+    {SweepParameter::TargetDepth, "target_depth", "T (length)"},
+}};
 
-// "tip_diameter", "base_diameter", "bore_diameter", "length", "width", "needles_per_row", "angle", "target_depth".
 std::string_view to_string(SweepParameter parameter);
 // The inverse of to_string; throws InvalidInput naming `what` and listing the names otherwise.
 SweepParameter sweep_parameter_from_string(std::string_view text, std::string_view what = "--vary");

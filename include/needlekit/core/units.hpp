@@ -35,6 +35,14 @@ double parse_quantity(std::string_view text, Dimension expected, std::string_vie
 // dimension. Used for surface-mesh units ("mm") and table headers.
 double unit_factor(std::string_view unit, Dimension expected, std::string_view what);
 
+// `value` (in a unit of the given factor, e.g. 1e-6 for um) in SI, correctly rounded for decimal units: "200 um"
+// becomes the double nearest to 2e-4 m (parse_quantity uses it).
+double to_si(double value, double factor);
+
+// `value` rounded to 12 significant digits. The output conversions use it, so that a value the user gave comes back
+// as given (200 um, not 199.99999999999997 um) and a decimal sweep lands on the decimal values.
+double round_to_12_digits(double value);
+
 // Formats an SI value in the given unit, e.g. format(2.3e-4, "um") == "230 um".
 std::string format(double value_si, std::string_view unit, int significant_digits = 6);
 

@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::fem {
 
 enum class MaterialLaw {
@@ -11,8 +13,13 @@ enum class MaterialLaw {
                       // Softens and can fail under large compression.
   NeoHookean,         // compressible: W = μ/2 (I1 - 3) - μ ln J + λ/2 (ln J)^2; same small-strain limit.
 };
+// The names of the laws, as case files, JSON and the CLI help write them (core/enum_table.hpp).
+inline constexpr EnumTable<MaterialLaw, 2> kMaterialLawNames{{
+    {MaterialLaw::NeoHookean, "neo-hookean", "compressible neo-Hookean: robust under large compression"},
+    {MaterialLaw::StVenantKirchhoff, "svk", "St Venant-Kirchhoff, the dissertation's S = D E (Eqs 3.3-3.5)"},
+}};
 std::string to_string(MaterialLaw law);
-// Parse "svk" | "st-venant-kirchhoff", "neo-hookean". Throws InvalidInput naming `what`.
+// Parse the names of kMaterialLawNames (and "st-venant-kirchhoff" for svk). Throws InvalidInput naming `what`.
 MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 
 struct LameConstants {

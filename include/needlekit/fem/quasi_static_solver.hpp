@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/fem/hyperelastic_law.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
@@ -74,18 +75,48 @@ enum class BoundaryCondition {
                           // x = max, y = max and the bottom fixed: a quarter of a centred §3.4 block
 };
 
+// The names of the enums above, as case files, JSON and the CLI help write them (core/enum_table.hpp).
+inline constexpr EnumTable<ElementOrder, 2> kElementOrderNames{{
+    {ElementOrder::Linear, "linear", "4-node tetrahedra (the dissertation's; lock as nu -> 0.5)"},
+    {ElementOrder::Quadratic, "quadratic", "10-node tetrahedra: free of volumetric locking"},
+}};
+inline constexpr EnumTable<ContactModel, 2> kContactModelNames{{
+    {ContactModel::Surface, "surface", "penalty contact of the tissue's top surface with the needle's surface mesh"},
+    {ContactModel::TipNodes, "tip-nodes", "the dissertation's rule: nodes under a flat tip follow it in z"},
+}};
+inline constexpr EnumTable<LinearSolver, 4> kLinearSolverNames{{
+    {LinearSolver::Automatic, "auto", "two-grid for quadratic elements or a split mesh, else cholesky-cg"},
+    {LinearSolver::TwoGrid, "two-grid", "CG with a two-grid preconditioner: memory and time linear in the mesh"},
+    {LinearSolver::CholeskyCg, "cholesky-cg", "CG preconditioned by the last CHOLMOD factorization"},
+    {LinearSolver::Cholesky, "cholesky", "a fresh CHOLMOD factorization per Newton iteration"},
+}};
+inline constexpr EnumTable<BoundaryCondition, 5> kBoundaryConditionNames{{
+    {BoundaryCondition::SidesAndBottomFixed, "sides-and-bottom-fixed", "§3.4: the four sides and the bottom fixed"},
+    {BoundaryCondition::BottomFixed, "bottom-fixed", "the bottom fixed, the sides free"},
+    {BoundaryCondition::BottomFixedSidesRoller, "bottom-fixed-sides-roller", "the bottom fixed, the sides slide"},
+    {BoundaryCondition::SymmetryPlanes, "symmetry-planes",
+     "u_x = 0 on x = min, u_y = 0 on y = min, u_z = 0 on the bottom (uniaxial tests)"},
+    {BoundaryCondition::QuarterSymmetry, "quarter-symmetry",
+     "symmetry planes through the needle axis at x = min and y = min, the other sides and the bottom fixed"},
+}};
+inline constexpr EnumTable<VolumetricFormulation, 3> kVolumetricFormulationNames{{
+    {VolumetricFormulation::Automatic, "auto",
+     "nodal-average for linear neo-Hookean layers with nu >= 0.45, else element"},
+    {VolumetricFormulation::Element, "element",
+     "per element, as every other term (linear tetrahedra lock as nu -> 0.5)"},
+    {VolumetricFormulation::NodalAverage, "nodal-average",
+     "the volume ratio averaged at the nodes (Bonet & Burton 1998): locking-free linear tetrahedra"},
+}};
+
 std::string to_string(ElementOrder order);
 std::string to_string(ContactModel contact);
 std::string to_string(LinearSolver solver);
 std::string to_string(BoundaryCondition condition);
 std::string to_string(VolumetricFormulation formulation);
-// Parse "linear" | "quadratic"; "tip-nodes" | "surface";
-// "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" |
-// "quarter-symmetry". Throw InvalidInput naming `what`.
+// Parse the names of the tables above; throw InvalidInput naming `what` and the accepted names.
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
 BoundaryCondition boundary_condition_from_string(const std::string& text, const std::string& what = "boundary");
-// "auto" | "element" | "nodal-average".
 VolumetricFormulation volumetric_formulation_from_string(const std::string& text,
                                                          const std::string& what = "volumetric");
 

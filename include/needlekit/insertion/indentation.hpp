@@ -47,9 +47,14 @@ struct IndentationCase {
   bool stop_at_puncture = true;              // false: continue to `depth` after the puncture point
 };
 
-// Throws InvalidInput naming the field: no needle or an empty needle mesh, a tip height < 0 (the needle would start
-// inside the tissue), a site outside the block, depth <= 0, steps < 1, invalid puncture parameters.
+// Throws InvalidInput naming the case file's key: no needle or an empty needle mesh, a tip height < 0 (the needle
+// would start inside the tissue), a site outside the block, depth <= 0 or through the block's height, mesh sizes
+// that are not positive or size_far < size_at_tip, steps < 1, invalid puncture parameters.
 void validate(const IndentationCase& indentation_case);
+
+// m: the tissue mesh's z extent, or the sum of the block's layer thicknesses (0 when the block has no layers yet:
+// the mesher's default).
+double tissue_height(const IndentationCase& indentation_case);
 
 // The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them.
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& indentation_case);

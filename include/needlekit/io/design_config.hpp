@@ -4,7 +4,7 @@
 // file, the line and the key:  FILE:LINE: key 'needle.tip_diameter': <what is wrong>, expected <what>.
 //
 // Design file:
-//   [needle]     shape = "cylinder" | "cone" | "bevel"; tip_diameter; base_diameter (a cylinder may omit it: = tip);
+//   [needle]     shape (needle::kShapeNames); tip_diameter; base_diameter (a cylinder may omit it: = tip);
 //                bore_diameter (omit for a solid needle); length; material = a preset name (materials::
 //                material_preset_names()) or an inline table { youngs_modulus, yield_strength?, allowable_stress?,
 //                name? }
@@ -13,8 +13,8 @@
 //                name? }   (optional table; default skin)
 //   [insertion]  angle (default "0 deg", [0, 90) deg); target_depth or application = "transdermal" | "aesthetic" |
 //                "tattoo" | "brain" (default transdermal, 50 um); buckling_safety_factor, bending_safety_factor
-//                (>= 1); end_condition = "fixed-free" | "fixed-pinned" | "fixed-fixed"; effective_length =
-//                "theoretical" | "practical"; johnson (bool)   (optional table)
+//                (>= 1); end_condition (analysis::kEndConditionNames); effective_length
+//                (analysis::kEffectiveLengthNames; uniform columns only); johnson (bool)   (optional table)
 //
 // Design-space file: top-level shape, hollow (bool, default false), material (as above), tissue (as the model
 // above, default "skin"), target_depth (default "50 um"), spacing_factor (default 3), and [ranges] of inclusive

@@ -16,17 +16,14 @@
 //              there is no [[needles]]), split (mesh at twice the sizes and split every tet into eight: the
 //              two-grid solver), or file = "tissue.msh" + unit for a user's tetrahedral mesh
 //   [loading]  depth (required), steps (default 20), continue_after_puncture (default false)
-//   [model]    law = "svk" | "neo-hookean" (default "neo-hookean"); contact = "tip-nodes" | "surface" (default
-//              "surface"); element = "linear" | "quadratic" (default "linear"); boundary =
-//              "sides-and-bottom-fixed" (default) | "bottom-fixed" | "bottom-fixed-sides-roller"
+//   [model]    law (fem::kMaterialLawNames, default "neo-hookean"); contact (fem::kContactModelNames, default
+//              "surface"); element (fem::kElementOrderNames, default "linear"); boundary
+//              (fem::kBoundaryConditionNames, default "sides-and-bottom-fixed")
 //   [solver]   optional Newton settings (fem::SolverOptions): residual_tolerance (default 1e-6),
 //              displacement_tolerance (1e-5), energy_tolerance (1e-8), penetration_tolerance (1e-3), all in (0, 1);
-//              max_iterations (25), max_cutbacks (8); predictor = "secant" (default) | "linearised" (§3.4's
-//              linearised solve before every step); linear_solver = "auto" (default: "two-grid" for quadratic
-//              elements and for linear ones on a split mesh, else "cholesky-cg") | "cholesky-cg" (CG on a reused factorization) |
-//              "cholesky" (a factorization per Newton iteration) | "two-grid" (CG with a two-grid cycle; linear
-//              elements need [mesh] split = true, quadratic ones use their corners); penalty_factor (100, surface
-//              contact); threads (0 = all cores)
+//              max_iterations (25), max_cutbacks (8); predictor (kPredictorNames below, default "secant");
+//              linear_solver (fem::kLinearSolverNames, default "auto"; "two-grid" with linear elements needs [mesh]
+//              split = true); penalty_factor (100, surface contact); threads (0 = all cores)
 //   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
 //              or toughness_from = { first = "first.csv", second = "second.csv", crack_area = "6661 um2",
 //              min_depth, max_depth }: J by the two-insertion method (Eq 3.16) from two force curves (CSV with
@@ -36,9 +33,39 @@
 #include <filesystem>
 #include <string_view>
 
+#include "needlekit/core/enum_table.hpp"
+#include "needlekit/core/parameter.hpp"
 #include "needlekit/insertion/indentation.hpp"
 
 namespace needlekit::io {
+
+// [solver]: the numeric settings of fem::SolverOptions (defaults: its initializers), one declaration each.
+inline constexpr Parameter<fem::SolverOptions, double> kSolverTolerances[] = {
+    {"residual_tolerance", &fem::SolverOptions::residual_tolerance, 0, 1, Bound::Open, Bound::Open,
+     "Newton: residual norm relative to the reaction and internal forces"},
+    {"displacement_tolerance", &fem::SolverOptions::displacement_tolerance, 0, 1, Bound::Open, Bound::Open,
+     "Newton: update norm relative to the displacement"},
+    {"energy_tolerance", &fem::SolverOptions::energy_tolerance, 0, 1, Bound::Open, Bound::Open,
+     "Newton: energy norm of the update relative to the first iteration's"},
+    {"penetration_tolerance", &fem::SolverOptions::penetration_tolerance, 0, 1, Bound::Open, Bound::Open,
+     "surface contact: augmented-Lagrangian updates until the penetration is below this fraction"},
+    {"penalty_factor", &fem::SolverOptions::penalty_factor, 0, kNoLimit, Bound::Open,
+     Bound::Open, "surface contact: penalty stiffness per area = factor * E / h"},
+};
+inline constexpr Parameter<fem::SolverOptions, int> kSolverCounts[] = {
+    {"max_iterations", &fem::SolverOptions::max_iterations, 1, kNoLimit, Bound::Closed, Bound::Closed,
+     "Newton iterations per (sub)step"},
+    {"max_cutbacks", &fem::SolverOptions::max_cutbacks, 0, kNoLimit, Bound::Closed, Bound::Closed,
+     "halvings of a load step that did not converge"},
+    {"threads", &fem::SolverOptions::threads, 0, kNoLimit, Bound::Closed, Bound::Closed,
+     "assembly threads (0: the default, all cores)"},
+};
+
+// [solver] predictor: fem::SolverOptions::extrapolate_predictor.
+inline constexpr EnumTable<bool, 2> kPredictorNames{{
+    {true, "secant", "later steps start from the last converged state plus the last increment (default)"},
+    {false, "linearised", "§3.4's linearised solve before every step"},
+}};
 
 // Throws IoError (unreadable file, TOML syntax, unreadable needle STL) or InvalidInput (a missing, unknown or invalid
 // key).

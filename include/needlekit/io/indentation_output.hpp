@@ -40,14 +40,16 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "strain_energy_J", "external_work_J", "newton_iterations" (arrays, one entry per converged step), "elements",
-// "nodes", "dofs", "law", "element", "contact", "needles", "layers", "mesh_quality", "mesh_seconds",
-// "setup_seconds", "total_seconds".
+// "nodes", "dofs", "law", "element", "contact", "boundary", "needles", "layers", "mesh_quality", "notes" (warnings:
+// io/scale_warnings.hpp), "mesh_seconds", "setup_seconds", "total_seconds".
 nlohmann::json indentation_json(const insertion::IndentationCase& indentation_case,
                                 const insertion::IndentationResult& result);
 
 // Writes DIR/NAME.pvd, DIR/NAME_step_KKK.vtu (tissue), DIR/NAME_needles_step_KKK.vtu, NAME_force_depth.csv and
-// NAME_solver_steps.csv after each step, so that a run that stops keeps every completed step; finish() rewrites the
-// CSV files and writes NAME_puncture.json and NAME_result.json. Every file is written to a temporary name and renamed.
+// NAME_solver_steps.csv after each step, so that a run that stops keeps every completed step, with NAME_result.json
+// of the steps so far and "status": "incomplete" (a run that was interrupted or killed leaves it so); finish()
+// rewrites the CSV files and writes NAME_puncture.json and the final NAME_result.json. Every file is written to a
+// temporary name and renamed. The constructor creates the directory (IoError naming it when it cannot be written).
 class IndentationWriter {
 public:
   IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& indentation_case);
@@ -67,6 +69,7 @@ private:
   insertion::IndentationResult partial_;  // the steps written so far
   void remember(const std::filesystem::path& path);
   void write_curves(const insertion::IndentationResult& result);
+  void write_result(const nlohmann::json& json);
 };
 
 }  // namespace needlekit::io

@@ -4,11 +4,11 @@
 //   [surface]  mesh = "path" (OBJ, STL, PLY or OFF; relative to the case file's folder);
 //              unit = the length of one file unit: "m", "mm", or e.g. "15.8 mm" (required);
 //              center_vertex = 0-based vertex index, or center = ["x mm", "y mm", "z mm"] (one of them);
-//              rotation = "0 deg" (about the approach axis); approach = "-z" (default) | "normal"
-//   [patch]    kind = "rigid" | "flexible" | "equilibrium"; size = "10 mm" (side w); needles_per_row (>= 2);
+//              rotation = "0 deg" (about the approach axis); approach (patch::kApproachNames, default "-z")
+//   [patch]    kind (patch::kPatchKindNames); size = "10 mm" (side w); needles_per_row (>= 2);
 //              spring_constant = "1 N/mm" or { u = "1 N/mm", v = "1 N/mm", diagonal = "1 N/mm" };
-//              max_spring_energy = "0.05 mJ" (flexible); first_node = "first-contact" (default) | "corner";
-//              walk = "cutting-plane" (default, Alg 5.3) | "unfolding" (straightest geodesic);
+//              max_spring_energy = "0.05 mJ" (flexible); first_node (patch::kFirstNodeNames, default
+//              "first-contact"); walk (patch::kWalkMethodNames, default "cutting-plane");
 //              load = "0.0712 N" (equilibrium: force per node; default |F(A)| of the needle)
 //   [needle], [tissue], [insertion]   as in design files (io/design_config.hpp)
 #pragma once

@@ -35,8 +35,8 @@ std::string sweep_csv(const analysis::SweepResult& sweep);
 // {"parameter", "unit", "points": [{<value column>, "details": performance_json}]}.
 nlohmann::json sweep_json(const analysis::SweepResult& sweep);
 
-// Writes `content` to `path.tmp-<pid>` next to `path` and renames it to `path`; throws IoError naming the path (and
-// removes the temporary file) on failure.
+// needlekit::write_file_atomically (core/atomic_file.hpp): `content` goes to a temporary file next to `path`, renamed
+// to `path` when complete; IoError naming the path on failure.
 void write_text_file_atomically(const std::filesystem::path& path, std::string_view content);
 
 }  // namespace needlekit::io

@@ -25,7 +25,10 @@ struct VtuGrid {
   std::vector<VtuField> cell_fields;
 };
 
-// Writes the grid. Throws IoError naming the file, InvalidInput if a field's size does not match.
+// The .vtu document of the grid; `path` names the file in messages. Throws InvalidInput if a field's size does not
+// match.
+std::string vtu_document(const VtuGrid& grid, const std::filesystem::path& path);
+// Writes the grid (write_file_atomically). Throws IoError naming the file, InvalidInput as vtu_document.
 void write_vtu(const VtuGrid& grid, const std::filesystem::path& path);
 
 // Writes a ParaView collection: one (time, file) entry per step, file names relative to the .pvd's folder.
@@ -33,6 +36,7 @@ struct PvdEntry {
   double time = 0;
   std::filesystem::path file;
 };
+std::string pvd_document(const std::vector<PvdEntry>& entries);
 void write_pvd(const std::vector<PvdEntry>& entries, const std::filesystem::path& path);
 
 }  // namespace needlekit::io

@@ -11,12 +11,19 @@
 #include <string>
 #include <string_view>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::needle {
 
 enum class Shape { Cylinder, Cone, Bevel };
+inline constexpr EnumTable<Shape, 3> kShapeNames{{
+    {Shape::Cylinder, "cylinder", "constant diameter (D1 = D2), flat tip"},
+    {Shape::Cone, "cone", "frustum from the base diameter D2 to the tip diameter D1 < D2"},
+    {Shape::Bevel, "bevel", "cylinder of diameter D2 cut by a plane through the base edge; D1 is the tip face's sagitta"},
+}};
 
 std::string_view to_string(Shape shape);
-// Parses "cylinder", "cone" or "bevel"; throws InvalidInput naming `what` otherwise.
+// Parses a name of kShapeNames; throws InvalidInput naming `what` otherwise.
 Shape shape_from_string(std::string_view text, std::string_view what = "shape");
 
 struct NeedleGeometry {

@@ -17,6 +17,7 @@
 // Alg 5.2, the cap is applied to every node (also the edge nodes in line with the first one), so that E_cri → 0
 // gives the rigid patch.
 #pragma once
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/patch/fitted_patch.hpp"
 
@@ -26,12 +27,21 @@ enum class FirstNode {
   FirstContact,  // the node that touches first when the flat patch is lowered (the rigid fit's contact node)
   Corner,        // N(0,0), the corner of minimum U and V (Alg 5.1 as printed)
 };
+inline constexpr EnumTable<FirstNode, 2> kFirstNodeNames{{
+    {FirstNode::FirstContact, "first-contact", "the node that touches first when the flat patch is lowered"},
+    {FirstNode::Corner, "corner", "N(0,0), the corner of minimum U and V (Alg 5.1 as printed)"},
+}};
 
 enum class WalkMethod {
   CuttingPlane,  // Alg 5.3: geometry::cutting_plane_trace, the surface cut by the plane through d and the normal
   Unfolding,     // geometry::straightest_geodesic: edge unfolding (Polthier & Schmies), the exact geodesic on
                  // developable surfaces such as the cylinder
 };
+inline constexpr EnumTable<WalkMethod, 2> kWalkMethodNames{{
+    {WalkMethod::CuttingPlane, "cutting-plane", "Alg 5.3: the surface cut by the plane through the direction and "
+                                                "the normal"},
+    {WalkMethod::Unfolding, "unfolding", "straightest geodesic by edge unfolding (exact on developable surfaces)"},
+}};
 
 struct FlexibleFitOptions {
   double max_spring_energy = 5e-5;     // J, (0, inf]: E_cri per spring (0.05 mJ); inf = conform completely

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string_view>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 
 namespace needlekit::patch {
@@ -15,6 +16,10 @@ enum class Approach {
   MinusZ,         // the patch moves along −Z (§5.2: "the input force is always in vertical direction")
   SurfaceNormal,  // the patch moves against the surface normal at the centre point
 };
+inline constexpr EnumTable<Approach, 2> kApproachNames{{
+    {Approach::MinusZ, "-z", "the patch moves along -Z (§5.2: the input force is vertical)"},
+    {Approach::SurfaceNormal, "normal", "the patch moves against the surface normal at the centre point"},
+}};
 std::string_view to_string(Approach approach);
 
 struct Placement {

@@ -1,0 +1,154 @@
+#include "file_format_help.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "needlekit/analysis/buckling.hpp"
+#include "needlekit/analysis/puncture_force_law.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/needle/needle_geometry.hpp"
+#include "needlekit/patch/fit_patch.hpp"
+#include "needlekit/patch/patch_placement.hpp"
+
+namespace needlekit::cli {
+namespace {
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "\"" : " | \"") + name + "\"";
+  return text;
+}
+
+// "  residual_tolerance = 1e-06   in (0, 1): meaning" per [solver] setting, from its declaration.
+std::string solver_settings_help() {
+  std::string text;
+  const auto line = [&](const auto& parameter) {
+    text += fmt::format("  {:<34} {}: {}\n", fmt::format("{} = {:g}", parameter.key,
+                                                           static_cast<double>(parameter.default_value())),
+                        parameter.range(), parameter.meaning);
+  };
+  for (const auto& parameter : io::kSolverTolerances) line(parameter);
+  for (const auto& parameter : io::kSolverCounts) line(parameter);
+  return text;
+}
+
+}  // namespace
+
+std::string design_file_help() {
+  return fmt::format(
+      R"(DESIGN file (TOML; every dimensional value is a string with its unit, a bare number is an error):
+  [needle]     shape = {}
+               tip_diameter = "30 um"      D1 > 0 (bevel: sagitta of the tip segment)
+               base_diameter = "150 um"    D2 >= D1 (cone and bevel D1 < D2 in the optimizer; cylinder: omit, = D1)
+               bore_diameter = "20 um"     0 < D3 < D1; omit for a solid needle
+               length = "500 um"           L > 0
+               material = "silicon"        a preset (see `needlekit materials`) or {{ youngs_modulus = "4 GPa",
+                                           yield_strength = "60 MPa", allowable_stress = "40 MPa", name = "..." }}
+  [array]      needles_per_row = 10        n >= 1 (n x n needles)
+               width = "1 cm"              w > 0, patch width
+               spacing_factor = 3          beta >= 0 of w >= beta*n*D2 (default 3; 0 disables)
+  [tissue]     model = "skin"              "skin" | "brain" | {{ alpha = "0.0183 N", tau = "6.25 /mm",
+                                           small_tip_slope = "0.0608 /um" }}   (default skin)
+               puncture_force = "eq-4.2"   the puncture-force law F(A), laws below (default eq-4.2)
+  [insertion]  angle = "0 deg"             [0, 90) deg from the surface normal (default 0)
+               target_depth = "50 um"      T > 0, or application = "transdermal" (50 um) | "aesthetic" | "tattoo"
+                                           (1.5 mm) | "brain" (1 mm); default transdermal
+               buckling_safety_factor = 1, bending_safety_factor = 1   (>= 1)
+               end_condition = {}   (default fixed-free)
+               effective_length = {} (uniform columns: cylinders), johnson = true (Johnson formula for short
+               columns))",
+                     choices_of(needle::kShapeNames), choices_of(analysis::kEndConditionNames),
+                     choices_of(analysis::kEffectiveLengthNames)) +
+         "\n" + puncture_force_law_help();
+}
+
+std::string space_file_help() {
+  return fmt::format(R"(SPACE file (TOML; every dimensional value is a string with its unit):
+  shape = "cone"                 {}
+  hollow = false                 true: a bore_diameter range is required
+  material = "silicon"           a preset (see `needlekit materials`) or {{ youngs_modulus = "169 GPa", ... }}
+  tissue = "skin"                "skin" | "brain" | {{ alpha = "0.0183 N", tau = "6.25 /mm" }}   (default skin)
+  puncture_force = "eq-4.2"      the puncture-force law F(A), laws below (default eq-4.2)
+  target_depth = "50 um"         T > 0 (default 50 um)
+  spacing_factor = 3             beta >= 0 of w >= beta*n*D2 (default 3)
+  [ranges]                       inclusive [min, max, step], min > 0, max >= min, step > 0
+  needles_per_row = [5, 25, 1]   integers
+  tip_diameter = ["30 um", "150 um", "10 um"]
+  base_diameter = ["30 um", "300 um", "10 um"]   (a cylinder omits it: D2 = D1)
+  bore_diameter = ["20 um", "50 um", "10 um"]    (hollow only)
+  width = ["5000 um", "10000 um", "1000 um"]
+  length = ["300 um", "500 um", "50 um"])",
+                     choices_of(needle::kShapeNames)) +
+         "\n" + puncture_force_law_help();
+}
+
+std::string puncture_force_law_help() {
+  std::string help =
+      "\nPuncture-force laws (puncture_force = NAME, or a table { law = NAME, ... } for the user laws; D = the tip's "
+      "equivalent diameter sqrt(4A/pi)):\n";
+  for (const auto& law : analysis::puncture_force_laws())
+    help += fmt::format("  {:<16}{}\n  {:<16}  source: {}\n", law.name, law.meaning, "", law.source);
+  help += "  linear-area: slope = \"0.00019 N/um2\", intercept = \"-0.66 N\"; linear-diameter: slope = \"4594 N/m\", "
+          "intercept = \"-3 mN\";\n  table: tip_diameter = [\"5 um\", \"37 um\"], force = [\"20 mN\", \"167 mN\"]; "
+          "any law: valid_tip_diameter = [\"min\", \"max\"]\n  Outside a law's validity range the result carries a note.";
+  return help;
+}
+
+std::string indentation_case_help() {
+  return fmt::format(
+      R"(CASE file (TOML; every dimensional value is a string with its unit, a bare number is an error):
+  name = "flat punch"                optional, names the output files (default: the file name)
+  [needle]     shape, tip_diameter, base_diameter, bore_diameter, length as in design files (material is ignored: the
+               needle is rigid), or mesh = "needle.stl" + mesh_unit = "um" (needle frame: axis z, tip at max z)
+               tip_height = "0 um"       >= 0, the tip's height above the surface at the start
+  [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
+  [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = {}
+               or [[tissue.layers]] name, thickness (the last may be "rest"),
+               youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
+  [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
+               (one needle per site without [[needles]]), split = true (mesh at twice the sizes and split every tet
+               into eight: the two-grid solver, for large meshes), or file = "tissue.msh" + unit (layers = physical
+               groups)
+  [loading]    depth = "200 um" (required), steps = 20, continue_after_puncture = false
+  [model]      law = {} (default neo-hookean), contact = {} (default surface),
+               element = {} (default linear),
+               boundary = {}
+               (default sides-and-bottom-fixed)
+  [solver]     optional: predictor = {}, linear_solver = {},
+               volumetric = {}, and the settings below (shown with their defaults)
+  [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = {{ first = "a.csv",
+               second = "b.csv", crack_area = "6661 um2" }} (Eq 3.16 from two insertions; CSV depth_um,force_N)
+Choices:
+{}{}{}{}{}{}{}Settings of [solver]:
+{})",
+      quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
+      choices_of(fem::kContactModelNames), choices_of(fem::kElementOrderNames), choices_of(fem::kBoundaryConditionNames),
+      choices_of(io::kPredictorNames), choices_of(fem::kLinearSolverNames),
+      choices_of(fem::kVolumetricFormulationNames), meanings_of(fem::kMaterialLawNames, "law"),
+      meanings_of(fem::kContactModelNames, "contact"), meanings_of(fem::kElementOrderNames, "element"),
+      meanings_of(fem::kBoundaryConditionNames, "boundary"), meanings_of(io::kPredictorNames, "predictor"),
+      meanings_of(fem::kLinearSolverNames, "linear_solver"),
+      meanings_of(fem::kVolumetricFormulationNames, "volumetric"), solver_settings_help());
+}
+
+std::string patch_case_help() {
+  return fmt::format(
+      "Case file (quantities are strings with units):\n"
+      "  [surface]  mesh = \"neck.obj\" (OBJ/STL/PLY/OFF, relative to the case file); unit = \"m\" | \"mm\" | "
+      "\"15.8 mm\";\n"
+      "             center_vertex = 2243 or center = [\"x mm\", \"y mm\", \"z mm\"]; rotation = \"0 deg\";\n"
+      "             approach = {} (default \"-z\")\n"
+      "  [patch]    kind = {}; size = \"10 mm\"; needles_per_row = 10;\n"
+      "             spring_constant = \"1 N/mm\" or {{ u = , v = , diagonal = }}; max_spring_energy = \"0.05 mJ\";\n"
+      "             first_node = {}; walk = {};\n"
+      "             load = \"0.0712 N\" (equilibrium: force per node)\n"
+      "  [needle], [tissue], [insertion]  as in design files (see needlekit evaluate --help)\n"
+      "Choices:\n{}{}{}{}",
+      choices_of(patch::kApproachNames), choices_of(patch::kPatchKindNames), choices_of(patch::kFirstNodeNames),
+      choices_of(patch::kWalkMethodNames), meanings_of(patch::kApproachNames, "approach"), meanings_of(patch::kPatchKindNames, "kind"),
+      meanings_of(patch::kFirstNodeNames, "first_node"), meanings_of(patch::kWalkMethodNames, "walk"));
+}
+
+}  // namespace needlekit::cli
