@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/io/result_writers.hpp"
@@ -127,13 +128,9 @@ void run_patch(const PatchArguments& arguments) {
                                    arguments.case_path, patch::to_string(c.fit.kind)));
   }
   const patch::PatchDesign design = patch::patch_design(c.design);
-  geometry::SurfaceMesh surface = [&] {
-    try {
-      return geometry::SurfaceMesh(geometry::read_triangle_mesh(c.mesh, c.mesh_unit));
-    } catch (const InvalidInput& error) {
-      throw InvalidInput(fmt::format("{}: {}", c.mesh.string(), error.what()));
-    }
-  }();
+  geometry::BodySurface body = geometry::read_body_surface(c.mesh, c.mesh_unit);
+  if (body.flipped) fmt::print("note: {}\n", body.note);
+  geometry::SurfaceMesh surface = std::move(body.surface);
   const double diagonal = std::hypot(design.width_u, design.width_v);
   const patch::PatchFrame frame = patch::patch_frame(surface, c.placement, diagonal, design.needle.length);
 

@@ -2,7 +2,7 @@
 // are conforming; a physical volume named after each layer; the insertion sites (and optionally a circle around
 // each) embedded in the top surface; size fields: Distance from the sites -> Threshold (size_at_site within
 // refinement_radius, growing by size_gradient up to size_far), a Box field capping the size in each thin layer, and
-// their Min as background mesh; HXT 3D.
+// their Min as background mesh; Delaunay 3D on one thread (reproducible: see gmsh_block).
 // The geometry is built in micrometres (OpenCASCADE's absolute tolerance is 1e-7 model units) and converted to m.
 #include "needlekit/mesh/layered_block_mesh.hpp"
 
@@ -15,12 +15,14 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/mesh/mesh_validation.hpp"
+#include "needlekit/mesh/tet_count_estimate.hpp"
 
 namespace needlekit::mesh {
 namespace {
 
 constexpr double kModelUnit = 1e-6;  // m per Gmsh model unit (um)
 constexpr int kGmshTet4 = 4;         // Gmsh element type: 4-node tetrahedron
+constexpr double kMinRelativeDimension = 1e-5;  // of the block's largest dimension, for every dimension and layer
 
 void check_positive(double value, std::string_view field, double scale = 1e6, std::string_view unit = "um") {
   if (!std::isfinite(value) || value <= 0) {
@@ -66,8 +68,26 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
       }
     }
   }
-  if (o.threads < 0) throw InvalidInput(fmt::format("layered block: threads = {}; expected >= 0", o.threads));
   materials::validate(layers, "layered block: layers");
+  // OpenCASCADE models the block in um with an absolute tolerance of 1e-7 um and fails (or finds no top face) for a
+  // layer that is thin next to the block: every dimension must be at least kMinRelativeDimension of the largest.
+  double height = 0;
+  for (const TissueLayer& layer : layers) height += layer.thickness;
+  const double largest = std::max({o.width, o.length, height});
+  const auto check_dimension = [&](double value, const std::string& what) {
+    if (!(value >= kMinRelativeDimension * largest)) {
+      throw InvalidInput(fmt::format("layered block: {} = {:g} um is below {:g} of the block's largest dimension "
+                                     "({:g} um); expected a thicker layer or a smaller block",
+                                     what, value * 1e6, kMinRelativeDimension, largest * 1e6));
+    }
+  };
+  check_dimension(o.width, "width");
+  check_dimension(o.length, "length");
+  for (const TissueLayer& layer : layers) check_dimension(layer.thickness, fmt::format("layer '{}' thickness", layer.name));
+  if (!(o.max_tetrahedra > 0)) {
+    throw InvalidInput(fmt::format("layered block: max_tetrahedra = {}; expected a positive count", o.max_tetrahedra));
+  }
+  if (o.threads < 0) throw InvalidInput(fmt::format("layered block: threads = {}; expected >= 0", o.threads));
   for (std::size_t s = 0; s < o.insertion_sites.size(); ++s) {
     const Eigen::Vector2d& p = o.insertion_sites[s];
     if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
@@ -243,9 +263,16 @@ TetMesh gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueL
     detail::GmshSession::set_option({"Mesh.MeshSizeExtendFromBoundary", "Mesh.CharacteristicLengthExtendFromBoundary"},
                                     0);
     detail::GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
-    detail::GmshSession::set_option({"Mesh.Algorithm3D"}, 10);  // HXT
-    detail::GmshSession::set_option({"General.NumThreads"}, options.threads);
-    detail::GmshSession::set_option({"Mesh.MaxNumThreads3D"}, options.threads);
+    // Reproducible meshes: Gmsh 4.8's HXT (10) gives meshes that depend on the heap layout even on one thread (the
+    // same case gave 11,158-11,308 tetrahedra depending on the case file's name or the environment's size), and
+    // several threads make the 2D meshes differ in their last bits. Delaunay 3D (1) on one thread gives the same
+    // mesh, bit for bit, whatever the memory layout (tests/example/test_mesh_determinism.cpp), at about HXT's speed on
+    // these blocks (and about 20 % more elements for the same size field).
+    detail::GmshSession::set_option({"Mesh.Algorithm3D"}, 1);
+    const int threads = options.threads == 0 ? 1 : options.threads;
+    detail::GmshSession::set_option({"General.NumThreads"}, threads);
+    detail::GmshSession::set_option({"Mesh.MaxNumThreads2D"}, threads);
+    detail::GmshSession::set_option({"Mesh.MaxNumThreads3D"}, threads);
     detail::GmshSession::set_option({"Mesh.Optimize"}, 1);
     gmsh::model::mesh::generate(3);
 
@@ -262,6 +289,14 @@ TetMesh gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueL
 LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
   const std::vector<TissueLayer> layers = options.layers.empty() ? materials::skin_layers() : options.layers;
   validate_options(options, layers);
+  LayeredBlockOptions estimated = options;
+  estimated.layers = layers;
+  if (const double tets = estimated_tetrahedra(estimated); !(tets <= options.max_tetrahedra)) {
+    throw InvalidInput(fmt::format("layered block: about {:.2g} tetrahedra (estimated from the block and mesh sizes), "
+                                   "more than the limit of {:.2g}; expected coarser sizes ([mesh] size_at_tip, "
+                                   "size_far, size_gradient) or a smaller block, or raise [mesh] max_tetrahedra",
+                                   tets, options.max_tetrahedra));
+  }
   const auto start = std::chrono::steady_clock::now();
   LayeredBlockResult result;
   if (options.split) {
