@@ -63,6 +63,19 @@ NeedleRead read_needle(const Section& section, const toml::table& root, const st
   }
   needle::NeedleGeometry geometry = needle_of(section);
   validate_at_keys(root, section.file(), section.table(), [&] { needle::validate(geometry, "needle"); });
+  // The surface mesher's planar faces cannot be triangulated in double precision beyond these proportions (fuzzing
+  // found a 5e55 um base on a 50 um tip): a needle's dimensions within a factor kMaxNeedleAspect of each other.
+  constexpr double kMaxNeedleAspect = 1e6;
+  for (const auto& [key, value] : {std::pair{"base_diameter", geometry.base_diameter},
+                                   std::pair{"length", geometry.length}}) {
+    const double smallest = std::min(geometry.tip_diameter, geometry.length);
+    if (value > kMaxNeedleAspect * smallest) {
+      section.fail(*section.optional(key), key,
+                   fmt::format("{:g} um is more than {:g} times the needle's smallest dimension ({:g} um), expected "
+                               "a needle in proportion",
+                               value * 1e6, kMaxNeedleAspect, smallest * 1e6));
+    }
+  }
   needle::NeedleMeshOptions mesh_options;
   if (const toml::node* node = section.optional("segments")) {
     mesh_options.circumferential_segments = integer_in(section, *node, "segments", 8, limits::kMaxNeedleSegments);
