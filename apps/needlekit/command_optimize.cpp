@@ -25,6 +25,8 @@ struct OptimizeArguments {
   bool certified = false;
   int threads = 0;
   std::string out_path;
+  std::uint64_t max_grid_points = limits::kMaxBruteForcePoints;
+  double max_memory_gib = limits::kMaxOptimizerMemoryBytes / (1ULL << 30);
 };
 
 void print_table(const analysis::DesignSpace& space, const analysis::OptimizerResult& result) {
@@ -119,6 +121,8 @@ void run_optimize(const OptimizeArguments& arguments) {
   options.top = arguments.top;
   options.published_compat = arguments.published_compat;
   options.threads = arguments.threads;
+  options.max_brute_force_points = arguments.max_grid_points;
+  options.max_memory_bytes = arguments.max_memory_gib * (1ULL << 30);
   if (file.robust) return run_robust(arguments, file, options);
   ProgressBar progress("optimize");
   options.progress = [&progress](double fraction) {  // from worker threads: the bar draws, Ctrl-C cancels
@@ -157,8 +161,20 @@ void add_optimize_command(CLI::App& app) {
   command->add_flag("--published-compat", arguments->published_compat,
                     "reproduce Table 6.3's hollow cylinder and hollow cone rows: the index uses the pitch w_max/n");
   command->add_flag("--certified", arguments->certified,
-                    "branch-and-bound: the exact optimum without enumerating the grid; needed above 1e12 grid points "
-                    "(e.g. 1 um steps)");
+                    "branch-and-bound: the exact optimum without enumerating the grid; needed above "
+                    "--max-grid-points (e.g. 1 um steps)");
+  command
+      ->add_option("--max-grid-points", arguments->max_grid_points,
+                   "refuse a brute-force grid of more points (core/limits.hpp; about 100 s at 1e8 points/s)")
+      ->type_name("N")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--max-memory-gib", arguments->max_memory_gib,
+                   "refuse a space whose tables would take more memory, in GiB (core/limits.hpp)")
+      ->type_name("GIB")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->add_option("--threads", arguments->threads, "worker threads, >= 0 (0: all hardware threads)")
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)

@@ -15,6 +15,7 @@
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
@@ -119,19 +120,16 @@ void run_patch(const PatchArguments& arguments) {
     throw InvalidInput(fmt::format("--sweep max_spring_energy needs a flexible patch, but {} has patch.kind = \"{}\"",
                                    arguments.case_path, patch::to_string(c.fit.kind)));
   }
-  geometry::SurfaceMesh surface = [&] {
-    try {
-      return geometry::SurfaceMesh(geometry::read_triangle_mesh(c.mesh, c.mesh_unit));
-    } catch (const InvalidInput& error) {
-      throw InvalidInput(fmt::format("{}: {}", c.mesh.string(), error.what()));
-    }
-  }();
+  geometry::BodySurface body = geometry::read_body_surface(c.mesh, c.mesh_unit);
+  geometry::SurfaceMesh surface = std::move(body.surface);
   patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweep};
   // A fit that did not converge (the equilibrium solver's iteration limit) ends the command with exit code 3 once
   // everything is written; the other statuses (the patch leaves the surface, springs over E_cri) are outcomes.
   bool not_converged = false;
-  // Warnings: implausible scales (a unit mistake?) and a mesh without a licence or attribution.
+  // Warnings: an inward surface turned outwards, implausible scales (a unit mistake?) and a mesh without a licence or
+  // attribution.
   std::vector<std::string> warnings = io::patch_scale_warnings(surface.mesh(), patch::patch_design(c.design));
+  if (body.flipped) warnings.insert(warnings.begin(), body.note);
   const std::optional<io::MeshAttribution> attribution = io::mesh_attribution(c.mesh);
   if (!attribution) warnings.push_back(io::missing_attribution_warning(c.mesh));
   print_warnings(warnings);
@@ -147,6 +145,8 @@ void run_patch(const PatchArguments& arguments) {
       options.fit.flexible.max_spring_energy =
           sweep->count == 1 ? sweep->from : sweep->from + (sweep->to - sweep->from) * i / (sweep->count - 1);
       const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
+      // The output folder once the first fit placed the patch (a bad placement leaves none), before the long sweep.
+      if (i == 0 && !arguments.out_dir.empty()) create_output_directory(arguments.out_dir);
       const patch::PatchEvaluation& e = r.evaluation;
       const double ms = r.fit_seconds * 1e3;
       not_converged = not_converged || r.status == patch::FitStatus::NotConverged;
@@ -160,7 +160,6 @@ void run_patch(const PatchArguments& arguments) {
     }
     progress.finish();
     if (!arguments.out_dir.empty()) {  // both files or none
-      create_output_directory(arguments.out_dir);
       StagedFiles outputs;
       outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.csv", csv);
       outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.json", points.dump(2) + "\n");

@@ -17,6 +17,7 @@
 #include "terminal_warnings.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/geometry/geodesic_distance.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 
@@ -46,13 +47,9 @@ void run_surface(const SurfaceArguments& arguments) {
                                : units::unit_factor(arguments.unit, units::Dimension::Length, "--unit");
   if (!(unit > 0)) throw InvalidInput(fmt::format("--unit: '{}' must be a positive length", arguments.unit));
   const auto started = std::chrono::steady_clock::now();
-  geometry::TriangleMesh mesh = geometry::read_triangle_mesh(arguments.mesh_path, unit);
-  if (arguments.weld) mesh = geometry::welded_mesh(mesh);
-  const geometry::SurfaceCheck check = geometry::surface_check(mesh);
-  if (!check.problems.empty()) {
-    throw InvalidInput(fmt::format("{}: not usable as a body surface: {}", arguments.mesh_path, check.problems));
-  }
-  const geometry::SurfaceMesh surface(std::move(mesh));
+  const geometry::BodySurface body = geometry::read_body_surface(arguments.mesh_path, unit, {.weld = arguments.weld});
+  const geometry::SurfaceCheck& check = body.check;
+  const geometry::SurfaceMesh& surface = body.surface;
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
 
   const auto& m = surface.mesh();
@@ -75,6 +72,7 @@ void run_surface(const SurfaceArguments& arguments) {
   out["outer_triangles"] = check.outer_triangles;
   out["degenerate_triangles"] = check.degenerate_triangles;
   out["coincident_vertices"] = check.coincident_vertices;
+  out["flipped_inward_normals"] = body.flipped;
   out["area_mm2"] = geometry::surface_area(m) / (mm * mm);
   if (check.closed) out["volume_mm3"] = geometry::signed_volume(m) / (mm * mm * mm);
   out["size_mm"] = {box.sizes().x() / mm, box.sizes().y() / mm, box.sizes().z() / mm};
@@ -111,6 +109,7 @@ void run_surface(const SurfaceArguments& arguments) {
                arguments.geodesic[1], g["distance_mm"].get<double>(), g["status"].get<std::string>(),
                g["euclidean_mm"].get<double>());
   }
+  if (body.flipped) fmt::print("note: {}\n", body.note);
   if (check.coincident_vertices > 0) {
     fmt::print("note: {} vertices share a position with another: seams split in the file; --weld merges them\n",
                check.coincident_vertices);

@@ -102,7 +102,7 @@ void add_tissue_mesh_command(CLI::App& app) {
   command->add_option("--out", arguments->out_dir, "folder for tissue.vtu (created if missing; written on success)")
       ->type_name("DIR")
       ->required();
-  command->add_option("--threads", arguments->threads, "Gmsh threads, 0 = all cores")
+  command->add_option("--threads", arguments->threads, "Gmsh threads, 0 = one (the same mesh in every run); N > 1 meshes surfaces on N threads, not reproducibly")
       ->default_val(0)
       ->check(CLI::Range(0, 1024));
   command->add_flag("--json", arguments->json, "print the mesh summary as JSON (units in the key names)");

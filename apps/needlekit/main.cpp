@@ -7,6 +7,7 @@
 
 #include <exception>
 
+#include "blas_kernels.hpp"
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
@@ -25,7 +26,8 @@ int report_error(std::string_view kind, std::string_view message, int exit_code)
 }  // namespace
 
 int main(int argc, char** argv) {
-  needlekit::install_interrupt_handlers();  // first: a signal from now on stops the command cleanly
+  needlekit::cli::use_avx2_blas_kernels(argc, argv);  // may re-execute the program, so before anything else
+  needlekit::install_interrupt_handlers();  // a signal from now on stops the command cleanly
   CLI::App app{"needlekit: design and analysis of microneedle arrays (P. Boonma, NC State 2012). Every dimensional "
                "input carries its unit (\"70 um\", \"169 GPa\").",
                "needlekit"};

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "needlekit/analysis/performance_index.hpp"
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
@@ -56,7 +57,8 @@ public:
     const std::string key = fmt::format("{}|{}", c.mesh.string(), c.mesh_unit);
     auto found = surfaces_.find(key);
     if (found == surfaces_.end()) {
-      auto surface = std::make_unique<geometry::SurfaceMesh>(geometry::read_triangle_mesh(c.mesh, c.mesh_unit));
+      auto surface =
+          std::make_unique<geometry::SurfaceMesh>(geometry::read_body_surface(c.mesh, c.mesh_unit).surface);
       found = surfaces_.emplace(key, std::move(surface)).first;
     }
     return *found->second;

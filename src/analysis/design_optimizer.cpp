@@ -305,6 +305,22 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
 
 }  // namespace
 
+double optimizer_memory_bytes(const DesignSpace& space, SearchMethod method) {
+  const auto count = [](const GridRange& range, std::string_view key) {
+    return static_cast<double>(grid_count(range, key));
+  };
+  const bool cylinder = space.shape == needle::Shape::Cylinder;
+  const double n = count(space.needles_per_row, "needles_per_row"), d1 = count(space.tip_diameter, "tip_diameter");
+  const double d2 = cylinder ? 1 : count(space.base_diameter, "base_diameter");
+  const double d3 = space.hollow ? count(space.bore_diameter, "bore_diameter") : 1;
+  const double w = count(space.width, "width"), l = count(space.length, "length");
+  const double pairs = d1 * d2;
+  // certified(): a Pair (five indices, a PitchChoice and a bound: 80 bytes) and an index in `order` per pair.
+  constexpr double kCertifiedBytesPerPair = 88;
+  return 8 * (n + d1 + d2 + d3 + w + l) + 16 * pairs + 8 * pairs * d3 +
+         (method == SearchMethod::Certified ? kCertifiedBytesPerPair * pairs : 0);
+}
+
 OptimizerResult optimize_design(const DesignSpace& space, const OptimizerOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (options.top < 1) throw InvalidInput(fmt::format("top: {} must be >= 1", options.top));
@@ -313,8 +329,20 @@ OptimizerResult optimize_design(const DesignSpace& space, const OptimizerOptions
   const std::uint64_t points = design_space_size(space);
   if (options.method == SearchMethod::BruteForce && points > options.max_brute_force_points) {
     throw InvalidInput(fmt::format("ranges: the design space has {:.3g} points, more than the brute-force limit of "
-                                   "{:.3g}; use the certified method (--certified)",
-                                   static_cast<double>(points), static_cast<double>(options.max_brute_force_points)));
+                                   "{:.3g} (about {:.0f} s at 1e8 points/s); use the certified method (--certified) "
+                                   "or raise the limit (--max-grid-points)",
+                                   static_cast<double>(points), static_cast<double>(options.max_brute_force_points),
+                                   static_cast<double>(points) / 1e8));
+  }
+  if (const double bytes = optimizer_memory_bytes(space, options.method); !(bytes <= options.max_memory_bytes)) {
+    throw InvalidInput(fmt::format("ranges: the design space's tables would take about {:.3g} GiB ({} D1 x {} D2 "
+                                   "values), more than the limit of {:.3g} GiB; expected coarser steps for "
+                                   "tip_diameter and base_diameter, or raise the limit (--max-memory-gib)",
+                                   bytes / (1ULL << 30), grid_count(space.tip_diameter, "tip_diameter"),
+                                   space.shape == needle::Shape::Cylinder
+                                       ? 1
+                                       : grid_count(space.base_diameter, "base_diameter"),
+                                   options.max_memory_bytes / (1ULL << 30)));
   }
   const DesignPointEvaluator evaluator(space, options.buckling, options.buckling_safety_factor);
   Progress progress(options.progress);

@@ -111,8 +111,31 @@ EdgePath shortest_edge_path(const SurfaceMesh& surface, int a, const Eigen::Vect
 
 }  // namespace
 
+namespace {
+
+GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLocation& from, const SurfaceLocation& to,
+                                   const GeodesicDistanceOptions& options, std::int64_t& budget);
+
+}  // namespace
+
 GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLocation& from, const SurfaceLocation& to,
                                    const GeodesicDistanceOptions& options) {
+  if (options.max_crossings < 1) {
+    throw InvalidInput(fmt::format("geodesic_distance: max_crossings {}, expected >= 1", options.max_crossings));
+  }
+  std::int64_t budget = options.max_crossings;
+  GeodesicDistance result = budgeted_distance(surface, from, to, options, budget);
+  if (result.status != DistanceStatus::Converged && budget <= 0) {
+    result.reason += fmt::format("; the work budget of {} triangle crossings (max_crossings) was spent",
+                                 options.max_crossings);
+  }
+  return result;
+}
+
+namespace {
+
+GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLocation& from, const SurfaceLocation& to,
+                                   const GeodesicDistanceOptions& options, std::int64_t& budget) {
   if (options.max_iterations < 1 || options.max_iterations > 1000 || !(options.tolerance > 0) ||
       options.tolerance > 1e-3 || options.extra_shots < 0 || options.extra_shots > 20) {
     throw InvalidInput(fmt::format("geodesic_distance: options max_iterations {} (expected [1, 1000]), tolerance {} "
@@ -147,13 +170,17 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
   e1.normalize();
   const Eigen::Vector3d e2 = n0.cross(e1);
 
+  // A shortest path crosses each triangle at most once: a longer trace cannot be one.
+  TraceOptions trace = options.trace;
+  trace.max_steps = static_cast<int>(std::min<std::int64_t>(trace.max_steps, surface.triangle_count() + 16));
   const auto shoot = [&](double angle, double length) {
     Shot shot;
     int stalled = 0;
-    for (int it = 0; it < options.max_iterations; ++it) {
+    for (int it = 0; it < options.max_iterations && budget > 0; ++it) {
       ++shot.iterations;
       SurfacePath path = straightest_geodesic(surface, a, std::cos(angle) * e1 + std::sin(angle) * e2, length,
-                                              options.trace);
+                                              trace);
+      budget -= static_cast<std::int64_t>(path.triangles.size()) + 1;
       const Eigen::Vector3d r = q - path.end_point;
       const double miss = r.norm();
       if (miss < shot.miss) {
@@ -186,7 +213,7 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
 
   Shot best;
   const auto fire = [&](double angle0, double length0, int planned) {
-    for (int k = 0; k < std::max(planned, 7); ++k) {
+    for (int k = 0; k < std::max(planned, 7) && budget > 0; ++k) {
       if (k >= planned && best.converged && !through_cone_vertex(best.path)) break;
       const double offset = (k == 0) ? 0.0 : ((k + 1) / 2) * 0.3 * (k % 2 ? 1.0 : -1.0);
       Shot shot = shoot(angle0 + offset, length0);
@@ -197,7 +224,7 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
     }
   };
   fire(0.0, result.euclidean, 1 + options.extra_shots);
-  if ((!best.converged || through_cone_vertex(best.path)) && options.graph_fallback) {
+  if ((!best.converged || through_cone_vertex(best.path)) && options.graph_fallback && budget > 0) {
     // Aim along the shortest edge path: at its point a quarter of the way along, with its length (an upper
     // bound) shortened by the typical excess of edge paths.
     const EdgePath edges = shortest_edge_path(surface, a.triangle, p, b.triangle, q);
@@ -215,7 +242,7 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
       if (towards.norm() > 0) fire(std::atan2(towards.dot(e2), towards.dot(e1)), 0.95 * edges.length, 1);
     }
   }
-  if (!best.converged && options.saddle_detour) {
+  if (!best.converged && options.saddle_detour && budget > 0) {
     // Vertices of the triangles the best shot crossed, and of the edge path: those where a shortest path may bend.
     std::vector<std::pair<int, int>> corners;  // (triangle, corner)
     for (int t : best.path.triangles) {
@@ -236,11 +263,12 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
       Eigen::Vector3d corner = Eigen::Vector3d::Zero();
       corner[c] = 1;
       const SurfaceLocation via{t, corner};
-      GeodesicDistance first = geodesic_distance(surface, a, via, leg_options);
+      if (budget <= 0) break;
+      GeodesicDistance first = budgeted_distance(surface, a, via, leg_options, budget);
       result.iterations += first.iterations;
       if (first.status != DistanceStatus::Converged) continue;
       // The second leg is shot from q back to V: shots from a point reach a vertex more reliably than shots from it.
-      GeodesicDistance second = geodesic_distance(surface, b, via, leg_options);
+      GeodesicDistance second = budgeted_distance(surface, b, via, leg_options, budget);
       result.iterations += second.iterations;
       if (second.status != DistanceStatus::Converged) continue;
       const double length = first.distance + second.distance;
@@ -270,5 +298,7 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
   }
   return result;
 }
+
+}  // namespace
 
 }  // namespace needlekit::geometry

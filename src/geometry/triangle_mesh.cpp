@@ -18,6 +18,7 @@
 
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/file_bytes.hpp"
 
 namespace needlekit::geometry {
 namespace {
@@ -66,14 +67,14 @@ void append_float(std::string& out, double value) {
   append_u32(out, std::bit_cast<std::uint32_t>(static_cast<float>(value)));
 }
 
-std::uint32_t read_u32(const std::string& bytes, std::size_t offset) {
+std::uint32_t read_u32(std::string_view bytes, std::size_t offset) {
   std::uint32_t value = 0;
   for (int byte = 0; byte < 4; ++byte) {
     value |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[offset + byte])) << (8 * byte);
   }
   return value;
 }
-double read_float(const std::string& bytes, std::size_t offset) {
+double read_float(std::string_view bytes, std::size_t offset) {
   return static_cast<double>(std::bit_cast<float>(read_u32(bytes, offset)));
 }
 
@@ -106,7 +107,7 @@ private:
   std::unordered_map<Key, int, KeyHash> index_;
 };
 
-TriangleMesh parse_binary_stl(const std::string& bytes, std::uint32_t count, const std::filesystem::path& path,
+TriangleMesh parse_binary_stl(std::string_view bytes, std::uint32_t count, std::string_view path,
                               double scale) {
   VertexMerger merger;
   for (std::uint32_t t = 0; t < count; ++t) {
@@ -116,7 +117,7 @@ TriangleMesh parse_binary_stl(const std::string& bytes, std::uint32_t count, con
       for (int k = 0; k < 3; ++k) {
         const double value = read_float(bytes, record + 12 + 12 * c + 4 * k);  // skip the 12-byte normal
         if (!std::isfinite(value)) {
-          throw IoError(fmt::format("{}: triangle {} has a non-finite coordinate", path.string(), t));
+          throw IoError(fmt::format("{}: triangle {} has a non-finite coordinate", path, t));
         }
         corners[c][k] = scale * value;
       }
@@ -152,8 +153,8 @@ std::vector<Token> tokenize(std::string_view text) {
 
 class AsciiStlParser {
 public:
-  AsciiStlParser(std::string_view text, const std::filesystem::path& path, double scale)
-      : tokens_(tokenize(text)), path_(path.string()), scale_(scale),
+  AsciiStlParser(std::string_view text, std::string_view path, double scale)
+      : tokens_(tokenize(text)), path_(path), scale_(scale),
         last_line_(1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'))) {}
 
   TriangleMesh parse() {
@@ -223,11 +224,11 @@ private:
   int last_line_;
 };
 
-bool starts_with_solid(const std::string& bytes) {
+bool starts_with_solid(std::string_view bytes) {
   const auto first = std::find_if_not(bytes.begin(), bytes.end(), [](char ch) {
     return std::isspace(static_cast<unsigned char>(ch));
   });
-  return std::string_view(bytes).substr(static_cast<std::size_t>(first - bytes.begin())).starts_with("solid");
+  return bytes.substr(static_cast<std::size_t>(first - bytes.begin())).starts_with("solid");
 }
 
 }  // namespace
@@ -282,12 +283,20 @@ MeshTopologyReport topology_report(const TriangleMesh& mesh) {
   }
   report.closed = !mesh.triangles.empty() && report.boundary_edges == 0 && report.non_manifold_edges == 0;
 
-  const double threshold = kDegenerateRelativeArea * bounding_box(mesh).sizes().squaredNorm();
-  for (const auto& t : mesh.triangles) {
-    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    if (repeated || area_vector(mesh, t).norm() <= threshold) ++report.degenerate_triangles;
-  }
+  report.degenerate_triangles = static_cast<int>(degenerate_triangles(mesh).size());
   return report;
+}
+
+std::vector<int> degenerate_triangles(const TriangleMesh& mesh) {
+  check_indices(mesh);
+  const double threshold = kDegenerateRelativeArea * bounding_box(mesh).sizes().squaredNorm();
+  std::vector<int> degenerate;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    if (repeated || area_vector(mesh, t).norm() <= threshold) degenerate.push_back(static_cast<int>(i));
+  }
+  return degenerate;
 }
 
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, double scale) {
@@ -326,11 +335,11 @@ TriangleMesh welded_mesh(const TriangleMesh& mesh) {
 
 TriangleMesh read_stl(const std::filesystem::path& path, double scale) {
   check_scale(scale, fmt::format("read_stl({})", path.string()));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(fmt::format("{}: cannot open STL file for reading", path.string()));
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw IoError(fmt::format("{}: reading the STL file failed", path.string()));
+  return parse_stl(read_file_bytes(path, "STL file"), path.string(), scale);
+}
 
+TriangleMesh parse_stl(std::string_view bytes, std::string_view path, double scale) {
+  check_scale(scale, fmt::format("read_stl({})", path));
   // Binary exactly when the size matches the triangle count in the header (some binary headers start with "solid").
   if (bytes.size() >= kHeaderBytes + 4) {
     const std::uint32_t count = read_u32(bytes, kHeaderBytes);
@@ -342,11 +351,11 @@ TriangleMesh read_stl(const std::filesystem::path& path, double scale) {
   if (bytes.size() >= kHeaderBytes + 4) {
     throw IoError(fmt::format("{}: not an STL file: {} bytes do not match the binary size 84 + 50·{} and the file "
                               "does not start with 'solid'",
-                              path.string(), bytes.size(), read_u32(bytes, kHeaderBytes)));
+                              path, bytes.size(), read_u32(bytes, kHeaderBytes)));
   }
   throw IoError(fmt::format("{}: not an STL file: {} bytes, shorter than a binary header and not starting with "
                             "'solid'",
-                            path.string(), bytes.size()));
+                            path, bytes.size()));
 }
 
 }  // namespace needlekit::geometry

@@ -1,17 +1,15 @@
 #include "needlekit/io/force_curve_csv.hpp"
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <fmt/format.h>
-#include <fstream>
 #include <sstream>
 #include <tuple>
 #include <string>
 #include <vector>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/file_bytes.hpp"
 #include "needlekit/core/units.hpp"
 
 namespace needlekit::io {
@@ -111,11 +109,7 @@ insertion::ForceDepthCurve parse_force_curve_csv(std::string_view text, std::str
 }
 
 insertion::ForceDepthCurve read_force_curve_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(fmt::format("{}: cannot read: {}", path.string(), std::strerror(errno)));
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_force_curve_csv(text.str(), path.string());
+  return parse_force_curve_csv(read_file_bytes(path, "force curve CSV"), path.string());
 }
 
 }  // namespace needlekit::io

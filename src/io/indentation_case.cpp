@@ -63,12 +63,34 @@ NeedleRead read_needle(const Section& section, const toml::table& root, const st
   }
   needle::NeedleGeometry geometry = needle_of(section);
   validate_at_keys(root, section.file(), section.table(), [&] { needle::validate(geometry, "needle"); });
+  // The surface mesher's planar faces cannot be triangulated in double precision beyond these proportions (fuzzing
+  // found a 5e55 um base on a 50 um tip): a needle's dimensions within a factor kMaxNeedleAspect of each other.
+  constexpr double kMaxNeedleAspect = 1e6;
+  for (const auto& [key, value] : {std::pair{"base_diameter", geometry.base_diameter},
+                                   std::pair{"length", geometry.length}}) {
+    const double smallest = std::min(geometry.tip_diameter, geometry.length);
+    if (value > kMaxNeedleAspect * smallest) {
+      section.fail(*section.optional(key), key,
+                   fmt::format("{:g} um is more than {:g} times the needle's smallest dimension ({:g} um), expected "
+                               "a needle in proportion",
+                               value * 1e6, kMaxNeedleAspect, smallest * 1e6));
+    }
+  }
   needle::NeedleMeshOptions mesh_options;
   if (const toml::node* node = section.optional("segments")) {
-    mesh_options.circumferential_segments = integer_at_least(section, *node, "segments", 8);
+    mesh_options.circumferential_segments = integer_in(section, *node, "segments", 8, limits::kMaxNeedleSegments);
   }
   if (const toml::node* node = section.optional("axial_segments")) {
-    mesh_options.axial_segments = integer_at_least(section, *node, "axial_segments", 1);
+    mesh_options.axial_segments = integer_in(section, *node, "axial_segments", 1, limits::kMaxNeedleSegments);
+  }
+  if (const long long quads = static_cast<long long>(mesh_options.circumferential_segments) *
+                              mesh_options.axial_segments;
+      quads > limits::kMaxNeedleSegments * 64LL) {
+    section.fail(section.optional("segments") ? *section.optional("segments") : *section.optional("axial_segments"),
+                 "segments",
+                 fmt::format("{} x {} axial segments make {} quadrilaterals, more than needlekit's work limit of {}",
+                             mesh_options.circumferential_segments, mesh_options.axial_segments, quads,
+                             limits::kMaxNeedleSegments * 64LL));
   }
   result.mesh = needle::needle_surface_mesh(geometry, mesh_options);
   result.geometry = geometry;
@@ -241,7 +263,9 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
 
   const Section loading = top.required_subsection("loading", {"depth", "steps", "continue_after_puncture"});
   result.depth = positive_quantity(loading, "depth", Dimension::Length);
-  if (const toml::node* node = loading.optional("steps")) result.steps = integer_at_least(loading, *node, "steps", 1);
+  if (const toml::node* node = loading.optional("steps")) {
+    result.steps = integer_in(loading, *node, "steps", 1, limits::kMaxLoadSteps);
+  }
   if (const toml::node* node = loading.optional("continue_after_puncture")) {
     result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
   }

@@ -77,7 +77,7 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
   }
   settings.final_depth = config::positive_quantity(post, "final_depth", units::Dimension::Length);
   if (const toml::node* node = post.optional("samples"))
-    settings.cutting_samples = config::integer_at_least(post, *node, "samples", 1);
+    settings.cutting_samples = config::integer_in(post, *node, "samples", 1, limits::kMaxCurveSamples);
   if (auto radius = config::optional_positive_quantity(post, "reference_radius", units::Dimension::Length))
     settings.post_puncture.reference_radius = *radius;
   if (const toml::node* node = post.optional("max_edge_fraction")) {

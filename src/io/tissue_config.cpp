@@ -158,13 +158,13 @@ TissueCase tissue_case_of(const toml::table& root, std::string_view file, const 
   if (const toml::node* node = root.get("mesh")) {
     const Section m = table_of(*node, "mesh", file, {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
                                                      "thin_layer_size_factor", "sites", "site_circle_radius", "split", "file",
-                                                     "unit"});
+                                                     "unit", "max_tetrahedra"});
     if (const toml::node* f = m.optional("file")) {
       const std::string path = text_of(m, *f, "file", "a .msh file name");
       if (path.empty()) m.fail(*f, "file", "empty, expected a .msh file name");
       tissue.msh_file = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
       for (std::string_view key : {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
-                                   "thin_layer_size_factor", "sites", "site_circle_radius", "split"}) {
+                                   "thin_layer_size_factor", "sites", "site_circle_radius", "split", "max_tetrahedra"}) {
         if (const toml::node* other = m.optional(key)) {
           m.fail(*other, key, "given together with file, expected either a mesh file or the block's mesh sizes");
         }
@@ -188,6 +188,9 @@ TissueCase tissue_case_of(const toml::table& root, std::string_view file, const 
     if (const toml::node* s = m.optional("sites")) o.insertion_sites = sites_of(m, *s);
     if (auto r = optional_positive_quantity(m, "site_circle_radius", Dimension::Length)) o.site_circle_radius = *r;
     if (const toml::node* split = m.optional("split")) o.split = boolean_of(m, *split, "split");
+    if (const toml::node* limit = m.optional("max_tetrahedra")) {
+      o.max_tetrahedra = number_at_least(m, *limit, "max_tetrahedra", 1.0);
+    }
     if (o.size_far < o.size_at_site) {
       m.fail(m.optional("size_far") ? *m.optional("size_far") : *node, "size_far",
              fmt::format("{:g} um is smaller than size_at_tip = {:g} um, expected size_far >= size_at_tip",

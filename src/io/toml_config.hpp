@@ -23,6 +23,7 @@
 #include "needlekit/analysis/skin_permeation.hpp"
 #include "needlekit/core/enum_table.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/limits.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/materials/needle_material.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
@@ -213,6 +214,17 @@ inline int integer_at_least(const Section& section, const toml::node& node, std:
   const std::int64_t value = integer_of(section, node, key);
   if (value < minimum || value > INT_MAX) {
     section.fail(node, key, fmt::format("{} is out of range, expected an integer >= {}", value, minimum));
+  }
+  return static_cast<int>(value);
+}
+
+// An integer in [minimum, maximum]; `maximum` is one of the work limits of core/limits.hpp.
+inline int integer_in(const Section& section, const toml::node& node, std::string_view key, int minimum, int maximum) {
+  const std::int64_t value = integer_of(section, node, key);
+  if (value < minimum || value > maximum) {
+    section.fail(node, key, fmt::format("{} is out of range, expected an integer in [{}, {}] (the upper end is "
+                                        "needlekit's work limit)",
+                                        value, minimum, maximum));
   }
   return static_cast<int>(value);
 }

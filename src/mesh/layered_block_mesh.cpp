@@ -10,9 +10,12 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/mesh/mesh_validation.hpp"
+#include "needlekit/mesh/tet_count_estimate.hpp"
 
 namespace needlekit::mesh {
 namespace {
+
+constexpr double kMinRelativeDimension = 1e-5;  // of the block's largest dimension, for every dimension and layer
 
 void check_positive(double value, std::string_view field, double scale = 1e6, std::string_view unit = "um") {
   if (!std::isfinite(value) || value <= 0) {
@@ -58,8 +61,26 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
       }
     }
   }
-  if (o.threads < 0) throw InvalidInput(fmt::format("layered block: threads = {}; expected >= 0", o.threads));
   materials::validate(layers, "layered block: layers");
+  // OpenCASCADE models the block in um with an absolute tolerance of 1e-7 um and fails (or finds no top face) for a
+  // layer that is thin next to the block: every dimension must be at least kMinRelativeDimension of the largest.
+  double height = 0;
+  for (const TissueLayer& layer : layers) height += layer.thickness;
+  const double largest = std::max({o.width, o.length, height});
+  const auto check_dimension = [&](double value, const std::string& what) {
+    if (!(value >= kMinRelativeDimension * largest)) {
+      throw InvalidInput(fmt::format("layered block: {} = {:g} um is below {:g} of the block's largest dimension "
+                                     "({:g} um); expected a thicker layer or a smaller block",
+                                     what, value * 1e6, kMinRelativeDimension, largest * 1e6));
+    }
+  };
+  check_dimension(o.width, "width");
+  check_dimension(o.length, "length");
+  for (const TissueLayer& layer : layers) check_dimension(layer.thickness, fmt::format("layer '{}' thickness", layer.name));
+  if (!(o.max_tetrahedra > 0)) {
+    throw InvalidInput(fmt::format("layered block: max_tetrahedra = {}; expected a positive count", o.max_tetrahedra));
+  }
+  if (o.threads < 0) throw InvalidInput(fmt::format("layered block: threads = {}; expected >= 0", o.threads));
   for (std::size_t s = 0; s < o.insertion_sites.size(); ++s) {
     const Eigen::Vector2d& p = o.insertion_sites[s];
     if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
@@ -84,6 +105,14 @@ TetMesh gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueL
 LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
   const std::vector<TissueLayer> layers = options.layers.empty() ? materials::skin_layers() : options.layers;
   validate_options(options, layers);
+  LayeredBlockOptions estimated = options;
+  estimated.layers = layers;
+  if (const double tets = estimated_tetrahedra(estimated); !(tets <= options.max_tetrahedra)) {
+    throw InvalidInput(fmt::format("layered block: about {:.2g} tetrahedra (estimated from the block and mesh sizes), "
+                                   "more than the limit of {:.2g}; expected coarser sizes ([mesh] size_at_tip, "
+                                   "size_far, size_gradient) or a smaller block, or raise [mesh] max_tetrahedra",
+                                   tets, options.max_tetrahedra));
+  }
   const auto start = std::chrono::steady_clock::now();
   LayeredBlockResult result;
   if (options.split) {

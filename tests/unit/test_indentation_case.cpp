@@ -243,7 +243,11 @@ TEST(IndentationCase, ErrorsNameFileLineAndKey) {
   EXPECT_THAT(error_of(replaced(kCase, "[tissue]", "[[needles]]\nx = \"2000 um\"\n[tissue]")),
               HasSubstr("key 'needles[0]': (2000 um, 0 um) is outside the 3000 um x 3000 um block"));
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 0")),
-              HasSubstr("key 'loading.steps': 0 is out of range, expected an integer >= 1"));
+              HasSubstr("key 'loading.steps': 0 is out of range, expected an integer in [1, 10000]"));
+  // The work limits (core/limits.hpp): a typo cannot ask for days of load steps or a needle mesh of 1e9 quads.
+  EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 200000")),
+              HasSubstr("key 'loading.steps': 200000 is out of range, expected an integer in [1, 10000] (the upper end "
+                        "is needlekit's work limit)"));
   EXPECT_THAT(error_of(replaced(kCase, "size_far = \"250 um\"", "size_far = \"10 um\"")),
               HasSubstr("key 'mesh.size_far': 10 um is smaller than size_at_tip = 20 um"));
   const std::string preset_case = std::string(kCase.substr(0, kCase.find("[[tissue.layers]]"))) + "preset = \"liver\"\n[loading]\n"

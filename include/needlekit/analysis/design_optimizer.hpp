@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "needlekit/analysis/design_space.hpp"
+#include "needlekit/core/limits.hpp"
 
 namespace needlekit::analysis {
 
@@ -33,8 +34,10 @@ struct OptimizerOptions {
   int threads = 0;                 // 0: all hardware threads
   BucklingOptions buckling;
   double buckling_safety_factor = 1.0;
-  // Brute force refuses spaces larger than this (use the certified method).
-  std::uint64_t max_brute_force_points = 1'000'000'000'000ULL;
+  // Brute force refuses spaces larger than this (use the certified method, or raise it).
+  std::uint64_t max_brute_force_points = limits::kMaxBruteForcePoints;
+  // Both methods refuse spaces whose tables (optimizer_memory_bytes) would take more than this many bytes.
+  double max_memory_bytes = limits::kMaxOptimizerMemoryBytes;
   // Called with the fraction done in [0, 1] from one thread at a time; return false to cancel.
   std::function<bool(double)> progress;
 };
@@ -67,8 +70,13 @@ struct OptimizerResult {
   double seconds = 0;                 // wall time
 };
 
-// Throws InvalidInput for invalid spaces (ranges, material, tissue) or a brute-force space larger than
-// options.max_brute_force_points.
+// Throws InvalidInput for invalid spaces (ranges, material, tissue), a brute-force space larger than
+// options.max_brute_force_points, or one whose tables would exceed options.max_memory_bytes; all before any work.
 OptimizerResult optimize_design(const DesignSpace& space, const OptimizerOptions& options = {});
+
+// The bytes the optimizer allocates for a space: the grid values of every axis, two doubles per (D1, D2) pair and
+// one per (D1, D2, D3) triple (DesignPointEvaluator), and for the certified method its per-pair bounds and order.
+// Throws InvalidInput for invalid ranges.
+double optimizer_memory_bytes(const DesignSpace& space, SearchMethod method);
 
 }  // namespace needlekit::analysis

@@ -14,6 +14,7 @@
 // vertex. Paths that bend at two or more vertices are not found (status NotConverged); the exact polyhedral algorithm
 // for the general case (Mitchell-Mount-Papadimitriou / Chen-Han) is not implemented.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "needlekit/geometry/geodesic_trace.hpp"
@@ -35,6 +36,10 @@ struct GeodesicDistanceOptions {
   // When still no shot converges, try paths that bend at one saddle or boundary vertex near the best shot and the
   // edge path (up to 64 such vertices, each costing two distance computations).
   bool saddle_detour = true;
+  // The work budget: triangles crossed by all traced paths together (shots, fallback and detours), >= 1. When it is
+  // spent the search stops with NotConverged and says so; a trace is also cut at the mesh's triangle count (a
+  // shortest path crosses each triangle at most once). About 1e7 crossings per second.
+  std::int64_t max_crossings = 50'000'000;
   TraceOptions trace;  // for each traced path
 };
 

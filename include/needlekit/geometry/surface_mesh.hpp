@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "needlekit/geometry/triangle_mesh.hpp"
@@ -76,7 +77,13 @@ private:
 SurfaceCheck surface_check(const TriangleMesh& mesh);
 
 // Reads OBJ, STL (ASCII or binary), PLY or OFF by the file's extension, scaling coordinates by `unit_to_metre`
-// (e.g. 1e-3 for a file in mm). Throws IoError naming the file (and line where the reader reports one).
+// (e.g. 1e-3 for a file in mm). Throws IoError naming the file (and line where the reader reports one); a directory
+// or a missing file is an IoError too.
 TriangleMesh read_triangle_mesh(const std::filesystem::path& path, double unit_to_metre);
+
+enum class MeshFormat { Obj, Stl, Ply, Off };
+// The same from the file's bytes; `source_name` stands for the file in messages.
+TriangleMesh parse_triangle_mesh(std::string_view bytes, MeshFormat format, std::string_view source_name,
+                                 double unit_to_metre);
 
 }  // namespace needlekit::geometry

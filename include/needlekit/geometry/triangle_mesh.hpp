@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 namespace needlekit::geometry {
@@ -25,6 +26,9 @@ struct MeshTopologyReport {
   int degenerate_triangles = 0;        // zero area (relative to the mesh size)
 };
 MeshTopologyReport topology_report(const TriangleMesh& mesh);
+// The triangles with zero area (a repeated corner, or an area below 1e-14 of the squared bounding-box diagonal), in
+// order.
+std::vector<int> degenerate_triangles(const TriangleMesh& mesh);
 
 // The mesh with vertices of identical coordinates merged into one (kept in order of first use by the triangles;
 // vertices that no triangle uses are dropped). Use it on meshes exported with split vertices along seams.
@@ -35,5 +39,7 @@ TriangleMesh welded_mesh(const TriangleMesh& mesh);
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path, double scale = 1.0);
 // Reads ASCII or binary STL, merging identical vertices. Throws IoError naming the file.
 TriangleMesh read_stl(const std::filesystem::path& path, double scale = 1.0);
+// The same from the file's bytes; `source_name` stands for the file in messages.
+TriangleMesh parse_stl(std::string_view bytes, std::string_view source_name, double scale = 1.0);
 
 }  // namespace needlekit::geometry

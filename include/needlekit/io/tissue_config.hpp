@@ -13,7 +13,8 @@
 //             site_circle_radius (a circle of nodes around each site, e.g. a flat punch's edge; default none);
 //             or file = "tissue.msh" (a user's tetrahedral Gmsh mesh, relative to the case file, whose physical volume
 //             groups are named after the [[tissue.layers]]; its top surface must be z = 0) and unit (the file's
-//             length unit, default "um").
+//             length unit, default "um"); max_tetrahedra (default 5e7, core/limits.hpp): a block whose estimated
+//             tetrahedron count is larger is refused before meshing.
 #pragma once
 #include <filesystem>
 #include <string_view>

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "needlekit/core/limits.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 #include "needlekit/mesh/uniform_refinement.hpp"
 
@@ -21,7 +22,9 @@ struct LayeredBlockOptions {
   double size_at_site = 20e-6;          // m, target element size at each insertion site, > 0
   double refinement_radius = 300e-6;    // m, radius around a site where the size is size_at_site, > 0
   double size_far = 250e-6;             // m, element size far from the sites, >= size_at_site
-  int threads = 0;                      // Gmsh threads, 0 = all cores
+  int threads = 0;                      // Gmsh threads, >= 0: 0 = one thread (the mesh is then the same, bit for
+                                        // bit, in every run); N > 1 meshes surfaces on N threads, whose meshes
+                                        // differ between runs in their last bits
   double size_gradient = 0.3;           // 1, (0, inf): growth of the element size per unit distance outside the
                                         // refinement radius and outside thin layers (0.3: 30 um per 100 um)
   double thin_layer_size_factor = 2.0;  // 1, [0, inf): the element size inside a layer is capped at this times its
@@ -32,6 +35,9 @@ struct LayeredBlockOptions {
   bool split = false;                   // mesh at twice the sizes (and size gradient), then split every tet into
                                         // eight (refine_uniformly): about the same elements, and the coarse level
                                         // that lets the FE solver use its two-grid solver (fast on large meshes)
+  double max_tetrahedra = limits::kMaxTetrahedra;  // > 0: a block whose estimated tetrahedron count
+                                        // (estimated_tetrahedra, tet_count_estimate.hpp) exceeds this is refused
+                                        // before meshing; the case file's [mesh] max_tetrahedra
 };
 
 struct LayerQuality {
@@ -50,8 +56,9 @@ struct LayeredBlockResult {
 };
 
 // Meshes the block. Throws InvalidInput for non-positive sizes or thicknesses (naming the field), a site outside the
-// top surface or invalid layers. Gmsh's HXT mesher is not run-to-run deterministic: two calls give meshes that
-// differ in detail (about 1 % in element count) but always conform to the same layers.
+// top surface, invalid layers or an estimated tetrahedron count above max_tetrahedra (before any meshing). With
+// threads = 0 the mesh depends only on the options: the same node coordinates, bit for bit, in every run, whatever
+// the process's memory layout, file names or environment.
 LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options);
 
 }  // namespace needlekit::mesh

@@ -2,7 +2,7 @@
 // are conforming; a physical volume named after each layer; the insertion sites (and optionally a circle around
 // each) embedded in the top surface; size fields: Distance from the sites -> Threshold (size_at_site within
 // refinement_radius, growing by size_gradient up to size_far), a Box field capping the size in each thin layer, and
-// their Min as background mesh; HXT 3D.
+// their Min as background mesh; Delaunay 3D on one thread (reproducible).
 // The geometry is built in micrometres (OpenCASCADE's absolute tolerance is 1e-7 model units) and converted to m.
 // Part of the Gmsh module; the options are validated by layered_block_mesh (src/mesh/layered_block_mesh.cpp).
 #include <fmt/format.h>
@@ -77,7 +77,7 @@ TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<
 
 }  // namespace
 
-// The Gmsh part: geometry, size fields, HXT, conversion to a TetMesh (no orientation, quality or timing).
+// The Gmsh part: geometry, size fields, Delaunay 3D, conversion to a TetMesh (no orientation, quality or timing).
 TetMesh gmsh_layered_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
   const double u = 1 / kModelUnit;  // m -> model units
   const double w = options.width * u, l = options.length * u;
@@ -187,9 +187,16 @@ TetMesh gmsh_layered_block(const LayeredBlockOptions& options, const std::vector
     GmshSession::set_option({"Mesh.MeshSizeExtendFromBoundary", "Mesh.CharacteristicLengthExtendFromBoundary"},
                                     0);
     GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
-    GmshSession::set_option({"Mesh.Algorithm3D"}, 10);  // HXT
-    GmshSession::set_option({"General.NumThreads"}, options.threads);
-    GmshSession::set_option({"Mesh.MaxNumThreads3D"}, options.threads);
+    // Reproducible meshes: Gmsh 4.8's HXT (10) gives meshes that depend on the heap layout even on one thread (the
+    // same case gave 11,158-11,308 tetrahedra depending on the case file's name or the environment's size), and
+    // several threads make the 2D meshes differ in their last bits. Delaunay 3D (1) on one thread gives the same
+    // mesh, bit for bit, whatever the memory layout (tests/example/test_mesh_determinism.cpp), at about HXT's speed on
+    // these blocks (and about 20 % more elements for the same size field).
+    GmshSession::set_option({"Mesh.Algorithm3D"}, 1);
+    const int threads = options.threads == 0 ? 1 : options.threads;
+    GmshSession::set_option({"General.NumThreads"}, threads);
+    GmshSession::set_option({"Mesh.MaxNumThreads2D"}, threads);
+    GmshSession::set_option({"Mesh.MaxNumThreads3D"}, threads);
     GmshSession::set_option({"Mesh.Optimize"}, 1);
     gmsh::model::mesh::generate(3);
 

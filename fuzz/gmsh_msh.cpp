@@ -1,0 +1,20 @@
+// Gmsh .msh import (`[mesh] file`): Gmsh reads a file, so the bytes go to a temporary one first.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include "fuzz_target.hpp"
+#include "needlekit/mesh/msh_import.hpp"
+
+NEEDLEKIT_FUZZ_TARGET(gmsh_msh) {
+  static const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("needlekit-fuzz-" + std::to_string(::getpid()) + ".msh");
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  needlekit::fuzz::refusals_allowed([&] { needlekit::mesh::msh_import(file, {.unit = 1e-6}); });
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+}
