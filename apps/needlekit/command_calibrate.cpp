@@ -18,6 +18,7 @@
 #include "needlekit/calibration/calibration_output.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/result_writers.hpp"
 
 #ifndef NEEDLEKIT_SCRIPTS_DIR
@@ -106,8 +107,10 @@ void run_calibrate(const CalibrateArguments& arguments) {
       values.push_back(fmt::format("{} = {}", problem.parameters[j].path, calibration::as_given(problem.parameters[j], p.values[j])));
     fmt::print(stderr, "calibrate {}: iteration {}: rms {:.4g}; {} ({} FE runs, {:.1f} s)\n", problem.name,
                p.iteration, p.rms_relative, fmt::join(values, ", "), p.model_runs, p.seconds);
+    return !interrupt_requested();
   };
   const calibration::CalibrationResult result = calibration::calibrate(problem, options);
+  if (result.status == calibration::CalibrationStatus::Stopped) throw Interrupted();  // nothing written
 
   nlohmann::json json = calibration::calibration_json(problem, result);
   const std::filesystem::path dir(arguments.out_dir);

@@ -21,7 +21,10 @@ void calibrated_phantom(const RunContext& context, SectionReport& report, const 
   progress(0.5, "calibration on the sharp bevel");
   const calibration::CalibrationProblem problem = calibration::read_calibration_file(context.example(example));
   calibration::CalibrationOptions options;
-  options.progress = [&](const calibration::CalibrationProgress&) { context.check_interrupt(); };
+  options.progress = [&](const calibration::CalibrationProgress&) {
+    context.check_interrupt();
+    return true;
+  };
   const calibration::CalibrationResult result = calibration::calibrate(problem, options);
   const std::string json = context.write("section_6_2/calibration_6_2.json",
                                          calibration::calibration_json(problem, result).dump(2) + "\n");

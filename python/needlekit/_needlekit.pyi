@@ -132,6 +132,195 @@ class BucklingResult:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class CalibrationPrediction:
+    """The model of one experiment at the fitted values."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def curve(self) -> ForceDepthCurve:
+        """ForceDepthCurve (SI); empty for design files"""
+    @property
+    def failure(self) -> str:
+        ...
+    @property
+    def notes(self) -> List[str]:
+        ...
+    @property
+    def ok(self) -> bool:
+        ...
+    @property
+    def puncture(self) -> Optional[PuncturePoint]:
+        """PuncturePoint, or None"""
+    @property
+    def status(self) -> str:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class CalibrationProblem:
+    """A calibration file as read (read_calibration_file)."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def experiments(self) -> List[ExperimentSpec]:
+        ...
+    @property
+    def file(self) -> os.PathLike[str]:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def parameters(self) -> List[ParameterSpec]:
+        ...
+    @property
+    def solver(self) -> CalibrationSolverSettings:
+        ...
+    @solver.setter
+    def solver(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class CalibrationProgress:
+    """Passed to calibrate's progress callback per iteration."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def iteration(self) -> int:
+        """0: the initial point"""
+    @property
+    def model_runs(self) -> int:
+        """FE runs so far"""
+    @property
+    def rms_relative(self) -> float:
+        ...
+    @property
+    def seconds(self) -> float:
+        """s"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def values(self) -> List[float]:
+        """SI, in the order of the parameters"""
+
+class CalibrationResult:
+    """The fit: values (SI), 95 % intervals, correlations."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def correlation(self) -> numpy.ndarray:
+        """NaN where not identifiable"""
+    @property
+    def experiments(self) -> List[ExperimentFit]:
+        ...
+    @property
+    def iterations(self) -> int:
+        ...
+    @property
+    def model_runs(self) -> int:
+        ...
+    @property
+    def parameters(self) -> List[FittedParameter]:
+        ...
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def rms_relative(self) -> float:
+        ...
+    @property
+    def seconds(self) -> float:
+        """s"""
+    @property
+    def status(self) -> CalibrationStatus:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    def values(self) -> List[float]:
+        """SI, in the order of the parameters"""
+    @property
+    def warnings(self) -> List[str]:
+        ...
+
+class CalibrationSolverSettings:
+    """The [solver] table of a calibration file."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def function_tolerance(self) -> float:
+        """(0, 1)"""
+    @function_tolerance.setter
+    def function_tolerance(self, value: Any) -> None: ...
+    @property
+    def max_iterations(self) -> int:
+        """>= 1"""
+    @max_iterations.setter
+    def max_iterations(self, value: Any) -> None: ...
+    @property
+    def parameter_tolerance(self) -> float:
+        """(0, 1)"""
+    @parameter_tolerance.setter
+    def parameter_tolerance(self, value: Any) -> None: ...
+    @property
+    def relative_step(self) -> float:
+        """(0, 0.1); 0: automatic"""
+    @relative_step.setter
+    def relative_step(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class CalibrationStatus:
+    """Members:
+
+  Converged
+
+  NotConverged
+
+  Failed
+
+  Stopped"""
+    Converged: ClassVar[CalibrationStatus]
+    NotConverged: ClassVar[CalibrationStatus]
+    Failed: ClassVar[CalibrationStatus]
+    Stopped: ClassVar[CalibrationStatus]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class CandidateCheck:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def candidate(self) -> DesignCandidate:
+        ...
+    @property
+    def ci95(self) -> Interval:
+        ...
+    @property
+    def success_probability(self) -> float:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class CaseValue:
+    """A value found in a case file."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def dimension(self) -> Dimension:
+        ...
+    @property
+    def line(self) -> int:
+        """1-based line in the case text"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def value(self) -> float:
+        """SI"""
+
 class ClosestPoint:
     ...
     def __init__(*args, **kwargs) -> Any:
@@ -250,6 +439,28 @@ class ContactModel:
     @property
     def value(self) -> int: ...
 
+class Correlation:
+    """Correlation of the normal scores of two inputs."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def first(self) -> int:
+        """index into the inputs"""
+    @first.setter
+    def first(self, value: Any) -> None: ...
+    @property
+    def rho(self) -> float:
+        """(-1, 1)"""
+    @rho.setter
+    def rho(self, value: Any) -> None: ...
+    @property
+    def second(self) -> int:
+        """index into the inputs"""
+    @second.setter
+    def second(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class DesignCandidate:
     """One design of the optimizer's top list (SI)."""
     def __init__(*args, **kwargs) -> Any:
@@ -280,6 +491,56 @@ class DesignCandidate:
     @property
     def width(self) -> float:
         """m"""
+
+class DesignCase:
+    """One needle array with its conditions and options."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def conditions(self) -> InsertionConditions:
+        ...
+    @conditions.setter
+    def conditions(self, value: Any) -> None: ...
+    @property
+    def design(self) -> ArrayDesign:
+        ...
+    @design.setter
+    def design(self, value: Any) -> None: ...
+    @property
+    def options(self) -> PerformanceIndexOptions:
+        ...
+    @options.setter
+    def options(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class DesignEvent:
+    """The events whose probabilities design_uncertainty estimates (design_events()).
+
+Members:
+
+  Puncture : the needle punctures: |F(A)| > 0 and cutting depth L - d > 0
+
+  BucklingFailure : phi = 0: the axial force reaches the critical buckling load
+
+  BendingFailure : omega = 0: the lateral force reaches the critical bending load (undefined where not assessed)
+
+  ReachesTarget : L - d >= T: the tip reaches the target depth
+
+  Success : punctures, neither buckles nor bends, and reaches the target
+
+  InvalidSample : the sampled values make no valid needle (counted as failure)"""
+    Puncture: ClassVar[DesignEvent]
+    BucklingFailure: ClassVar[DesignEvent]
+    BendingFailure: ClassVar[DesignEvent]
+    ReachesTarget: ClassVar[DesignEvent]
+    Success: ClassVar[DesignEvent]
+    InvalidSample: ClassVar[DesignEvent]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
 
 class DesignFile:
     """A design file: the array, the insertion conditions and the options."""
@@ -365,6 +626,78 @@ class DesignSpace:
     @width.setter
     def width(self, value: Any) -> None: ...
 
+class DesignUncertainInput:
+    """An uncertain input of a design."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def centred_on_nominal(self) -> bool:
+        """the mean/median/mode is the design's value"""
+    @centred_on_nominal.setter
+    def centred_on_nominal(self, value: Any) -> None: ...
+    @property
+    def distribution(self) -> Distribution:
+        ...
+    @distribution.setter
+    def distribution(self, value: Any) -> None: ...
+    @property
+    def key(self) -> str:
+        """a design-file key, e.g. 'needle.tip_diameter'"""
+    @key.setter
+    def key(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class DesignUncertaintyOptions:
+    ...
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def sampling(self) -> PropagationOptions:
+        ...
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class DesignUncertaintyResult:
+    """Event probabilities, the index's distribution (1/m) and Sobol' indices."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def evaluations(self) -> int:
+        ...
+    def event(self, event: DesignEvent) -> OutputSummary:
+        """An event's summary: .mean is its probability, .ci95 its 95 % interval."""
+    def index(self) -> OutputSummary:
+        """The performance index's summary (1/m)."""
+    @property
+    def keys(self) -> List[str]:
+        """the uncertain inputs, as given"""
+    @property
+    def nominal(self) -> PerformanceIndexResult:
+        """the deterministic evaluation"""
+    @property
+    def notes(self) -> List[str]:
+        ...
+    @property
+    def one_at_a_time(self) -> List[OneAtATime]:
+        ...
+    @property
+    def outputs(self) -> List[OutputSummary]:
+        """performance_index, then one per DesignEvent"""
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def samples(self) -> int:
+        """N"""
+    @property
+    def status(self) -> UncertaintyStatus:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class Dimension:
     """The physical dimension of a quantity (its SI unit: si_symbol()).
 
@@ -416,6 +749,78 @@ class DistanceStatus:
   NotConverged"""
     Converged: ClassVar[DistanceStatus]
     NotConverged: ClassVar[DistanceStatus]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class Distribution:
+    """A distribution of one input, SI values (see DistributionKind)."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def kind(self) -> DistributionKind:
+        ...
+    @kind.setter
+    def kind(self, value: Any) -> None: ...
+    @property
+    def max(self) -> float:
+        """upper bound (SI)"""
+    @max.setter
+    def max(self, value: Any) -> None: ...
+    @property
+    def mean(self) -> float:
+        """normal, truncated-normal: mu (SI)"""
+    @mean.setter
+    def mean(self, value: Any) -> None: ...
+    @property
+    def median(self) -> float:
+        """lognormal: e^mu > 0 (SI)"""
+    @median.setter
+    def median(self, value: Any) -> None: ...
+    @property
+    def min(self) -> float:
+        """truncated-normal, uniform, triangular: lower bound (SI)"""
+    @min.setter
+    def min(self, value: Any) -> None: ...
+    @property
+    def mode(self) -> float:
+        """triangular: min <= mode <= max (SI)"""
+    @mode.setter
+    def mode(self, value: Any) -> None: ...
+    @property
+    def sd(self) -> float:
+        """normal, truncated-normal: sigma >= 0 (SI)"""
+    @sd.setter
+    def sd(self, value: Any) -> None: ...
+    @property
+    def sigma_log(self) -> float:
+        """lognormal: sigma of ln x, >= 0"""
+    @sigma_log.setter
+    def sigma_log(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class DistributionKind:
+    """The distributions of an uncertain input (distribution_kinds()).
+
+Members:
+
+  Normal : mean, sd >= 0
+
+  TruncatedNormal : mean, sd > 0, min < max: the normal restricted to [min, max]
+
+  Lognormal : median > 0, sigma_log >= 0 (the sd of ln x)
+
+  Uniform : min < max
+
+  Triangular : min < max, mode in [min, max] (default the midpoint)"""
+    Normal: ClassVar[DistributionKind]
+    TruncatedNormal: ClassVar[DistributionKind]
+    Lognormal: ClassVar[DistributionKind]
+    Uniform: ClassVar[DistributionKind]
+    Triangular: ClassVar[DistributionKind]
     def __int__(self) -> int: ...
     @property
     def name(self) -> str: ...
@@ -523,6 +928,84 @@ Members:
     def name(self) -> str: ...
     @property
     def value(self) -> int: ...
+
+class ExperimentFit:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def kind(self) -> ExperimentKind:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def predicted_only(self) -> bool:
+        ...
+    @property
+    def prediction(self) -> CalibrationPrediction:
+        ...
+    @property
+    def residuals(self) -> List[float]:
+        ...
+    @property
+    def rms_relative(self) -> float:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class ExperimentKind:
+    """What an experiment's case file is.
+
+Members:
+
+  Design
+
+  Indentation
+
+  Insertion"""
+    Design: ClassVar[ExperimentKind]
+    Indentation: ClassVar[ExperimentKind]
+    Insertion: ClassVar[ExperimentKind]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class ExperimentSpec:
+    """An experiment: a case file and its measured data."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def case_path(self) -> os.PathLike[str]:
+        ...
+    @property
+    def case_text(self) -> str:
+        ...
+    @property
+    def curve_weight(self) -> float:
+        ...
+    @property
+    def kind(self) -> ExperimentKind:
+        ...
+    @property
+    def measured(self) -> Optional[ForceDepthCurve]:
+        """ForceDepthCurve (SI), or None"""
+    @property
+    def measured_path(self) -> Optional[os.PathLike[str]]:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def puncture(self) -> MeasuredPuncture:
+        ...
+    @property
+    def puncture_weight(self) -> float:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
 
 class FirstNode:
     """Members:
@@ -643,6 +1126,28 @@ class FitStatus:
     def name(self) -> str: ...
     @property
     def value(self) -> int: ...
+
+class FittedParameter:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def at_bound(self) -> bool:
+        ...
+    @property
+    def ci95(self) -> Optional[Tuple[float, float]]:
+        """SI (lo, hi), or None"""
+    @property
+    def spec(self) -> ParameterSpec:
+        ...
+    @property
+    def standard_error(self) -> float:
+        """SI; NaN when not identifiable"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def value(self) -> float:
+        """SI"""
 
 class FittedPatch:
     """A patch after fitting: node positions and normals as (N, 3) numpy views (m)."""
@@ -1128,6 +1633,19 @@ class InsertionStatus:
     @property
     def value(self) -> int: ...
 
+class Interval:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def hi(self) -> float:
+        ...
+    @property
+    def lo(self) -> float:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class InvalidInput(ValueError):
     ...
 
@@ -1269,6 +1787,19 @@ class MaterialLaw:
     def name(self) -> str: ...
     @property
     def value(self) -> int: ...
+
+class MeasuredPuncture:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def depth(self) -> Optional[float]:
+        """m, or None"""
+    @property
+    def force(self) -> Optional[float]:
+        """N, or None"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
 
 class NeedleEvaluationOptions:
     ...
@@ -1451,6 +1982,28 @@ class NeedleState:
     def travel(self) -> float:
         """m, x (Eq 5.12)"""
 
+class OneAtATime:
+    """The index with one input at its 5 % and 95 % quantiles (Fig 6.18)."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def high(self) -> float:
+        """SI"""
+    @property
+    def index_high(self) -> float:
+        """1/m"""
+    @property
+    def index_low(self) -> float:
+        """1/m"""
+    @property
+    def key(self) -> str:
+        ...
+    @property
+    def low(self) -> float:
+        """SI"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class OptimizerOptions:
     ...
     def __init__(self, **kwargs) -> None:
@@ -1540,6 +2093,74 @@ class OptimizerStatus:
     def name(self) -> str: ...
     @property
     def value(self) -> int: ...
+
+class OutputSummary:
+    """One output's distribution: a probability for an event."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def ci95(self) -> Interval:
+        """of the mean"""
+    @property
+    def defined(self) -> int:
+        """samples where the output is defined"""
+    @property
+    def first(self) -> List[SobolIndex]:
+        """first-order Sobol' indices, per input"""
+    @property
+    def histogram_counts(self) -> List[int]:
+        ...
+    @property
+    def histogram_edges(self) -> List[float]:
+        ...
+    @property
+    def mean(self) -> float:
+        """the probability for an event; SI otherwise"""
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def q05(self) -> float:
+        ...
+    @property
+    def q50(self) -> float:
+        ...
+    @property
+    def q95(self) -> float:
+        ...
+    @property
+    def sd(self) -> float:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def total(self) -> List[SobolIndex]:
+        """total Sobol' indices, per input"""
+
+class ParameterSpec:
+    """A fitted parameter: a TOML path of the case files, SI values."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def dimension(self) -> Dimension:
+        ...
+    @property
+    def initial(self) -> float:
+        """SI"""
+    @property
+    def lower(self) -> float:
+        """SI"""
+    @property
+    def path(self) -> str:
+        """e.g. 'tissue.layers.0.youngs_modulus'"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def unit(self) -> str:
+        """the unit the calibration file gave the initial value in"""
+    @property
+    def upper(self) -> float:
+        """SI"""
 
 class PatchCase:
     """A patch case file (`needlekit patch CASE.toml`)."""
@@ -2032,6 +2653,43 @@ class PrePunctureCurve:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class PropagationOptions:
+    """The [sampling] table of an uncertainty file."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def histogram_bins(self) -> int:
+        """>= 1"""
+    @histogram_bins.setter
+    def histogram_bins(self, value: Any) -> None: ...
+    @property
+    def method(self) -> SamplingMethod:
+        ...
+    @method.setter
+    def method(self, value: Any) -> None: ...
+    @property
+    def samples(self) -> int:
+        """N >= 2"""
+    @samples.setter
+    def samples(self, value: Any) -> None: ...
+    @property
+    def seed(self) -> int:
+        """the same seed gives the same numbers on any thread count"""
+    @seed.setter
+    def seed(self, value: Any) -> None: ...
+    @property
+    def sobol_indices(self) -> bool:
+        """N (k + 2) evaluations instead of N"""
+    @sobol_indices.setter
+    def sobol_indices(self, value: Any) -> None: ...
+    @property
+    def threads(self) -> int:
+        """>= 0; 0: all hardware threads"""
+    @threads.setter
+    def threads(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class PunctureCriterion:
     """Members:
 
@@ -2228,6 +2886,121 @@ class RayHit:
     def triangle(self) -> int:
         ...
 
+class RobustDesignOptions:
+    ...
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def max_candidates(self) -> int:
+        """>= 1"""
+    @max_candidates.setter
+    def max_candidates(self, value: Any) -> None: ...
+    @property
+    def min_success_probability(self) -> float:
+        """(0, 1]"""
+    @min_success_probability.setter
+    def min_success_probability(self, value: Any) -> None: ...
+    @property
+    def optimizer(self) -> OptimizerOptions:
+        ...
+    @optimizer.setter
+    def optimizer(self, value: Any) -> None: ...
+    @property
+    def sampling(self) -> PropagationOptions:
+        """per candidate"""
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class RobustDesignResult:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def checked(self) -> List[CandidateCheck]:
+        """best nominal first"""
+    @property
+    def index_cost(self) -> float:
+        """1/m"""
+    @property
+    def index_cost_fraction(self) -> float:
+        ...
+    @property
+    def min_success_probability(self) -> float:
+        ...
+    @property
+    def nominal(self) -> OptimizerResult:
+        """the deterministic ranking"""
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def robust(self) -> Optional[CandidateCheck]:
+        """the best nominal design that meets the level, or None"""
+    @property
+    def status(self) -> RobustStatus:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class RobustSpec:
+    """A design-space file's min_success_probability and its inputs."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def correlations(self) -> List[Correlation]:
+        ...
+    @correlations.setter
+    def correlations(self, value: Any) -> None: ...
+    @property
+    def inputs(self) -> List[DesignUncertainInput]:
+        ...
+    @inputs.setter
+    def inputs(self, value: Any) -> None: ...
+    @property
+    def min_success_probability(self) -> float:
+        ...
+    @min_success_probability.setter
+    def min_success_probability(self, value: Any) -> None: ...
+    @property
+    def sampling(self) -> PropagationOptions:
+        ...
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class RobustStatus:
+    """Members:
+
+  Found
+
+  NotFound"""
+    Found: ClassVar[RobustStatus]
+    NotFound: ClassVar[RobustStatus]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class SamplingMethod:
+    """How the samples are drawn (sampling_methods()).
+
+Members:
+
+  MonteCarlo : pseudo-random points; error ~ 1/sqrt(N)
+
+  Sobol : Owen-scrambled Sobol' points (randomised quasi-Monte Carlo); error down to ~1/N for smooth outputs, use N = 2^m"""
+    MonteCarlo: ClassVar[SamplingMethod]
+    Sobol: ClassVar[SamplingMethod]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class SearchMethod:
     """Members:
 
@@ -2295,6 +3068,19 @@ class SkinDeformation:
         ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
+
+class SobolIndex:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def ci95(self) -> Interval:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def value(self) -> float:
+        """NaN when undefined"""
 
 class SolverOptions:
     """The FE solver's law, elements, contact and tolerances (§3.4)."""
@@ -2372,6 +3158,11 @@ class SpaceFile:
     ...
     def __init__(*args, **kwargs) -> Any:
         """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def robust(self) -> Optional[RobustSpec]:
+        """RobustSpec when min_success_probability is given, else None"""
+    @robust.setter
+    def robust(self, value: Any) -> None: ...
     @property
     def space(self) -> DesignSpace:
         ...
@@ -2778,6 +3569,47 @@ class TriangleMesh:
     def vertices(self) -> numpy.ndarray:
         """m, (N, 3)"""
 
+class UncertaintyFile:
+    """An uncertainty file: a design plus [uncertain], [sampling]."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def correlations(self) -> List[Correlation]:
+        ...
+    @correlations.setter
+    def correlations(self, value: Any) -> None: ...
+    @property
+    def design(self) -> DesignCase:
+        ...
+    @design.setter
+    def design(self, value: Any) -> None: ...
+    @property
+    def inputs(self) -> List[DesignUncertainInput]:
+        ...
+    @inputs.setter
+    def inputs(self, value: Any) -> None: ...
+    @property
+    def sampling(self) -> PropagationOptions:
+        ...
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class UncertaintyStatus:
+    """Members:
+
+  Ok
+
+  InvalidSamples"""
+    Ok: ClassVar[UncertaintyStatus]
+    InvalidSamples: ClassVar[UncertaintyStatus]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class VertexCrossing:
     ...
     def __init__(*args, **kwargs) -> Any:
@@ -2811,6 +3643,21 @@ def _evaluate_many(shape: handle, needles_per_row: handle, tip_diameter: handle,
 def brain_puncture_model() -> PunctureModel:
     ...
 
+def calibrate(problem: CalibrationProblem, progress: object = None) -> CalibrationResult:
+    """Fits the problem's parameters (`needlekit calibrate`; GIL released). progress(CalibrationProgress) is called after every iteration; Ctrl-C (or an exception of the callback) stops the fit there and is raised. A numerical failure is a status, not an exception."""
+
+def calibrated_case_text(problem: CalibrationProblem, experiment: int, values: List[float]) -> str:
+    """The case file of experiment `experiment` (index) with `values` (SI) written in the units the user gave (`needlekit calibrate --write-case`)."""
+
+def calibration_curves_csv(problem: CalibrationProblem, result: CalibrationResult) -> str:
+    """experiment,series,depth_um,force_N rows: measured and fitted curves and puncture points."""
+
+def calibration_json(problem: CalibrationProblem, result: CalibrationResult) -> object:
+    """The result as `needlekit calibrate --json` prints it (a dict)."""
+
+def case_value(case_text: str, path: str, source_name: str = '<text>') -> Optional[CaseValue]:
+    """The value at a dotted TOML path ('tissue.layers.0.youngs_modulus') of a case file's text, or None."""
+
 def complete_insertion(case: IndentationCase, options: CompleteInsertionOptions = ..., progress: object = None) -> CompleteInsertionResult:
     """The complete insertion (§3.4-3.6): post-puncture load, FE indentation to puncture, the force curve to the final depth; what `needlekit insert` runs. GIL released; progress(IndentationProgress); Ctrl-C: KeyboardInterrupt."""
 
@@ -2820,11 +3667,23 @@ def critical_bending_load(needle: NeedleGeometry, allowable_stress: float) -> fl
 def critical_buckling_load(needle: NeedleGeometry, material: handle, options: BucklingOptions = ...) -> BucklingResult:
     """P_cr of a needle (Euler, Johnson, or the tapered-column eigenvalue); material: a preset name or NeedleMaterial."""
 
+def design_input_keys() -> List[Tuple[str, str, str]]:
+    """The keys a design's [uncertain] table may name: (key, unit, meaning)."""
+
 def design_space_size(space: DesignSpace) -> int:
     ...
 
+def design_uncertainty(nominal: DesignCase, inputs: List[DesignUncertainInput], correlations: List[Correlation] = [], options: DesignUncertaintyOptions = ...) -> DesignUncertaintyResult:
+    """Samples the uncertain inputs and evaluates every sample (`needlekit uncertainty`; GIL released, 10^6 analytic samples take well under a second). Raises InvalidInput naming the key."""
+
 def dimension_name(dimension: Dimension) -> str:
     ...
+
+def distribution_cdf(distribution: Distribution, x: float) -> float:
+    """F(x)."""
+
+def distribution_quantile(distribution: Distribution, u: float) -> float:
+    """F^-1(u), u in (0, 1)."""
 
 evaluate_many_columns: tuple
 
@@ -2894,6 +3753,9 @@ def parse_quantity(text: str, expected: Dimension, what: str = 'value') -> float
 def parse_space_toml(text: str, source_name: str = '<text>') -> SpaceFile:
     ...
 
+def parse_uncertainty_toml(text: str, source_name: str = '<text>') -> UncertaintyFile:
+    ...
+
 def patch_design(options: PatchDesignOptions) -> PatchDesign:
     ...
 
@@ -2936,6 +3798,9 @@ def puncture_force_law_preset(kind: PunctureForceLawKind) -> PunctureForceLaw:
 def puncture_model_preset(name: str, what: str = 'tissue.model') -> PunctureModel:
     ...
 
+def read_calibration_file(path: os.PathLike[str]) -> CalibrationProblem:
+    """Reads and checks a calibration file (`needlekit calibrate`); raises InvalidInput / IoError naming the file, line and key."""
+
 def read_design_file(path: os.PathLike[str]) -> DesignFile:
     """Reads a design file (TOML); raises InvalidInput / IoError naming file, line and key."""
 
@@ -2962,6 +3827,15 @@ def read_tissue_case(path: os.PathLike[str]) -> TissueCase:
 
 def read_triangle_mesh(path: os.PathLike[str], unit_to_metre: float) -> TriangleMesh:
     """Reads OBJ, STL, PLY or OFF; coordinates times unit_to_metre (1e-3 for mm). Raises IoError naming the file."""
+
+def read_uncertainty_file(path: os.PathLike[str]) -> UncertaintyFile:
+    """Reads an uncertainty file (`needlekit uncertainty`); raises InvalidInput naming file, line and key."""
+
+def robust_design(space: DesignSpace, inputs: List[DesignUncertainInput], correlations: List[Correlation] = [], options: RobustDesignOptions = ...) -> RobustDesignResult:
+    """The best nominal design whose P(success) meets options.min_success_probability (`needlekit optimize` with min_success_probability; GIL released)."""
+
+def robust_design_json(space: DesignSpace, options: RobustDesignOptions, result: RobustDesignResult) -> object:
+    """As `needlekit optimize --json` prints it (a dict)."""
 
 def run_indentation(case: IndentationCase, progress: object = None, output_directory: Optional[str] = None) -> IndentationResult:
     """Runs the FE indentation (GIL released). progress(IndentationProgress) is called at each stage and Newton iteration; Ctrl-C raises KeyboardInterrupt (files of completed steps are complete, none is half-written). output_directory: the ParaView series (NAME.pvd, NAME_step_KKK.vtu), CSV and JSON as `needlekit indent --out`."""
@@ -3038,8 +3912,14 @@ def tissue_preset(name: str, what: str = 'tissue preset') -> TissuePreset:
 def tissue_preset_names() -> List[str]:
     ...
 
+def uncertainty_json(file: UncertaintyFile, result: DesignUncertaintyResult) -> object:
+    """The result as `needlekit uncertainty --json` prints it (a dict)."""
+
 def unit_factor(unit: str, expected: Dimension, what: str = 'unit') -> float:
     """The factor that converts a value in `unit` to SI."""
+
+def validate_distribution(distribution: Distribution, what: str = 'distribution') -> None:
+    ...
 
 def validate_indentation_case(case: IndentationCase) -> None:
     ...
@@ -3055,6 +3935,9 @@ def volume(needle: NeedleGeometry) -> float:
 
 def welded_mesh(mesh: TriangleMesh) -> TriangleMesh:
     """The mesh with coincident vertices merged."""
+
+def with_case_value(case_text: str, path: str, value: handle, source_name: str = '<text>', significant_digits: int = 12) -> str:
+    """The case text with the value at `path` replaced (comments and layout kept): a string with a unit ('0.3 MPa') is written in that unit, an SI float in the SI unit. Raises InvalidInput when the path does not hold a value or the value has the wrong dimension. Write the text with write_text_file_atomically."""
 
 def write_stl(mesh: TriangleMesh, path: os.PathLike[str], scale: float = 1.0) -> None:
     """Binary STL, written to a temporary name and renamed."""

@@ -33,6 +33,8 @@ void bind_geometry(py::module_& m);
 void bind_mesh(py::module_& m);
 void bind_insertion(py::module_& m);
 void bind_patch(py::module_& m);
+void bind_calibration(py::module_& m);
+void bind_uncertainty(py::module_& m);
 void bind_io(py::module_& m);
 
 // Throws needlekit::InvalidInput (needlekit.InvalidInput in Python, a ValueError).

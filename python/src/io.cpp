@@ -13,7 +13,9 @@ void bind_io(py::module_& m) {
   m.def("read_design_file", &io::read_design_file, py::arg("path"),
         "Reads a design file (TOML); raises InvalidInput / IoError naming file, line and key.");
   m.def("parse_design_toml", &io::parse_design_toml, py::arg("text"), py::arg("source_name") = "<text>");
-  py::class_<io::SpaceFile>(m, "SpaceFile").def_readwrite("space", &io::SpaceFile::space);
+  py::class_<io::SpaceFile>(m, "SpaceFile")
+      .def_readwrite("space", &io::SpaceFile::space)
+      .def_readwrite("robust", &io::SpaceFile::robust, "RobustSpec when min_success_probability is given, else None");
   m.def("read_space_file", &io::read_space_file, py::arg("path"), "Reads a design-space file (`needlekit optimize`).");
   m.def("parse_space_toml", &io::parse_space_toml, py::arg("text"), py::arg("source_name") = "<text>");
   m.def("write_text_file_atomically", &io::write_text_file_atomically, py::arg("path"), py::arg("content"),

@@ -19,5 +19,7 @@ PYBIND11_MODULE(_needlekit, m) {
   nk::bind_mesh(m);
   nk::bind_insertion(m);
   nk::bind_patch(m);
+  nk::bind_calibration(m);
+  nk::bind_uncertainty(m);
   nk::bind_io(m);
 }

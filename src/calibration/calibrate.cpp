@@ -186,10 +186,14 @@ public:
       p.values = evaluator_.values(x_);
       p.model_runs = evaluator_.model_runs();
       p.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-      options_.progress(p);
+      if (!options_.progress(p)) {
+        stopped_ = true;
+        return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+      }
     }
     return ceres::SOLVER_CONTINUE;
   }
+  bool stopped() const { return stopped_; }
 
 private:
   const CalibrationOptions& options_;
@@ -197,6 +201,7 @@ private:
   const std::vector<double>& x_;  // the parameter block Ceres updates every iteration
   std::size_t residuals_;
   Clock::time_point start_;
+  bool stopped_ = false;
 };
 
 double rms_of(const std::vector<double>& r) {
@@ -212,6 +217,7 @@ std::string_view to_string(CalibrationStatus status) {
     case CalibrationStatus::Converged: return "converged";
     case CalibrationStatus::NotConverged: return "not-converged";
     case CalibrationStatus::Failed: return "failed";
+    case CalibrationStatus::Stopped: return "stopped";
   }
   return "?";
 }
@@ -355,6 +361,11 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
     default: result.status = CalibrationStatus::Failed; break;
   }
   result.reason = summary.message;
+  if (callback.stopped()) {
+    result.status = CalibrationStatus::Stopped;
+    result.reason = fmt::format("stopped on request after iteration {}; the best point so far is kept",
+                                result.iterations);
+  }
   finish(x);
   return result;
 }

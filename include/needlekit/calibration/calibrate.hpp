@@ -23,6 +23,7 @@ enum class CalibrationStatus {
   Converged,     // a convergence test of the solver holds (function, parameter or gradient tolerance)
   NotConverged,  // max_iterations reached; the best point so far is the result
   Failed,        // the model failed at the initial point or the solver gave up; the last good point is kept
+  Stopped,       // the progress callback asked to stop (Ctrl-C); the best point so far is the result
 };
 std::string_view to_string(CalibrationStatus status);
 
@@ -35,7 +36,8 @@ struct CalibrationProgress {
 };
 
 struct CalibrationOptions {
-  std::function<void(const CalibrationProgress&)> progress;  // after every solver iteration (calling thread)
+  // After every solver iteration (calling thread); returning false stops the fit there (status Stopped).
+  std::function<bool(const CalibrationProgress&)> progress;
 };
 
 struct FittedParameter {
