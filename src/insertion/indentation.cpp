@@ -230,6 +230,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   result.nodes = static_cast<int>(solver.nodes().size());
   result.dofs = solver.free_dof_count();
   result.linear_solver = solver.linear_solver();
+  result.nodal_average_elements = solver.nodal_average_elements();
   result.setup_seconds = seconds_since(setup_start);
 
   std::vector<PunctureSample> samples;

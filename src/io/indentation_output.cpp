@@ -115,12 +115,14 @@ nlohmann::json fe_models_json(const fem::SolverOptions& solver) {
   return {{"law", fem::to_string(solver.law)},
           {"element", fem::to_string(solver.order)},
           {"contact", fem::to_string(solver.contact)},
-          {"boundary", fem::to_string(solver.boundary)}};
+          {"boundary", fem::to_string(solver.boundary)},
+          {"volumetric", fem::to_string(solver.volumetric)}};
 }
 
 std::string fe_models_text(const fem::SolverOptions& solver) {
-  return fmt::format("{} law, {} tetrahedra, {} contact, {} boundary", fem::to_string(solver.law),
-                     fem::to_string(solver.order), fem::to_string(solver.contact), fem::to_string(solver.boundary));
+  return fmt::format("{} law, {} tetrahedra, {} volume, {} contact, {} boundary", fem::to_string(solver.law),
+                     fem::to_string(solver.order), fem::to_string(solver.volumetric), fem::to_string(solver.contact),
+                     fem::to_string(solver.boundary));
 }
 
 nlohmann::json puncture_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
@@ -163,6 +165,8 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["element"] = name_of(fem::kElementOrderNames, c.solver.order);
   json["contact"] = name_of(fem::kContactModelNames, c.solver.contact);
   json["boundary"] = name_of(fem::kBoundaryConditionNames, c.solver.boundary);
+  json["volumetric"] = name_of(fem::kVolumetricFormulationNames, c.solver.volumetric);
+  json["nodal_average_elements"] = result.nodal_average_elements;
   nlohmann::json needles = nlohmann::json::array();
   for (const insertion::NeedleSite& site : c.needles) {
     needles.push_back({{"x_um", site.position.x() * 1e6}, {"y_um", site.position.y() * 1e6},

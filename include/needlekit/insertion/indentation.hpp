@@ -114,6 +114,7 @@ struct IndentationResult {
   int nodes = 0;                              // FE nodes (with the mid-edge nodes of quadratic elements)
   int dofs = 0;                               // free degrees of freedom
   fem::LinearSolver linear_solver = fem::LinearSolver::CholeskyCg;  // the one the FE solver used
+  int nodal_average_elements = 0;  // linear tetrahedra with the nodal-averaged volume (what `volumetric` resolved to)
   std::vector<mesh::LayerQuality> quality;    // per layer, when the block was meshed here
   double mesh_seconds = 0;                    // wall time of meshing
   double setup_seconds = 0;                   // building the solver (symbolic factorization, ...)
