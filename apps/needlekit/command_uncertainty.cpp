@@ -11,9 +11,8 @@
 #include "file_format_help.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
-#include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
-#include "uncertainty_patch.hpp"
+#include "uncertainty_commands.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -122,7 +121,8 @@ void add_uncertainty_command(CLI::App& app) {
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_option("--out", arguments->out_dir,
                       "also write uncertainty.json, performance_index_histogram.csv and sobol_indices.csv to DIR; for a "
-                      "patch case uncertainty.json, needle_probabilities.csv, .vtu and .png")
+                      "patch case uncertainty.json, needle_probabilities.csv, .vtu and .png; for an FE case "
+                      "uncertainty.json and fe_runs.csv")
       ->type_name("DIR");
   command->add_flag("--no-plot", arguments->no_plot, "patch case: no PNG (it needs /usr/bin/python3 with matplotlib)");
   command->add_option("--threads", arguments->threads,
@@ -130,13 +130,13 @@ void add_uncertainty_command(CLI::App& app) {
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + patch_inputs_help() + "\n" +
+  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + patch_inputs_help() + fe_help() + "\n" +
                   design_file_help());
   command->callback([arguments] {
-    if (io::is_patch_case_file(arguments->path)) {
-      run_patch_uncertainty(*arguments);
-    } else {
-      run_uncertainty(*arguments);
+    switch (io::uncertainty_file_kind(arguments->path)) {
+      case io::UncertaintyFileKind::Patch: return run_patch_uncertainty(*arguments);
+      case io::UncertaintyFileKind::FeCase: return run_fe_uncertainty(*arguments);
+      case io::UncertaintyFileKind::Design: return run_uncertainty(*arguments);
     }
   });
 }

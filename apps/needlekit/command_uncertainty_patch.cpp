@@ -9,7 +9,7 @@
 #include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
-#include "uncertainty_patch.hpp"
+#include "uncertainty_commands.hpp"
 
 namespace needlekit::cli {
 namespace {

@@ -40,9 +40,4 @@ PatchUncertaintyFile read_patch_uncertainty_file(const std::filesystem::path& pa
   return parse_patch_uncertainty_toml(config::read_text(path), path.string(), path.parent_path());
 }
 
-bool is_patch_case_file(const std::filesystem::path& path) {
-  const toml::table root = config::parse_toml(config::read_text(path), path.string());
-  return root.contains("surface");
-}
-
 }  // namespace needlekit::io

@@ -23,6 +23,12 @@ UncertaintyFile parse_uncertainty_toml(std::string_view text, std::string_view s
   return result;
 }
 
+UncertaintyFileKind uncertainty_file_kind(const std::filesystem::path& path) {
+  const toml::table root = config::parse_toml(config::read_text(path), path.string());
+  if (root.contains("surface")) return UncertaintyFileKind::Patch;
+  return root.contains("case") ? UncertaintyFileKind::FeCase : UncertaintyFileKind::Design;
+}
+
 UncertaintyFile read_uncertainty_file(const std::filesystem::path& path) {
   return parse_uncertainty_toml(config::read_text(path), path.string());
 }

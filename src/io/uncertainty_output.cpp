@@ -265,4 +265,63 @@ VtuGrid patch_probability_grid(const uncertainty::PatchUncertaintyResult& r) {
   return grid;
 }
 
+nlohmann::json fe_uncertainty_json(const FeUncertaintyFile& file, const uncertainty::FeSurrogateResult& r) {
+  std::vector<std::string> notes_unused;
+  const uncertainty::InputTransform transform =
+      uncertainty::fe_input_transform(file.indentation, file.inputs, file.correlations, notes_unused);
+  nlohmann::json json = study_header(file.options.sampling, r.propagation, uncertainty::UncertaintyStatus::Ok, r.reason,
+                                     transform, [](const std::string&) {
+                                       return std::pair{std::string_view("MPa"), units::Dimension::Pressure};
+                                     });
+  json["status"] = uncertainty::to_string(r.status);  // the surrogate's status, not a design study's
+  const auto error = [](const uncertainty::RelativeError& e) {
+    return nlohmann::json{{"max_relative", e.max}, {"rms_relative", e.rms}};
+  };
+  double seconds = r.nominal.seconds;
+  for (const auto* runs : {&r.design, &r.validation}) {
+    for (const uncertainty::FeRun& run : *runs) seconds += run.seconds;
+  }
+  json["surrogate"] = {
+      {"kind", r.design.empty() ? "the nominal FE run (no input varies)" : "quadratic in the log inputs"},
+      {"terms", r.terms},
+      {"fe_runs", 1 + r.design.size() + r.validation.size()},
+      {"elements", r.elements},
+      {"design_runs", r.design.size()},
+      {"validation_runs", r.validation.size()},
+      {"fe_seconds", seconds},
+      {"validation_error", {{"puncture_depth", error(r.validation_depth_error)}, {"puncture_force", error(r.validation_force_error)}}},
+      {"fit_error", {{"puncture_depth", error(r.design_depth_error)}, {"puncture_force", error(r.design_force_error)}}}};
+  json["depth_limit_um"] = r.depth_limit * 1e6;
+  const bool sampled = !r.propagation.outputs.empty();
+  json["probabilities"] = nlohmann::json::object();
+  if (sampled) json["probabilities"]["punctures_before_depth"] = probability_of(r.punctures_before());
+  json["puncture_depth_um"] = sampled ? distribution_of(r.depth(), 1e6) : nlohmann::json(nullptr);
+  json["puncture_force_N"] = sampled ? distribution_of(r.force(), 1) : nlohmann::json(nullptr);
+  json["nominal"] = {{"puncture_depth_um", r.nominal.depth ? nlohmann::json(*r.nominal.depth * 1e6) : nlohmann::json(nullptr)},
+                     {"puncture_force_N", r.nominal.force ? nlohmann::json(*r.nominal.force) : nlohmann::json(nullptr)},
+                     {"status", insertion::to_string(r.nominal.status)}};
+  json["sobol"] = sampled && !r.depth().first.empty() ? sobol_of(r.depth(), r.keys) : nlohmann::json(nullptr);
+  json["notes"] = r.notes;
+  return json;
+}
+
+std::string fe_runs_csv(const FeUncertaintyFile& file, const uncertainty::FeSurrogateResult& r) {
+  std::string csv = "role";
+  for (const auto& input : file.inputs) csv += fmt::format(",{}_MPa", input.key);
+  csv += ",status,puncture_depth_um,puncture_force_N,surrogate_depth_um,surrogate_force_N,seconds\n";
+  const auto row = [&](std::string_view role, const uncertainty::FeRun& run, bool fitted) {
+    csv += role;
+    for (double x : run.inputs) csv += fmt::format(",{:.6g}", x * 1e-6);
+    csv += fmt::format(",{},{},{},{},{},{:.3g}\n", insertion::to_string(run.status),
+                       run.depth ? fmt::format("{:.6g}", *run.depth * 1e6) : "",
+                       run.force ? fmt::format("{:.6g}", *run.force) : "",
+                       fitted ? fmt::format("{:.6g}", run.surrogate_depth * 1e6) : "",
+                       fitted ? fmt::format("{:.6g}", run.surrogate_force) : "", run.seconds);
+  };
+  row("nominal", r.nominal, false);
+  for (const auto& run : r.design) row("design", run, true);
+  for (const auto& run : r.validation) row("validation", run, true);
+  return csv;
+}
+
 }  // namespace needlekit::io

@@ -5,13 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "../support/cli_run.hpp"
+#include "../support/example_variants.hpp"
 
 using needlekit::test::CliRun;
+namespace test = needlekit::test;
 using needlekit::test::kExamples;
 using needlekit::test::file_text;
 using testing::HasSubstr;
@@ -23,17 +24,11 @@ protected:
   UncertaintyPatchCli() : CliTest("uq-patch") {}
   // The example with `from` replaced by `to` (and 64 samples), its mesh path made absolute, as uq.toml.
   std::string example_with(const std::string& from, const std::string& to) const {
-    std::string text = file_text(kExamples + "uncertainty_patch_neck.toml");
-    const auto replace = [&](const std::string& a, const std::string& b) {
-      const std::size_t at = text.find(a);
-      EXPECT_NE(at, std::string::npos) << a;
-      if (at != std::string::npos) text.replace(at, a.size(), b);
-    };
-    replace("mesh = \"../data/meshes/", "mesh = \"" + std::string(NEEDLEKIT_SOURCE_DIR) + "/data/meshes/");
-    replace("samples = 1024", "samples = 64");
-    if (!from.empty()) replace(from, to);
-    std::ofstream(dir_ / "uq.toml") << text;
-    return "uq.toml";
+    test::Replacements replacements{
+        {"mesh = \"../data/meshes/", "mesh = \"" + std::string(NEEDLEKIT_SOURCE_DIR) + "/data/meshes/"},
+        {"samples = 1024", "samples = 64"}};
+    if (!from.empty()) replacements.emplace_back(from, to);
+    return test::write_example_variant("uncertainty_patch_neck.toml", replacements, dir_);
   }
 };
 
@@ -108,12 +103,7 @@ TEST_F(UncertaintyPatchCli, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
   const char* keys[] = {"placement.rotation", "placement.offset_u", "placement.offset_w", "array.width",
                         "sampling.samples", "placement.offset_u"};
   for (std::size_t i = 0; i < std::size(cases); ++i) {
-    const CliRun r = run("uncertainty " + example_with(cases[i].first, cases[i].second) + " --out result");
-    EXPECT_EQ(r.exit_code, 2) << cases[i].second;
-    EXPECT_THAT(r.err, HasSubstr(keys[i])) << r.err;
-    EXPECT_THAT(r.err, HasSubstr("uq.toml:")) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_TRUE(r.out.empty());
-    EXPECT_FALSE(std::filesystem::exists(dir_ / "result"));
+    test::expect_bad_input(run("uncertainty " + example_with(cases[i].first, cases[i].second) + " --out result"), keys[i],
+                           dir_);
   }
 }

@@ -31,8 +31,4 @@ PatchUncertaintyFile parse_patch_uncertainty_toml(std::string_view text, std::st
 // The fit-and-evaluate options of a patch case (as `needlekit patch` uses them, without spring geodesics).
 patch::FitAndEvaluateOptions fit_and_evaluate_options(const PatchCase& c);
 
-// True when the file's root has a [surface] table: a patch case rather than a design file. Throws IoError for an
-// unreadable file or bad TOML.
-bool is_patch_case_file(const std::filesystem::path& path);
-
 }  // namespace needlekit::io

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "needlekit/analysis/design_space.hpp"
+#include "needlekit/io/fe_uncertainty_config.hpp"
 #include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/vtu_writer.hpp"
@@ -50,5 +51,19 @@ nlohmann::json patch_uncertainty_json(const PatchUncertaintyFile& file, const un
 std::string patch_probability_csv(const uncertainty::PatchUncertaintyResult& result);
 // The needles' nominal bases as vertices with point fields P_EVENT (and P_success_lo, P_success_hi).
 VtuGrid patch_probability_grid(const uncertainty::PatchUncertaintyResult& result);
+
+// An FE case (uncertainty::fe_surrogate):
+//   {"samples", "method", "seed", "evaluations" (of the surrogate), "status", "reason", "inputs",
+//    "surrogate": {"kind", "terms", "fe_runs", "elements", "design_runs", "validation_runs", "fe_seconds",
+//                  "validation_error": {"puncture_depth" | "puncture_force": {"max_relative", "rms_relative"}},
+//                  "fit_error": {... the same at the design runs}},
+//    "depth_limit_um", "probabilities": {"punctures_before_depth": {"value", "ci95", "samples_defined"}},
+//    "puncture_depth_um", "puncture_force_N": {"mean", "ci95_mean", "sd", "q05", "q50", "q95", "histogram"},
+//    "nominal": {"puncture_depth_um", "puncture_force_N", "status"}, "sobol" (of the depth, or null), "notes"}
+// Empty distributions (status failed) are null.
+nlohmann::json fe_uncertainty_json(const FeUncertaintyFile& file, const uncertainty::FeSurrogateResult& result);
+// One row per FE run: role (nominal, design, validation), the inputs in MPa, status, puncture_depth_um,
+// puncture_force_N, surrogate_depth_um, surrogate_force_N, seconds.
+std::string fe_runs_csv(const FeUncertaintyFile& file, const uncertainty::FeSurrogateResult& result);
 
 }  // namespace needlekit::io

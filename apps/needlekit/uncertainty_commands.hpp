@@ -1,5 +1,6 @@
-// `needlekit uncertainty` on a patch case (command_uncertainty_patch.cpp): parses, calls
-// uncertainty::patch_uncertainty(), presents (table or JSON; with --out: JSON, CSV, VTU and a PNG map).
+// `needlekit uncertainty` beyond a design file: on a patch case (command_uncertainty_patch.cpp: parses, calls
+// uncertainty::patch_uncertainty(), presents a table or JSON; with --out: JSON, CSV, VTU and a PNG map) and on an FE
+// indentation case (command_uncertainty_fe.cpp: uncertainty::fe_surrogate(); with --out: JSON and the FE runs' CSV).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
@@ -16,6 +17,7 @@ struct PatchUncertaintyArguments {
 };
 
 void run_patch_uncertainty(const PatchUncertaintyArguments& arguments);
+void run_fe_uncertainty(const PatchUncertaintyArguments& arguments);
 
 // Shared by both tables (command_uncertainty.cpp): "N samples (method, seed S), E <runs>: status", the reason and
 // the inputs; and the rows of json["probabilities"] under a header naming `what` ("event", "patch event").
@@ -26,5 +28,7 @@ std::string json_number(const nlohmann::json& value, std::string_view format = "
 
 // The placement keys a patch case adds to [uncertain], for the help.
 std::string patch_inputs_help();
+// The FE-case form of a UQ file, for the help.
+std::string fe_help();
 
 }  // namespace needlekit::cli
