@@ -1,5 +1,6 @@
 // `needlekit uncertainty UQ.toml`: the probability that a design works when its inputs are uncertain (sampling with
-// Sobol' indices). Parses, calls uncertainty::design_uncertainty(), presents.
+// Sobol' indices). Parses, calls uncertainty::design_uncertainty(), presents. A patch case (a file with [surface])
+// goes to run_patch_uncertainty() (command_uncertainty_patch.cpp).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -11,34 +12,18 @@
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
+#include "uncertainty_commands.hpp"
 
 namespace needlekit::cli {
 namespace {
 
-struct UncertaintyArguments {
-  std::string path;
-  bool json = false;
-  std::string out_dir;
-  int threads = 0;
-};
+using UncertaintyArguments = PatchUncertaintyArguments;
 
-std::string number(const nlohmann::json& value, std::string_view format = "{:.4g}") {
-  return value.is_null() ? "-" : fmt::format(fmt::runtime(format), value.get<double>());
-}
+std::string number(const nlohmann::json& value, std::string_view format = "{:.4g}") { return json_number(value, format); }
 
 void print_table(const nlohmann::json& json) {
-  fmt::print("{} samples ({}, seed {}), {} evaluations: {}\n", json["samples"].get<std::size_t>(),
-             json["method"].get<std::string>(), json["seed"].get<std::uint64_t>(),
-             json["evaluations"].get<std::size_t>(), json["status"].get<std::string>());
-  if (!json["reason"].get<std::string>().empty()) fmt::print("{}\n", json["reason"].get<std::string>());
-  for (const auto& input : json["inputs"]) {
-    fmt::print("  {:<34}{}\n", input["key"].get<std::string>(), input["distribution"].get<std::string>());
-  }
-  fmt::print("\n  {:<18}{:>10}   {}\n", "event", "P", "95 % interval");
-  for (const auto& [event, p] : json["probabilities"].items()) {
-    fmt::print("  {:<18}{:>10}   [{}, {}]\n", event, number(p["value"], "{:.6f}"), number(p["ci95"][0], "{:.6f}"),
-               number(p["ci95"][1], "{:.6f}"));
-  }
+  print_study_header(json, "evaluations");
+  print_probabilities(json, "event");
   const auto& index = json["performance_index_per_um"];
   fmt::print("\n  performance index (1/um): mean {} (nominal {}), sd {}, q05 {}, q50 {}, q95 {}\n",
              number(index["mean"]), number(json["nominal"]["performance_index_per_um"]), number(index["sd"]),
@@ -102,25 +87,58 @@ std::string tables_help() {
 
 }  // namespace
 
+std::string json_number(const nlohmann::json& value, std::string_view format) {
+  return value.is_null() ? "-" : fmt::format(fmt::runtime(format), value.get<double>());
+}
+
+void print_study_header(const nlohmann::json& json, std::string_view runs) {
+  fmt::print("{} samples ({}, seed {}), {} {}: {}\n", json["samples"].get<std::size_t>(),
+             json["method"].get<std::string>(), json["seed"].get<std::uint64_t>(),
+             json["evaluations"].get<std::size_t>(), runs, json["status"].get<std::string>());
+  if (!json["reason"].get<std::string>().empty()) fmt::print("{}\n", json["reason"].get<std::string>());
+  for (const auto& input : json["inputs"]) {
+    fmt::print("  {:<34}{}\n", input["key"].get<std::string>(), input["distribution"].get<std::string>());
+  }
+}
+
+void print_probabilities(const nlohmann::json& json, std::string_view what) {
+  fmt::print("\n  {:<22}{:>10}   {}\n", what, "P", "95 % interval");
+  for (const auto& [event, p] : json["probabilities"].items()) {
+    fmt::print("  {:<22}{:>10}   [{}, {}]\n", event, json_number(p["value"], "{:.6f}"),
+               json_number(p["ci95"][0], "{:.6f}"), json_number(p["ci95"][1], "{:.6f}"));
+  }
+}
+
 void add_uncertainty_command(CLI::App& app) {
   auto arguments = std::make_shared<UncertaintyArguments>();
   CLI::App* command = app.add_subcommand(
       "uncertainty",
       "Probability that a design punctures, does not buckle or bend, and reaches its target when its inputs are "
       "uncertain; distribution of the performance index; Sobol' indices");
-  command->add_option("UQ", arguments->path, "uncertainty file (TOML): a design file plus [uncertain], [sampling]")
+  command->add_option("UQ", arguments->path,
+                      "uncertainty file (TOML): a design file or a patch case, plus [uncertain], [sampling]")
       ->required();
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_option("--out", arguments->out_dir,
-                      "also write uncertainty.json, performance_index_histogram.csv and sobol_indices.csv to DIR")
+                      "also write uncertainty.json, performance_index_histogram.csv and sobol_indices.csv to DIR; for a "
+                      "patch case uncertainty.json, needle_probabilities.csv, .vtu and .png; for an FE case "
+                      "uncertainty.json and fe_runs.csv")
       ->type_name("DIR");
+  command->add_flag("--no-plot", arguments->no_plot, "patch case: no PNG (it needs /usr/bin/python3 with matplotlib)");
   command->add_option("--threads", arguments->threads,
                       "worker threads, >= 0 (0: all hardware threads); the result does not depend on it")
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + "\n" + design_file_help());
-  command->callback([arguments] { run_uncertainty(*arguments); });
+  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + patch_inputs_help() + fe_help() + "\n" +
+                  design_file_help());
+  command->callback([arguments] {
+    switch (io::uncertainty_file_kind(arguments->path)) {
+      case io::UncertaintyFileKind::Patch: return run_patch_uncertainty(*arguments);
+      case io::UncertaintyFileKind::FeCase: return run_fe_uncertainty(*arguments);
+      case io::UncertaintyFileKind::Design: return run_uncertainty(*arguments);
+    }
+  });
 }
 
 }  // namespace needlekit::cli

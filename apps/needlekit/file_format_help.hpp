@@ -17,7 +17,7 @@ inline constexpr const char* kRobustSpaceHelp = R"(Robust design (optional): add
                                  base_diameter, bore_diameter, length, width) takes no mean: its spread is centred
                                  on every candidate. The best max 2000 nominal designs are checked, best first.)";
 
-inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (below) plus
+inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (below) or a patch case (`needlekit patch --help`) plus
   [uncertain]    one inline table per uncertain input, keyed by its design-file key, values with the input's unit:
                  "needle.tip_diameter" = { distribution = "normal", mean = "30 um", sd = "2 um" }
                  "tissue.alpha" = { distribution = "lognormal", median = "0.0183 N", sigma_log = 0.2 }

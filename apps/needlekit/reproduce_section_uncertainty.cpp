@@ -1,12 +1,15 @@
 // The uncertainty section of `needlekit reproduce` (issue 15, beyond the dissertation): the SU-8 cone of
 // examples/uncertainty_cone_su8.toml on variable skin (event probabilities, the spread of the performance index,
 // Sobol' indices beside the one-at-a-time swings of Fig 6.18) and the robust design of
-// examples/optimize_robust_cone_su8.toml (the best design with P(success) >= 0.99 and its index cost).
+// examples/optimize_robust_cone_su8.toml (the best design with P(success) >= 0.99 and its index cost), and the
+// per-needle probability map of the neck patch of examples/uncertainty_patch_neck.toml (uncertain placement and skin).
 #include <fmt/format.h>
 
 #include <string>
 
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "needlekit/uncertainty/robust_design.hpp"
@@ -16,6 +19,15 @@ namespace needlekit::cli::reproduce {
 namespace {
 
 nlohmann::json value_or_null(const nlohmann::json& value) { return value.is_null() ? nlohmann::json(nullptr) : value; }
+
+// {event, probability, ci95_lo, ci95_hi} rows of a study's "probabilities".
+nlohmann::json probability_rows(const nlohmann::json& json) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& [event, p] : json["probabilities"].items()) {
+    rows.push_back({event, value_or_null(p["value"]), value_or_null(p["ci95"][0]), value_or_null(p["ci95"][1])});
+  }
+  return rows;
+}
 
 void design_study(const RunContext& context, SectionReport& report) {
   io::UncertaintyFile file = io::read_uncertainty_file(context.example("uncertainty_cone_su8.toml"));
@@ -30,10 +42,7 @@ void design_study(const RunContext& context, SectionReport& report) {
   for (const auto& input : json["inputs"]) {
     report.input(fmt::format("{}: {}", input["key"].get<std::string>(), input["distribution"].get<std::string>()));
   }
-  nlohmann::json rows = nlohmann::json::array();
-  for (const auto& [event, p] : json["probabilities"].items()) {
-    rows.push_back({event, value_or_null(p["value"]), value_or_null(p["ci95"][0]), value_or_null(p["ci95"][1])});
-  }
+  const nlohmann::json rows = probability_rows(json);
   report.table("Probability of each event (SU-8 cone, 10 x 10 on 1 cm, skin with uncertain alpha and tau, angle "
                "0-20 deg)",
                {"event", "probability", "ci95_lo", "ci95_hi"}, rows);
@@ -114,6 +123,35 @@ void robust_design(const RunContext& context, SectionReport& report) {
                {"design", "n", "D1_um", "D2_um", "w_um", "L_um", "PI_per_um", "P_success"}, rows);
 }
 
+void patch_map(const RunContext& context, SectionReport& report) {
+  io::PatchUncertaintyFile file = io::read_patch_uncertainty_file(context.example("uncertainty_patch_neck.toml"));
+  if (!context.meshes.empty()) file.patch.mesh = context.meshes / file.patch.mesh.filename();
+  if (context.quick) file.sampling.samples = 256;
+  const geometry::BodySurface body = geometry::read_body_surface(file.patch.mesh, file.patch.mesh_unit);
+  uncertainty::PatchUncertaintyOptions options;
+  options.sampling = file.sampling;
+  const uncertainty::PatchUncertaintyResult r = uncertainty::patch_uncertainty(
+      {&body.surface, file.patch.design, io::fit_and_evaluate_options(file.patch)}, file.inputs, file.correlations,
+      options);
+  const nlohmann::json json = io::patch_uncertainty_json(file, r);
+  report.input(fmt::format("examples/uncertainty_patch_neck.toml: {} {} samples, seed {}", r.propagation.samples,
+                           json["method"].get<std::string>(), json["seed"].get<std::uint64_t>()));
+  const nlohmann::json rows = probability_rows(json);
+  report.table("The flexible 10 x 10 neck patch of §6.4.1 placed within 3 mm of its vertex, turned by ~10 deg, on "
+               "skin with uncertain alpha and tau: patch-level probabilities",
+               {"event", "probability", "ci95_lo", "ci95_hi"}, rows);
+  const std::string csv = context.write("uncertainty/needle_probabilities.csv", io::patch_probability_csv(r));
+  report.data_file(csv);
+  report.figure("figures/uq_patch_map.png",
+                fmt::format("P(success) of each needle over the patch (rest positions u, v): the mean fraction of "
+                            "needles that succeed is {:.3g}; the edge columns fail most, where the patch leaves the "
+                            "neck's flat part.",
+                            json["success_fraction"]["mean"].get<double>()),
+                {{"kind", "scatter2d"}, {"csv", csv}, {"x", "u_mm"}, {"y", "v_mm"}, {"value", "P_success"},
+                 {"cmap", "RdYlGn"}, {"size", 90}, {"xlabel", "u (mm)"}, {"ylabel", "v (mm)"},
+                 {"colorbar", "P(success)"}});
+}
+
 }  // namespace
 
 SectionReport section_uncertainty(const RunContext& context, const SectionProgress& progress) {
@@ -121,8 +159,11 @@ SectionReport section_uncertainty(const RunContext& context, const SectionProgre
   progress(0, "uncertainty study");
   design_study(context, report);
   context.check_interrupt();
-  progress(0.6, "robust design");
+  progress(0.5, "robust design");
   robust_design(context, report);
+  context.check_interrupt();
+  progress(0.7, "patch probability map");
+  patch_map(context, report);
   progress(1, "done");
   return report;
 }

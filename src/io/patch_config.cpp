@@ -98,12 +98,16 @@ void read_patch(const Section& t, PatchCase& c) {
 }  // namespace
 
 PatchCase parse_patch_case_toml(std::string_view text, std::string_view source_name,
-                                const std::filesystem::path& base_folder) {
+                                const std::filesystem::path& base_folder, bool uncertainty_tables) {
   const std::string file(source_name);
   // [needle], [tissue], [insertion] as in design files; this also rejects unknown tables and bad TOML.
-  const DesignFile needle = parse_needle_tables(text, file, {"surface", "patch"});
+  const DesignFile needle = uncertainty_tables
+                                ? parse_needle_tables(text, file, {"surface", "patch", "uncertain", "sampling", "correlation"})
+                                : parse_needle_tables(text, file, {"surface", "patch"});
   const toml::table root = parse_toml(text, file);
-  const Section top(root, "", file, {"surface", "patch", "needle", "tissue", "insertion"});
+  std::vector<std::string_view> tables{"surface", "patch", "needle", "tissue", "insertion"};
+  if (uncertainty_tables) tables.insert(tables.end(), {"uncertain", "sampling", "correlation"});
+  const Section top(root, "", file, tables);
   PatchCase c;
   read_surface(top.required_subsection("surface", {"mesh", "unit", "center_vertex", "center", "rotation", "approach"}),
                base_folder, c);

@@ -14,21 +14,19 @@ UncertaintyFile parse_uncertainty_toml(std::string_view text, std::string_view s
                          std::move(tables.correlations), tables.sampling};
   // Resolve the keys against this design now, so that a key the design lacks or a non-physical spread is bad
   // input before anything runs.
-  const toml::node& uncertain = *root.get("uncertain");
   std::vector<std::string> notes;
   try {
     uncertainty::design_input_transform(result.design, result.inputs, result.correlations, notes);
   } catch (const InvalidInput& error) {
-    const std::string_view message = error.what();
-    const toml::node* at = &uncertain;
-    for (const auto& input : result.inputs) {
-      if (message.find(fmt::format("\"{}\"", input.key)) != std::string_view::npos) {
-        if (const toml::node* node = uncertain.as_table()->get(input.key)) at = node;
-      }
-    }
-    throw InvalidInput(fmt::format("{} {}", config::location(file, at->source()), message));
+    config::rethrow_at_input(error, root, file, result.inputs);
   }
   return result;
+}
+
+UncertaintyFileKind uncertainty_file_kind(const std::filesystem::path& path) {
+  const toml::table root = config::parse_toml(config::read_text(path), path.string());
+  if (root.contains("surface")) return UncertaintyFileKind::Patch;
+  return root.contains("case") ? UncertaintyFileKind::FeCase : UncertaintyFileKind::Design;
 }
 
 UncertaintyFile read_uncertainty_file(const std::filesystem::path& path) {

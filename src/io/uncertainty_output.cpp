@@ -1,6 +1,7 @@
 #include "needlekit/io/uncertainty_output.hpp"
 
 #include <cmath>
+#include <functional>
 #include <fmt/format.h>
 
 #include "needlekit/io/result_writers.hpp"
@@ -30,45 +31,65 @@ nlohmann::json sobol_of(const OutputSummary& summary, const std::vector<std::str
   return {{"first", first}, {"total", total}, {"first_ci95", first_ci}, {"total_ci95", total_ci}};
 }
 
+nlohmann::json probability_of(const OutputSummary& s) {
+  return {{"value", number(s.mean)}, {"ci95", interval(s.ci95)}, {"samples_defined", s.defined}};
+}
+
+// mean, ci95_mean, sd, quantiles and histogram of a continuous output, scaled.
+nlohmann::json distribution_of(const OutputSummary& s, double scale) {
+  nlohmann::json edges = nlohmann::json::array();
+  for (double edge : s.histogram_edges) edges.push_back(edge * scale);
+  return {{"mean", number(s.mean * scale)}, {"ci95_mean", interval(s.ci95, scale)},
+          {"sd", number(s.sd * scale)},     {"q05", number(s.q05 * scale)},
+          {"q50", number(s.q50 * scale)},   {"q95", number(s.q95 * scale)},
+          {"histogram", {{"edges", edges}, {"counts", s.histogram_counts}}}};
+}
+
+// "samples" .. "reason" and "inputs".
+nlohmann::json study_header(const uncertainty::PropagationOptions& sampling, const uncertainty::PropagationResult& p,
+                            uncertainty::UncertaintyStatus status, const std::string& reason,
+                            const uncertainty::InputTransform& transform,
+                            const std::function<std::pair<std::string_view, units::Dimension>(const std::string&)>& unit_of) {
+  nlohmann::json json;
+  json["samples"] = p.samples;
+  json["method"] = uncertainty::to_string(sampling.method);
+  json["seed"] = sampling.seed;
+  json["evaluations"] = p.evaluations;
+  json["status"] = uncertainty::to_string(status);
+  json["reason"] = reason;
+  nlohmann::json inputs = nlohmann::json::array();
+  for (const uncertainty::UncertainInput& input : transform.inputs()) {
+    const auto [unit, dimension] = unit_of(input.key);
+    const double factor = units::unit_factor(unit, dimension, input.key);
+    inputs.push_back({{"key", input.key}, {"distribution", uncertainty::describe(input.distribution, factor, unit)}});
+  }
+  json["inputs"] = inputs;
+  return json;
+}
+
+constexpr uncertainty::DesignEvent kNeedleEventList[] = {
+    DesignEvent::Puncture, DesignEvent::BucklingFailure, DesignEvent::BendingFailure, DesignEvent::ReachesTarget,
+    DesignEvent::Success};
+
 }  // namespace
 
 nlohmann::json uncertainty_json(const UncertaintyFile& file, const uncertainty::DesignUncertaintyResult& r) {
-  nlohmann::json json;
-  const uncertainty::PropagationOptions& sampling = file.sampling;
-  json["samples"] = r.propagation.samples;
-  json["method"] = uncertainty::to_string(sampling.method);
-  json["seed"] = sampling.seed;
-  json["evaluations"] = r.propagation.evaluations;
-  json["status"] = uncertainty::to_string(r.status);
-  json["reason"] = r.reason;
-
-  nlohmann::json inputs = nlohmann::json::array();
   std::vector<std::string> notes_unused;
   const uncertainty::InputTransform transform =
       uncertainty::design_input_transform(file.design, file.inputs, file.correlations, notes_unused);
-  for (const uncertainty::UncertainInput& input : transform.inputs()) {
-    const auto& entry = uncertainty::info(uncertainty::design_input_from_key(input.key, input.key));
-    const double factor = units::unit_factor(entry.unit, entry.dimension, input.key);
-    inputs.push_back({{"key", input.key}, {"distribution", uncertainty::describe(input.distribution, factor, entry.unit)}});
-  }
-  json["inputs"] = inputs;
+  nlohmann::json json = study_header(file.sampling, r.propagation, r.status, r.reason, transform, [](const std::string& key) {
+    const auto& entry = uncertainty::info(uncertainty::design_input_from_key(key, key));
+    return std::pair{entry.unit, entry.dimension};
+  });
 
   nlohmann::json probabilities = nlohmann::json::object();
   for (const auto& event : uncertainty::design_events()) {
-    const OutputSummary& s = r.event(event.event);
-    probabilities[std::string(event.name)] = {
-        {"value", number(s.mean)}, {"ci95", interval(s.ci95)}, {"samples_defined", s.defined}};
+    probabilities[std::string(event.name)] = probability_of(r.event(event.event));
   }
   json["probabilities"] = probabilities;
 
   const OutputSummary& index = r.index();
-  nlohmann::json edges = nlohmann::json::array();
-  for (double edge : index.histogram_edges) edges.push_back(edge * kPerUm);
-  json["performance_index_per_um"] = {
-      {"mean", number(index.mean * kPerUm)}, {"ci95_mean", interval(index.ci95, kPerUm)},
-      {"sd", number(index.sd * kPerUm)},     {"q05", number(index.q05 * kPerUm)},
-      {"q50", number(index.q50 * kPerUm)},   {"q95", number(index.q95 * kPerUm)},
-      {"histogram", {{"edges", edges}, {"counts", index.histogram_counts}}}};
+  json["performance_index_per_um"] = distribution_of(index, kPerUm);
   json["nominal"] = {{"performance_index_per_um", r.nominal.performance_index * kPerUm},
                      {"status", analysis::to_string(r.nominal.status)}};
 
@@ -145,6 +166,161 @@ std::string sobol_csv(const uncertainty::DesignUncertaintyResult& r) {
                          field(s.total[i].ci95.lo), field(s.total[i].ci95.hi));
     }
   }
+  return csv;
+}
+
+nlohmann::json patch_uncertainty_json(const PatchUncertaintyFile& file, const uncertainty::PatchUncertaintyResult& r) {
+  std::vector<std::string> notes_unused;
+  const uncertainty::InputTransform transform = uncertainty::patch_input_transform(
+      file.patch.design, fit_and_evaluate_options(file.patch), file.inputs, file.correlations, notes_unused);
+  nlohmann::json json = study_header(file.sampling, r.propagation, r.status, r.reason, transform, [](const std::string& key) {
+    const auto& entry = uncertainty::patch_input_from_key(key, key);
+    return std::pair{entry.unit, entry.dimension};
+  });
+  nlohmann::json probabilities = nlohmann::json::object();
+  probabilities[std::string(uncertainty::kAllSucceedOutput)] = probability_of(r.all_succeed());
+  for (std::size_t f = 0; f < r.success_fractions.size(); ++f) {
+    probabilities[r.at_least(f).name] = probability_of(r.at_least(f));
+  }
+  probabilities[r.invalid_sample().name] = probability_of(r.invalid_sample());
+  json["probabilities"] = probabilities;
+  json["success_fraction"] = distribution_of(r.success_fraction(), 1);
+  int nominal_successes = 0;
+  for (const patch::NeedleState& s : r.nominal.evaluation.needles) nominal_successes += s.status == "ok";
+  json["nominal"] = {{"fit_status", patch::to_string(r.nominal.status)},
+                     {"success_fraction", static_cast<double>(nominal_successes) / r.needles},
+                     {"needles", r.needles}};
+  if (!r.success_fraction().first.empty()) {
+    nlohmann::json sobol = sobol_of(r.success_fraction(), r.keys);
+    nlohmann::json events = nlohmann::json::object();
+    events[std::string(uncertainty::kAllSucceedOutput)] = sobol_of(r.all_succeed(), r.keys);
+    for (std::size_t f = 0; f < r.success_fractions.size(); ++f) events[r.at_least(f).name] = sobol_of(r.at_least(f), r.keys);
+    sobol["events"] = events;
+    json["sobol"] = sobol;
+  } else {
+    json["sobol"] = nullptr;
+  }
+  nlohmann::json needles = nlohmann::json::array();
+  const patch::PatchDesign& design = r.nominal.design;
+  for (int k = 0; k < r.needles; ++k) {
+    const Eigen::Vector3d& p = r.nominal.fit.positions[k];
+    nlohmann::json events = nlohmann::json::object();
+    for (DesignEvent event : kNeedleEventList) {
+      const OutputSummary& s = r.needle_event(k, event);
+      events[std::string(uncertainty::to_string(event))] = {{"value", number(s.mean)}, {"ci95", interval(s.ci95)}};
+    }
+    needles.push_back({{"index", k},
+                       {"i", design.column(k)},
+                       {"j", design.row(k)},
+                       {"position_mm", {p.x() * 1e3, p.y() * 1e3, p.z() * 1e3}},
+                       {"probabilities", events}});
+  }
+  json["needles"] = needles;
+  json["notes"] = r.notes;
+  return json;
+}
+
+std::string patch_probability_csv(const uncertainty::PatchUncertaintyResult& r) {
+  std::string csv = "needle,i,j,x_mm,y_mm,z_mm,u_mm,v_mm";
+  for (DesignEvent event : kNeedleEventList) {
+    const std::string_view name = uncertainty::to_string(event);
+    csv += fmt::format(",P_{0},P_{0}_lo,P_{0}_hi", name);
+  }
+  csv += "\n";
+  const auto field = [](double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string(); };
+  const patch::PatchDesign& design = r.nominal.design;
+  for (int k = 0; k < r.needles; ++k) {
+    const Eigen::Vector3d& p = r.nominal.fit.positions[k];
+    const Eigen::Vector2d& rest = design.rest_positions[k];
+    csv += fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", k, design.column(k), design.row(k), p.x() * 1e3,
+                       p.y() * 1e3, p.z() * 1e3, rest.x() * 1e3, rest.y() * 1e3);
+    for (DesignEvent event : kNeedleEventList) {
+      const OutputSummary& s = r.needle_event(k, event);
+      csv += fmt::format(",{},{},{}", field(s.mean), field(s.ci95.lo), field(s.ci95.hi));
+    }
+    csv += "\n";
+  }
+  return csv;
+}
+
+VtuGrid patch_probability_grid(const uncertainty::PatchUncertaintyResult& r) {
+  VtuGrid grid;
+  for (int k = 0; k < r.needles; ++k) {
+    grid.points.push_back(r.nominal.fit.positions[k]);
+    grid.cells.push_back({k});
+    grid.cell_types.push_back(VtkCellType::Vertex);
+  }
+  for (DesignEvent event : kNeedleEventList) {
+    VtuField field{fmt::format("P_{}", uncertainty::to_string(event)), 1, {}};
+    for (int k = 0; k < r.needles; ++k) field.values.push_back(r.needle_event(k, event).mean);  // NaN: never defined
+    grid.point_fields.push_back(std::move(field));
+  }
+  VtuField lo{"P_success_lo", 1, {}}, hi{"P_success_hi", 1, {}};
+  for (int k = 0; k < r.needles; ++k) {
+    lo.values.push_back(r.needle_event(k, DesignEvent::Success).ci95.lo);
+    hi.values.push_back(r.needle_event(k, DesignEvent::Success).ci95.hi);
+  }
+  grid.point_fields.push_back(std::move(lo));
+  grid.point_fields.push_back(std::move(hi));
+  return grid;
+}
+
+nlohmann::json fe_uncertainty_json(const FeUncertaintyFile& file, const uncertainty::FeSurrogateResult& r) {
+  std::vector<std::string> notes_unused;
+  const uncertainty::InputTransform transform =
+      uncertainty::fe_input_transform(file.indentation, file.inputs, file.correlations, notes_unused);
+  nlohmann::json json = study_header(file.options.sampling, r.propagation, uncertainty::UncertaintyStatus::Ok, r.reason,
+                                     transform, [](const std::string&) {
+                                       return std::pair{std::string_view("MPa"), units::Dimension::Pressure};
+                                     });
+  json["status"] = uncertainty::to_string(r.status);  // the surrogate's status, not a design study's
+  const auto error = [](const uncertainty::RelativeError& e) {
+    return nlohmann::json{{"max_relative", e.max}, {"rms_relative", e.rms}};
+  };
+  double seconds = r.nominal.seconds;
+  for (const auto* runs : {&r.design, &r.validation}) {
+    for (const uncertainty::FeRun& run : *runs) seconds += run.seconds;
+  }
+  json["surrogate"] = {
+      {"kind", r.design.empty() ? "the nominal FE run (no input varies)" : "quadratic in the log inputs"},
+      {"terms", r.terms},
+      {"fe_runs", 1 + r.design.size() + r.validation.size()},
+      {"elements", r.elements},
+      {"design_runs", r.design.size()},
+      {"validation_runs", r.validation.size()},
+      {"fe_seconds", seconds},
+      {"validation_error", {{"puncture_depth", error(r.validation_depth_error)}, {"puncture_force", error(r.validation_force_error)}}},
+      {"fit_error", {{"puncture_depth", error(r.design_depth_error)}, {"puncture_force", error(r.design_force_error)}}}};
+  json["depth_limit_um"] = r.depth_limit * 1e6;
+  const bool sampled = !r.propagation.outputs.empty();
+  json["probabilities"] = nlohmann::json::object();
+  if (sampled) json["probabilities"]["punctures_before_depth"] = probability_of(r.punctures_before());
+  json["puncture_depth_um"] = sampled ? distribution_of(r.depth(), 1e6) : nlohmann::json(nullptr);
+  json["puncture_force_N"] = sampled ? distribution_of(r.force(), 1) : nlohmann::json(nullptr);
+  json["nominal"] = {{"puncture_depth_um", r.nominal.depth ? nlohmann::json(*r.nominal.depth * 1e6) : nlohmann::json(nullptr)},
+                     {"puncture_force_N", r.nominal.force ? nlohmann::json(*r.nominal.force) : nlohmann::json(nullptr)},
+                     {"status", insertion::to_string(r.nominal.status)}};
+  json["sobol"] = sampled && !r.depth().first.empty() ? sobol_of(r.depth(), r.keys) : nlohmann::json(nullptr);
+  json["notes"] = r.notes;
+  return json;
+}
+
+std::string fe_runs_csv(const FeUncertaintyFile& file, const uncertainty::FeSurrogateResult& r) {
+  std::string csv = "role";
+  for (const auto& input : file.inputs) csv += fmt::format(",{}_MPa", input.key);
+  csv += ",status,puncture_depth_um,puncture_force_N,surrogate_depth_um,surrogate_force_N,seconds\n";
+  const auto row = [&](std::string_view role, const uncertainty::FeRun& run, bool fitted) {
+    csv += role;
+    for (double x : run.inputs) csv += fmt::format(",{:.6g}", x * 1e-6);
+    csv += fmt::format(",{},{},{},{},{},{:.3g}\n", insertion::to_string(run.status),
+                       run.depth ? fmt::format("{:.6g}", *run.depth * 1e6) : "",
+                       run.force ? fmt::format("{:.6g}", *run.force) : "",
+                       fitted ? fmt::format("{:.6g}", run.surrogate_depth * 1e6) : "",
+                       fitted ? fmt::format("{:.6g}", run.surrogate_force) : "", run.seconds);
+  };
+  row("nominal", r.nominal, false);
+  for (const auto& run : r.design) row("design", run, true);
+  for (const auto& run : r.validation) row("validation", run, true);
   return csv;
 }
 

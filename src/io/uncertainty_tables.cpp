@@ -25,7 +25,7 @@ Parameters parameters_of(DistributionKind kind) {
 }
 
 uncertainty::DesignUncertainInput uncertain_input(const toml::table& table, const std::string& key,
-                                                  std::string_view file) {
+                                                  std::string_view file, const InputDimension& dimension_of) {
   const std::string path = fmt::format("uncertain.\"{}\"", key);
   const Section section(table, path, file,
                         {"distribution", "mean", "sd", "median", "sigma_log", "min", "max", "mode"});
@@ -39,9 +39,7 @@ uncertainty::DesignUncertainInput uncertain_input(const toml::table& table, cons
   input.distribution.kind =
       section.at(kind_node, [&] { return uncertainty::distribution_kind_from_string(kind_text, section.what("distribution")); });
 
-  const uncertainty::DesignInput which =
-      section.at(table, [&] { return uncertainty::design_input_from_key(key, fmt::format("key '{}'", path)); });
-  const uncertainty::DesignInputInfo& info = uncertainty::info(which);
+  const units::Dimension dimension = section.at(table, [&] { return dimension_of(key, fmt::format("key '{}'", path)); });
   const Parameters parameters = parameters_of(input.distribution.kind);
   for (std::string_view name : kLeafKeys) {
     if (name == "distribution" || !section.optional(name)) continue;
@@ -52,9 +50,9 @@ uncertainty::DesignUncertainInput uncertain_input(const toml::table& table, cons
     }
   }
   for (std::string_view name : parameters.required) {
-    section.required(name, name == "sigma_log" ? "a number >= 0" : expected_quantity(info.dimension));
+    section.required(name, name == "sigma_log" ? "a number >= 0" : expected_quantity(dimension));
   }
-  const auto value = [&](std::string_view name) { return quantity_of(section, *section.optional(name), name, info.dimension); };
+  const auto value = [&](std::string_view name) { return quantity_of(section, *section.optional(name), name, dimension); };
   uncertainty::Distribution& d = input.distribution;
   const bool has_centre = section.optional("mean") || section.optional("median") || section.optional("mode");
   if (section.optional("mean")) d.mean = value("mean");
@@ -91,7 +89,7 @@ struct PlacedInput {
 // [uncertain] entries: inline tables with a `distribution`; dotted keys written bare (needle.tip_diameter = {...})
 // arrive as nested tables and are flattened back to their dotted key.
 void collect_inputs(const toml::table& table, const std::string& prefix, std::string_view file,
-                    std::vector<PlacedInput>& inputs) {
+                    const InputDimension& dimension_of, std::vector<PlacedInput>& inputs) {
   for (auto&& [key, node] : table) {
     const std::string name = prefix.empty() ? std::string(key.str()) : fmt::format("{}.{}", prefix, key.str());
     if (!node.is_table()) {
@@ -101,9 +99,9 @@ void collect_inputs(const toml::table& table, const std::string& prefix, std::st
     }
     const toml::table& child = *node.as_table();
     if (child.contains("distribution")) {
-      inputs.push_back({key.source().begin, uncertain_input(child, name, file)});
+      inputs.push_back({key.source().begin, uncertain_input(child, name, file, dimension_of)});
     } else {
-      collect_inputs(child, name, file, inputs);
+      collect_inputs(child, name, file, dimension_of, inputs);
     }
   }
 }
@@ -134,7 +132,12 @@ void read_sampling(const Section& sampling, uncertainty::PropagationOptions& opt
 
 }  // namespace
 
-UncertaintyTables read_uncertainty_tables(const toml::table& root, std::string_view file) {
+units::Dimension design_input_dimension(std::string_view key, std::string_view what) {
+  return uncertainty::info(uncertainty::design_input_from_key(key, what)).dimension;
+}
+
+UncertaintyTables read_uncertainty_tables(const toml::table& root, std::string_view file,
+                                          const InputDimension& dimension_of) {
   UncertaintyTables tables;
   const toml::node* uncertain = root.get("uncertain");
   if (!uncertain || !uncertain->is_table() || uncertain->as_table()->empty()) {
@@ -143,7 +146,7 @@ UncertaintyTables read_uncertainty_tables(const toml::table& root, std::string_v
                                    location(file, uncertain ? uncertain->source() : root.source())));
   }
   std::vector<PlacedInput> placed;
-  collect_inputs(*uncertain->as_table(), "", file, placed);
+  collect_inputs(*uncertain->as_table(), "", file, dimension_of, placed);
   std::sort(placed.begin(), placed.end(), [](const PlacedInput& a, const PlacedInput& b) {
     return a.at.line != b.at.line ? a.at.line < b.at.line : a.at.column < b.at.column;
   });
@@ -184,6 +187,19 @@ UncertaintyTables read_uncertainty_tables(const toml::table& root, std::string_v
     }
   }
   return tables;
+}
+
+void rethrow_at_input(const InvalidInput& error, const toml::table& root, std::string_view file,
+                      const std::vector<uncertainty::DesignUncertainInput>& inputs) {
+  const std::string_view message = error.what();
+  const toml::node& uncertain = *root.get("uncertain");
+  const toml::node* at = &uncertain;
+  for (const auto& input : inputs) {
+    if (message.find(fmt::format("\"{}\"", input.key)) != std::string_view::npos) {
+      if (const toml::node* node = uncertain.as_table()->get(input.key)) at = node;
+    }
+  }
+  throw InvalidInput(fmt::format("{} {}", location(file, at->source()), message));
 }
 
 }  // namespace needlekit::io::config

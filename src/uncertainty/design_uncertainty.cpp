@@ -7,12 +7,48 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/uncertainty/design_outcome.hpp"
 #include "name_table.hpp"
+#include "windowed_input.hpp"
 
 namespace needlekit::uncertainty {
 namespace {
 // Mass outside the physical range too small to mention (one sample in 10^9).
 constexpr double kNegligibleMass = 1e-9;
 }  // namespace
+
+namespace detail {
+
+UncertainInput windowed_input(const DesignUncertainInput& input, double nominal, const InputRange& range,
+                              std::string_view what, std::vector<std::string>& notes) {
+  UncertainInput u{input.key, input.distribution, range.lower, range.upper};
+  if (input.centred_on_nominal) u.distribution.mean = u.distribution.median = u.distribution.mode = nominal;
+  validate(u.distribution, what);
+  const double outside = mass_outside_window(u);
+  const double factor = units::unit_factor(range.unit, range.dimension, what);
+  if (outside > kMaxTruncatedMass) {
+    throw InvalidInput(fmt::format(
+        "{}: {} puts {:.3g} % of its samples outside the physical range [{:g}, {:g}) {} ({}), expected at most "
+        "{:g} %: use truncated-normal with min and max, or a smaller spread",
+        what, describe(u.distribution, factor, range.unit), 100 * outside, range.lower / factor, range.upper / factor,
+        range.unit, range.meaning, 100 * kMaxTruncatedMass));
+  }
+  if (outside > kNegligibleMass) {
+    notes.push_back(fmt::format("{}: {:.3g} % of {} lies outside the physical range and is truncated", input.key,
+                                100 * outside, describe(u.distribution, factor, range.unit)));
+  }
+  return u;
+}
+
+InputTransform noted_transform(std::vector<UncertainInput> inputs, const std::vector<Correlation>& correlations,
+                               std::vector<std::string>& notes) {
+  InputTransform transform(std::move(inputs), correlations);
+  if (transform.correlated()) {
+    notes.push_back("correlated inputs: the Sobol' indices are those of the independent normal scores in the order "
+                    "the inputs are given (the first input of a correlated pair carries the shared part)");
+  }
+  return transform;
+}
+
+}  // namespace detail
 
 const std::vector<DesignEventInfo>& design_events() {
   static const std::vector<DesignEventInfo> events{
@@ -95,33 +131,11 @@ InputTransform design_input_transform(const DesignCase& nominal, const std::vect
     }
     seen.push_back(which);
     const DesignInputInfo& entry = info(which);
-    UncertainInput u{input.key, input.distribution, entry.lower, entry.upper};
-    if (input.centred_on_nominal) {
-      const double value = nominal_value(which, values, what);
-      u.distribution.mean = u.distribution.median = u.distribution.mode = value;
-    }
-    validate(u.distribution, what);
-    const double outside = mass_outside_window(u);
-    const double factor = units::unit_factor(entry.unit, entry.dimension, what);
-    if (outside > kMaxTruncatedMass) {
-      throw InvalidInput(fmt::format(
-          "{}: {} puts {:.3g} % of its samples outside the physical range [{:g}, {:g}) {} ({}), expected at most "
-          "{:g} %: use truncated-normal with min and max, or a smaller spread",
-          what, describe(u.distribution, factor, entry.unit), 100 * outside, entry.lower / factor,
-          entry.upper / factor, entry.unit, entry.meaning, 100 * kMaxTruncatedMass));
-    }
-    if (outside > kNegligibleMass) {
-      notes.push_back(fmt::format("{}: {:.3g} % of {} lies outside the physical range and is truncated", input.key,
-                                  100 * outside, describe(u.distribution, factor, entry.unit)));
-    }
-    resolved.push_back(std::move(u));
+    resolved.push_back(detail::windowed_input(input, nominal_value(which, values, what),
+                                              {entry.dimension, entry.unit, entry.lower, entry.upper, entry.meaning},
+                                              what, notes));
   }
-  InputTransform transform(std::move(resolved), correlations);
-  if (transform.correlated()) {
-    notes.push_back("correlated inputs: the Sobol' indices are those of the independent normal scores in the order "
-                    "the inputs are given (the first input of a correlated pair carries the shared part)");
-  }
-  return transform;
+  return detail::noted_transform(std::move(resolved), correlations, notes);
 }
 
 DesignUncertaintyResult design_uncertainty(const DesignCase& nominal, const std::vector<DesignUncertainInput>& inputs,

@@ -35,7 +35,9 @@ struct PatchCase {
 // Throws IoError (unreadable file, TOML syntax) or InvalidInput (a missing, unknown or invalid key).
 PatchCase read_patch_case(const std::filesystem::path& path);
 // The same from text; `source_name` stands for the file in messages, `base_folder` resolves the mesh path.
+// `uncertainty_tables` also allows [uncertain], [sampling] and [[correlation]] (io/patch_uncertainty_config.hpp reads
+// them).
 PatchCase parse_patch_case_toml(std::string_view text, std::string_view source_name,
-                                const std::filesystem::path& base_folder);
+                                const std::filesystem::path& base_folder, bool uncertainty_tables = false);
 
 }  // namespace needlekit::io

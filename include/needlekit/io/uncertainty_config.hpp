@@ -29,6 +29,11 @@ struct UncertaintyFile {
   uncertainty::PropagationOptions sampling;
 };
 
+// What a UQ file's base is: a design file, a patch case ([surface]: io/patch_uncertainty_config.hpp) or an FE case
+// (case = "indent_....toml": io/fe_uncertainty_config.hpp). Throws IoError for an unreadable file or bad TOML.
+enum class UncertaintyFileKind { Design, Patch, FeCase };
+UncertaintyFileKind uncertainty_file_kind(const std::filesystem::path& path);
+
 // Throws IoError (unreadable file, TOML syntax) or InvalidInput.
 UncertaintyFile read_uncertainty_file(const std::filesystem::path& path);
 UncertaintyFile parse_uncertainty_toml(std::string_view text, std::string_view source_name);
