@@ -1007,6 +1007,167 @@ class ExperimentSpec:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class FeSurrogateOptions:
+    """The FE design, held-out runs and sampling."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def depth_limit(self) -> Optional[float]:
+        """m: X of P(puncture before X); None: the case's loading depth"""
+    @depth_limit.setter
+    def depth_limit(self, value: Any) -> None: ...
+    @property
+    def design_runs(self) -> int:
+        """FE runs of the fit; 0: 2 x the terms"""
+    @design_runs.setter
+    def design_runs(self, value: Any) -> None: ...
+    @property
+    def sampling(self) -> PropagationOptions:
+        ...
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def validation_runs(self) -> int:
+        """held-out FE runs, >= 1"""
+    @validation_runs.setter
+    def validation_runs(self, value: Any) -> None: ...
+
+class FeSurrogateResult:
+    """The validated surrogate and the sampled FE puncture."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    def depth(self) -> OutputSummary:
+        """m"""
+    @property
+    def depth_limit(self) -> float:
+        """m"""
+    @property
+    def design(self) -> List[FeSurrogateRun]:
+        ...
+    @property
+    def design_depth_error(self) -> RelativeError:
+        ...
+    @property
+    def design_force_error(self) -> RelativeError:
+        ...
+    @property
+    def elements(self) -> int:
+        ...
+    def force(self) -> OutputSummary:
+        """N"""
+    @property
+    def keys(self) -> List[str]:
+        ...
+    @property
+    def nominal(self) -> FeSurrogateRun:
+        ...
+    @property
+    def notes(self) -> List[str]:
+        ...
+    def punctures_before(self) -> OutputSummary:
+        ...
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def status(self) -> FeSurrogateStatus:
+        ...
+    def surrogate(self, inputs: List[float]) -> Tuple[float, float]:
+        """The fitted (puncture depth m, force N) at the inputs (SI, in the order of keys)."""
+    @property
+    def terms(self) -> int:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+    @property
+    def validation(self) -> List[FeSurrogateRun]:
+        ...
+    @property
+    def validation_depth_error(self) -> RelativeError:
+        """the stated error"""
+    @property
+    def validation_force_error(self) -> RelativeError:
+        """the stated error"""
+
+class FeSurrogateRun:
+    """One FE run of the surrogate's design or validation."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def depth(self) -> Optional[float]:
+        """m, the puncture depth (None: no puncture)"""
+    @property
+    def force(self) -> Optional[float]:
+        """N"""
+    @property
+    def inputs(self) -> List[float]:
+        """SI, in the order of the inputs"""
+    @property
+    def seconds(self) -> float:
+        """s"""
+    @property
+    def status(self) -> IndentationStatus:
+        ...
+    @property
+    def surrogate_depth(self) -> float:
+        """m"""
+    @property
+    def surrogate_force(self) -> float:
+        """N"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class FeSurrogateStatus:
+    """Members:
+
+  Ok
+
+  CensoredRuns
+
+  Failed"""
+    Ok: ClassVar[FeSurrogateStatus]
+    CensoredRuns: ClassVar[FeSurrogateStatus]
+    Failed: ClassVar[FeSurrogateStatus]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class FeUncertaintyFile:
+    """An indent case plus [uncertain], [sampling], [surrogate]."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def case_path(self) -> os.PathLike[str]:
+        ...
+    @case_path.setter
+    def case_path(self, value: Any) -> None: ...
+    @property
+    def correlations(self) -> List[Correlation]:
+        ...
+    @correlations.setter
+    def correlations(self, value: Any) -> None: ...
+    @property
+    def indentation(self) -> IndentationCase:
+        ...
+    @indentation.setter
+    def indentation(self, value: Any) -> None: ...
+    @property
+    def inputs(self) -> List[DesignUncertainInput]:
+        ...
+    @inputs.setter
+    def inputs(self, value: Any) -> None: ...
+    @property
+    def options(self) -> FeSurrogateOptions:
+        ...
+    @options.setter
+    def options(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class FirstNode:
     """Members:
 
@@ -2382,6 +2543,96 @@ class PatchKind:
     @property
     def value(self) -> int: ...
 
+class PatchUncertaintyFile:
+    """A patch case plus [uncertain], [sampling] (`needlekit uncertainty`)."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def correlations(self) -> List[Correlation]:
+        ...
+    @correlations.setter
+    def correlations(self, value: Any) -> None: ...
+    @property
+    def inputs(self) -> List[DesignUncertainInput]:
+        ...
+    @inputs.setter
+    def inputs(self, value: Any) -> None: ...
+    @property
+    def patch(self) -> PatchCase:
+        ...
+    @patch.setter
+    def patch(self, value: Any) -> None: ...
+    @property
+    def sampling(self) -> PropagationOptions:
+        ...
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class PatchUncertaintyOptions:
+    ...
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def sampling(self) -> PropagationOptions:
+        ...
+    @sampling.setter
+    def sampling(self, value: Any) -> None: ...
+    @property
+    def success_fractions(self) -> List[float]:
+        """each in (0, 1]: P(fraction of needles that succeed >= X)"""
+    @success_fractions.setter
+    def success_fractions(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class PatchUncertaintyResult:
+    """Per-needle and patch-level event probabilities under uncertain placement."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    def all_succeed(self) -> OutputSummary:
+        ...
+    def at_least(self, fraction_index: int) -> OutputSummary:
+        """P(fraction >= success_fractions[fraction_index])"""
+    def invalid_sample(self) -> OutputSummary:
+        ...
+    @property
+    def keys(self) -> List[str]:
+        ...
+    def needle_event(self, needle: int, event: DesignEvent) -> OutputSummary:
+        ...
+    def needle_probabilities(self, event: DesignEvent = ...) -> numpy.ndarray:
+        """The event's probability for every needle (numpy array, the patch's needle order)."""
+    @property
+    def needles(self) -> int:
+        ...
+    @property
+    def nominal(self) -> FitAndEvaluateResult:
+        """the deterministic fit and evaluation"""
+    @property
+    def notes(self) -> List[str]:
+        ...
+    @property
+    def outputs(self) -> List[OutputSummary]:
+        """success_fraction, all_succeed, invalid_sample, one per success fraction, then per needle its events"""
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def samples(self) -> int:
+        """N"""
+    @property
+    def status(self) -> UncertaintyStatus:
+        ...
+    def success_fraction(self) -> OutputSummary:
+        ...
+    @property
+    def success_fractions(self) -> List[float]:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class PathStatus:
     """Members:
 
@@ -2885,6 +3136,19 @@ class RayHit:
     @property
     def triangle(self) -> int:
         ...
+
+class RelativeError:
+    ...
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def max(self) -> float:
+        ...
+    @property
+    def rms(self) -> float:
+        ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
 
 class RobustDesignOptions:
     ...
@@ -3690,6 +3954,12 @@ evaluate_many_columns: tuple
 def evaluate_needles(surface: SurfaceMesh, design: PatchDesign, fit: FittedPatch, options: NeedleEvaluationOptions = ...) -> PatchEvaluation:
     """Every needle of a fitted patch (§5.2-5.3, §6.4)."""
 
+def fe_surrogate(case: IndentationCase, inputs: List[DesignUncertainInput], correlations: List[Correlation] = [], options: FeSurrogateOptions = ..., progress: object = None) -> FeSurrogateResult:
+    """FE puncture under uncertain layer moduli / critical pressure: FE design, response surface checked on held-out runs, sampling (GIL released). progress(done, total) after every FE run; Ctrl-C stops there."""
+
+def fe_uncertainty_json(file: FeUncertaintyFile, result: FeSurrogateResult) -> object:
+    """As `needlekit uncertainty --json` prints it for an FE case (a dict)."""
+
 def figure_6_20_space(shape: Shape, hollow: bool) -> DesignSpace:
     """The dissertation's Fig 6.20 grid for one needle type (silicon, skin, T = 50 um, beta = 3)."""
 
@@ -3762,11 +4032,20 @@ def patch_design(options: PatchDesignOptions) -> PatchDesign:
 def patch_frame(surface: SurfaceMesh, placement: Placement, patch_diagonal: float, needle_length: float) -> PatchFrame:
     ...
 
+def patch_input_keys() -> List[Tuple[str, str, str]]:
+    """The keys a patch case's [uncertain] table may name: (key, unit, meaning)."""
+
 def patch_needles_csv(design: PatchDesign, fit: FittedPatch, evaluation: PatchEvaluation) -> str:
     ...
 
 def patch_summary_json(design: PatchDesign, fit_options: FitOptions, fit: FittedPatch, evaluation: PatchEvaluation, fit_ms: float = 0.0) -> object:
     """The summary of `needlekit patch --json` (units in the keys)."""
+
+def patch_uncertainty(file: PatchUncertaintyFile, options: Optional[PatchUncertaintyOptions] = None) -> PatchUncertaintyResult:
+    """Samples placement and needle inputs of a patch case (`needlekit uncertainty` on a patch case; GIL released). options: None uses the file's [sampling]."""
+
+def patch_uncertainty_json(file: PatchUncertaintyFile, result: PatchUncertaintyResult) -> object:
+    """As `needlekit uncertainty --json` prints it for a patch case (a dict)."""
 
 def performance_index(design: ArrayDesign, conditions: InsertionConditions = ..., options: PerformanceIndexOptions = ...) -> PerformanceIndexResult:
     """The performance index of one array with every intermediate quantity (Eqs 4.25, 5.9); what `needlekit evaluate` computes. Raises InvalidInput for an invalid design."""
@@ -3804,6 +4083,9 @@ def read_calibration_file(path: os.PathLike[str]) -> CalibrationProblem:
 def read_design_file(path: os.PathLike[str]) -> DesignFile:
     """Reads a design file (TOML); raises InvalidInput / IoError naming file, line and key."""
 
+def read_fe_uncertainty_file(path: os.PathLike[str]) -> FeUncertaintyFile:
+    """Reads an FE uncertainty file; raises InvalidInput naming file, line and key."""
+
 def read_force_curve_csv(path: os.PathLike[str]) -> ForceDepthCurve:
     """depth_<unit>,force_<unit> columns."""
 
@@ -3815,6 +4097,9 @@ def read_insertion_case(path: os.PathLike[str]) -> InsertionCase:
 
 def read_patch_case(path: os.PathLike[str]) -> PatchCase:
     """Reads a patch case file; raises InvalidInput / IoError naming file, line and key."""
+
+def read_patch_uncertainty_file(path: os.PathLike[str]) -> PatchUncertaintyFile:
+    """Reads a patch uncertainty file; raises InvalidInput naming file, line and key."""
 
 def read_space_file(path: os.PathLike[str]) -> SpaceFile:
     """Reads a design-space file (`needlekit optimize`)."""

@@ -35,6 +35,7 @@ void bind_insertion(py::module_& m);
 void bind_patch(py::module_& m);
 void bind_calibration(py::module_& m);
 void bind_uncertainty(py::module_& m);
+void bind_uncertainty_patch_and_fe(py::module_& m);
 void bind_io(py::module_& m);
 
 // Throws needlekit::InvalidInput (needlekit.InvalidInput in Python, a ValueError).

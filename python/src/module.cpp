@@ -21,5 +21,6 @@ PYBIND11_MODULE(_needlekit, m) {
   nk::bind_patch(m);
   nk::bind_calibration(m);
   nk::bind_uncertainty(m);
+  nk::bind_uncertainty_patch_and_fe(m);
   nk::bind_io(m);
 }

@@ -151,3 +151,54 @@ def test_enum_members_follow_the_library_tables():
     assert set(nk.SamplingMethod.__members__) == {"MonteCarlo", "Sobol"}
     assert "BucklingFailure" in nk.DesignEvent.__members__
     assert ("needle.tip_diameter", "um") in [(k, u) for k, u, _ in nk.design_input_keys()]
+
+
+def test_patch_uncertainty_equals_the_cli():
+    path = EXAMPLES / "uncertainty_patch_neck.toml"
+    file = nk.read_patch_uncertainty_file(str(path))
+    result = nk.patch_uncertainty(file)
+    assert nk.patch_uncertainty_json(file, result) == cli_json("uncertainty", path)
+    success = result.needle_probabilities(nk.DesignEvent.Success)
+    assert success.shape == (result.needles,)
+    assert all(result.needle_event(n, nk.DesignEvent.Success).mean == success[n] for n in range(result.needles))
+    # Every needle succeeding is at most as likely as the least likely needle succeeding.
+    assert result.all_succeed().mean <= success.min()
+    with pytest.raises(nk.InvalidInput, match="invalid_sample"):
+        result.needle_probabilities(nk.DesignEvent.InvalidSample)
+
+
+def without_wall_times(value):
+    """The JSON without the keys that hold wall times (they differ from run to run)."""
+    if isinstance(value, dict):
+        return {k: without_wall_times(v) for k, v in value.items() if not k.endswith("seconds")}
+    if isinstance(value, list):
+        return [without_wall_times(v) for v in value]
+    return value
+
+
+def test_fe_surrogate_equals_the_cli_and_reproduces_its_fe_runs():
+    path = EXAMPLES / "uncertainty_fe_puncture.toml"
+    file = nk.read_fe_uncertainty_file(str(path))
+    done = []
+    result = nk.fe_surrogate(file.indentation, file.inputs, file.correlations, file.options,
+                             progress=lambda d, t: done.append((d, t)))
+    assert result.status == nk.FeSurrogateStatus.Ok, result.reason
+    assert done[-1][0] == done[-1][1] == len(result.design) + len(result.validation)
+    ours = without_wall_times(nk.fe_uncertainty_json(file, result))
+    cli = without_wall_times(cli_json("uncertainty", path))
+    assert ours == cli
+    # The surrogate at a held-out run's inputs is that run's fitted value, within the stated error of the FE value.
+    run = result.validation[0]
+    depth, force = result.surrogate(run.inputs)
+    assert depth == run.surrogate_depth and force == run.surrogate_force
+    assert abs(depth / run.depth - 1) <= result.validation_depth_error.max + 1e-15
+
+
+def test_fe_surrogate_stops_on_a_raising_progress_callback():
+    file = nk.read_fe_uncertainty_file(str(EXAMPLES / "uncertainty_fe_puncture.toml"))
+
+    def stop(done, total):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        nk.fe_surrogate(file.indentation, file.inputs, file.correlations, file.options, progress=stop)
