@@ -334,12 +334,14 @@ std::optional<RayHit> SurfaceMesh::first_hit(const Eigen::Vector3d& origin, cons
   }
   const Eigen::Vector3d unit = direction / length;
   const CgalRay ray(to_cgal(origin), to_cgal(origin + unit * std::max(impl_->diagonal, 1.0)));
-  // A ray starting on the surface would hit its own triangle at s = 0; such triangles are skipped (s > 0).
+  // A ray starting on the surface would hit its own triangle at s = 0; such triangles are skipped (s > 0). So are
+  // zero-area triangles: CGAL's ray-triangle intersection requires a non-degenerate triangle (a precondition that
+  // Release builds do not check).
   const double touch = 1e-12 * std::max(impl_->diagonal, 1e-300);
-  const auto starts_on = [&](TriangleIterator id) {
-    return CGAL::squared_distance(*id, ray.source()) <= touch * touch;
+  const auto skipped = [&](TriangleIterator id) {
+    return id->is_degenerate() || CGAL::squared_distance(*id, ray.source()) <= touch * touch;
   };
-  const auto hit = impl_->tree.first_intersection(ray, starts_on);
+  const auto hit = impl_->tree.first_intersection(ray, skipped);
   if (!hit) return std::nullopt;
   RayHit result;
   result.triangle = static_cast<int>(hit->second - impl_->cgal_triangles.cbegin());
