@@ -99,6 +99,33 @@ bounds = ["1 /mm", "20 /mm"]
   EXPECT_EQ(result.model_runs, 0);  // analytic: no FE
 }
 
+TEST(Calibration, AProgressCallbackThatAnswersFalseStopsTheFitAndKeepsTheBestPoint) {
+  Synthetic s = synthetic_designs("calibration_stopped", {80, 100, 120, 150}, "", "", true, false);
+  test::write_text(s.dir / "fit.toml", R"([[parameters]]
+path = "tissue.model.alpha"
+initial = "0.03 N"
+bounds = ["0.001 N", "0.1 N"]
+[[parameters]]
+path = "tissue.model.tau"
+initial = "4 /mm"
+bounds = ["1 /mm", "20 /mm"]
+)" + s.experiments);
+  const auto problem = calibration::read_calibration_file(s.dir / "fit.toml");
+  calibration::CalibrationOptions options;
+  int calls = 0;
+  options.progress = [&](const calibration::CalibrationProgress& p) {
+    ++calls;
+    return p.iteration < 2;  // stop after the second iteration
+  };
+  const auto result = calibration::calibrate(problem, options);
+  EXPECT_EQ(result.status, CalibrationStatus::Stopped) << result.reason;
+  EXPECT_EQ(calls, 3);  // iterations 0, 1, 2
+  EXPECT_EQ(result.iterations, 2);
+  EXPECT_NE(result.reason.find("stopped on request"), std::string::npos) << result.reason;
+  // The point kept is the solver's current one: better than the initial values, not yet the optimum.
+  EXPECT_LT(std::abs(result.parameters[0].value / 0.0183 - 1), std::abs(0.03 / 0.0183 - 1));
+}
+
 TEST(Calibration, PunctureForceLawCoefficientsFromSeveralNeedles) {
   // Truth: Romgens et al. 2014's line; the fit starts from another linear-diameter law.
   Synthetic s = synthetic_designs(
