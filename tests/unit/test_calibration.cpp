@@ -77,10 +77,8 @@ Synthetic synthetic_designs(const std::string& name, const std::vector<double>& 
   return s;
 }
 
-TEST(Calibration, AlphaAndTauFromSyntheticAreaDepthDataExactly) {
-  // Truth: the skin model (alpha = 0.0183 N, tau = 6.25 /mm); tips 80-150 um (F(A) > alpha: Eq 4.3's branch).
-  Synthetic s = synthetic_designs("calibration_alpha_tau", {80, 100, 120, 150}, "", "", true, false);
-  test::write_text(s.dir / "fit.toml", R"([[parameters]]
+// alpha and tau of Eq 4.1 from 0.03 N and 4 /mm.
+constexpr const char* kAlphaAndTau = R"([[parameters]]
 path = "tissue.model.alpha"
 initial = "0.03 N"
 bounds = ["0.001 N", "0.1 N"]
@@ -88,7 +86,12 @@ bounds = ["0.001 N", "0.1 N"]
 path = "tissue.model.tau"
 initial = "4 /mm"
 bounds = ["1 /mm", "20 /mm"]
-)" + s.experiments);
+)";
+
+TEST(Calibration, AlphaAndTauFromSyntheticAreaDepthDataExactly) {
+  // Truth: the skin model (alpha = 0.0183 N, tau = 6.25 /mm); tips 80-150 um (F(A) > alpha: Eq 4.3's branch).
+  Synthetic s = synthetic_designs("calibration_alpha_tau", {80, 100, 120, 150}, "", "", true, false);
+  test::write_text(s.dir / "fit.toml", std::string(kAlphaAndTau) + s.experiments);
   const auto problem = calibration::read_calibration_file(s.dir / "fit.toml");
   const auto result = calibration::calibrate(problem);
   ASSERT_EQ(result.status, CalibrationStatus::Converged) << result.reason;
@@ -101,15 +104,7 @@ bounds = ["1 /mm", "20 /mm"]
 
 TEST(Calibration, AProgressCallbackThatAnswersFalseStopsTheFitAndKeepsTheBestPoint) {
   Synthetic s = synthetic_designs("calibration_stopped", {80, 100, 120, 150}, "", "", true, false);
-  test::write_text(s.dir / "fit.toml", R"([[parameters]]
-path = "tissue.model.alpha"
-initial = "0.03 N"
-bounds = ["0.001 N", "0.1 N"]
-[[parameters]]
-path = "tissue.model.tau"
-initial = "4 /mm"
-bounds = ["1 /mm", "20 /mm"]
-)" + s.experiments);
+  test::write_text(s.dir / "fit.toml", std::string(kAlphaAndTau) + s.experiments);
   const auto problem = calibration::read_calibration_file(s.dir / "fit.toml");
   calibration::CalibrationOptions options;
   int calls = 0;
