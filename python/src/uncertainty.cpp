@@ -1,6 +1,7 @@
 // needlekit/uncertainty: distributions, uncertainty files, design_uncertainty (`needlekit uncertainty`) and
 // robust_design (`needlekit optimize` with min_success_probability), with their JSON as the CLI writes it. The
 // enum names come from the library's tables (distribution_kinds(), sampling_methods(), design_events()).
+#include <cctype>
 #include <string>
 
 #include "common.hpp"
