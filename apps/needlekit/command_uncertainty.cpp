@@ -17,17 +17,13 @@
 namespace needlekit::cli {
 namespace {
 
-using UncertaintyArguments = PatchUncertaintyArguments;
-
-std::string number(const nlohmann::json& value, std::string_view format = "{:.4g}") { return json_number(value, format); }
-
 void print_table(const nlohmann::json& json) {
   print_study_header(json, "evaluations");
   print_probabilities(json, "event");
   const auto& index = json["performance_index_per_um"];
   fmt::print("\n  performance index (1/um): mean {} (nominal {}), sd {}, q05 {}, q50 {}, q95 {}\n",
-             number(index["mean"]), number(json["nominal"]["performance_index_per_um"]), number(index["sd"]),
-             number(index["q05"]), number(index["q50"]), number(index["q95"]));
+             json_number(index["mean"]), json_number(json["nominal"]["performance_index_per_um"]),
+             json_number(index["sd"]), json_number(index["q05"]), json_number(index["q50"]), json_number(index["q95"]));
   if (!json["sobol"].is_null()) {
     fmt::print("\n  {:<34}{:>10}{:>10}{:>14}{:>14}   (performance index)\n", "input", "S_i", "ST_i", "success S_i",
                "success ST_i");
@@ -35,9 +31,9 @@ void print_table(const nlohmann::json& json) {
     const auto& success = sobol["events"]["success"];
     for (const auto& input : json["inputs"]) {
       const std::string key = input["key"].get<std::string>();
-      fmt::print("  {:<34}{:>10}{:>10}{:>14}{:>14}\n", key, number(sobol["first"][key], "{:.3f}"),
-                 number(sobol["total"][key], "{:.3f}"), number(success["first"][key], "{:.3f}"),
-                 number(success["total"][key], "{:.3f}"));
+      fmt::print("  {:<34}{:>10}{:>10}{:>14}{:>14}\n", key, json_number(sobol["first"][key], "{:.3f}"),
+                 json_number(sobol["total"][key], "{:.3f}"), json_number(success["first"][key], "{:.3f}"),
+                 json_number(success["total"][key], "{:.3f}"));
     }
   }
   fmt::print("\n  one at a time (Fig 6.18): index at the input's 5 % and 95 % quantiles, others nominal\n");

@@ -48,7 +48,7 @@ std::string fe_help() {
       uncertainty::kFeInputKeys);
 }
 
-void run_fe_uncertainty(const PatchUncertaintyArguments& arguments) {
+void run_fe_uncertainty(const UncertaintyArguments& arguments) {
   io::FeUncertaintyFile file = io::read_fe_uncertainty_file(arguments.path);
   file.options.sampling.threads = arguments.threads;
   ProgressBar bar("FE runs");

@@ -19,10 +19,6 @@ std::string plot_script() {
   return std::string(NEEDLEKIT_SCRIPTS_DIR) + "/plot_patch_probability.py";
 }
 
-std::string number(const nlohmann::json& value, std::string_view format = "{:.4f}") {
-  return json_number(value, format);
-}
-
 void print_table(const nlohmann::json& json) {
   print_study_header(json, "patch fits");
   const auto& nominal = json["nominal"];
@@ -30,8 +26,8 @@ void print_table(const nlohmann::json& json) {
              nominal["success_fraction"].get<double>(), nominal["needles"].get<int>());
   print_probabilities(json, "patch event");
   const auto& f = json["success_fraction"];
-  fmt::print("  success fraction: mean {}, q05 {}, q50 {}, q95 {}\n", number(f["mean"]), number(f["q05"]),
-             number(f["q50"]), number(f["q95"]));
+  fmt::print("  success fraction: mean {}, q05 {}, q50 {}, q95 {}\n", json_number(f["mean"], "{:.4f}"),
+             json_number(f["q05"], "{:.4f}"), json_number(f["q50"], "{:.4f}"), json_number(f["q95"], "{:.4f}"));
   fmt::print("\n  P(success) per needle (rows j, columns i):\n");
   int row = -1;
   for (const auto& needle : json["needles"]) {
@@ -40,7 +36,7 @@ void print_table(const nlohmann::json& json) {
       row = needle["j"].get<int>();
       fmt::print("  ");
     }
-    fmt::print(" {:>6}", number(needle["probabilities"]["success"]["value"], "{:.3f}"));
+    fmt::print(" {:>6}", json_number(needle["probabilities"]["success"]["value"], "{:.3f}"));
   }
   fmt::print("\n");
   for (const auto& note : json["notes"]) fmt::print("note: {}\n", note.get<std::string>());
@@ -57,7 +53,7 @@ std::string patch_inputs_help() {
   return help;
 }
 
-void run_patch_uncertainty(const PatchUncertaintyArguments& arguments) {
+void run_patch_uncertainty(const UncertaintyArguments& arguments) {
   io::PatchUncertaintyFile file = io::read_patch_uncertainty_file(arguments.path);
   file.sampling.threads = arguments.threads;
   const geometry::BodySurface body = geometry::read_body_surface(file.patch.mesh, file.patch.mesh_unit);

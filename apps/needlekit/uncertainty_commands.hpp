@@ -8,7 +8,8 @@
 
 namespace needlekit::cli {
 
-struct PatchUncertaintyArguments {
+// The arguments of `needlekit uncertainty`, for every kind of UQ file.
+struct UncertaintyArguments {
   std::string path;
   bool json = false;
   std::string out_dir;
@@ -16,8 +17,8 @@ struct PatchUncertaintyArguments {
   bool no_plot = false;
 };
 
-void run_patch_uncertainty(const PatchUncertaintyArguments& arguments);
-void run_fe_uncertainty(const PatchUncertaintyArguments& arguments);
+void run_patch_uncertainty(const UncertaintyArguments& arguments);
+void run_fe_uncertainty(const UncertaintyArguments& arguments);
 
 // Shared by both tables (command_uncertainty.cpp): "N samples (method, seed S), E <runs>: status", the reason and
 // the inputs; and the rows of json["probabilities"] under a header naming `what` ("event", "patch event").
