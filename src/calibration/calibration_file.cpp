@@ -137,9 +137,11 @@ std::string_view to_string(ExperimentKind kind) {
   return "?";
 }
 
-CalibrationProblem read_calibration_file(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  const toml::table root = parse_toml(read_text(path), file);
+CalibrationProblem parse_calibration_toml(std::string_view text, std::string_view source_name,
+                                          const std::filesystem::path& base) {
+  const std::string file(source_name);
+  const std::filesystem::path path(file);
+  const toml::table root = parse_toml(text, file);
   const Section top(root, "", file, {"name", "solver", "parameters", "experiments"});
   CalibrationProblem problem;
   problem.file = path;
@@ -154,7 +156,6 @@ CalibrationProblem read_calibration_file(const std::filesystem::path& path) {
     problem.solver.parameter_tolerance =
         fraction_of(*solver, "parameter_tolerance", problem.solver.parameter_tolerance, 1);
   }
-  const std::filesystem::path base = path.has_parent_path() ? path.parent_path() : ".";
   for (std::string_view key : {"parameters", "experiments"}) {
     const toml::node& node = top.required(key, fmt::format("[[{}]] entries", key));
     if (!node.is_array_of_tables() || node.as_array()->empty()) {
@@ -200,6 +201,10 @@ CalibrationProblem read_calibration_file(const std::filesystem::path& path) {
     problem.parameters.push_back(std::move(p));
   }
   return problem;
+}
+
+CalibrationProblem read_calibration_file(const std::filesystem::path& path) {
+  return parse_calibration_toml(read_text(path), path.string(), path.has_parent_path() ? path.parent_path() : ".");
 }
 
 }  // namespace needlekit::calibration

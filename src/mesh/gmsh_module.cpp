@@ -59,6 +59,11 @@ const GmshModule& gmsh_module() {
   return *module;
 }
 
+std::mutex& gmsh_call_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 void throw_if_failed(const GmshError& error) {
   switch (error.kind) {
     case GmshErrorKind::None:

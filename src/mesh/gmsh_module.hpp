@@ -8,6 +8,7 @@
 // exception crosses the dlopen boundary.
 #pragma once
 #include <cstddef>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,10 @@ struct GmshModule {
 // The module, opened on the first call (thread-safe). Throws std::runtime_error naming every place it looked when
 // it cannot be opened or was built by another version.
 const GmshModule& gmsh_module();
+
+// Held around every call into the module, so that read_msh_isolated never forks while another thread is inside
+// Gmsh (its child would inherit Gmsh's lock held).
+std::mutex& gmsh_call_mutex();
 
 // Throws the exception `error` describes (InvalidInput, IoError or std::runtime_error); returns if there is none.
 void throw_if_failed(const GmshError& error);

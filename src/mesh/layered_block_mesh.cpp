@@ -94,7 +94,11 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
 // The block meshed by the Gmsh module, right-handed.
 TetMesh gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
   detail::GmshError error;
-  TetMesh mesh = detail::gmsh_module().layered_block(options, layers, error);
+  TetMesh mesh;
+  {
+    const std::lock_guard<std::mutex> lock(detail::gmsh_call_mutex());
+    mesh = detail::gmsh_module().layered_block(options, layers, error);
+  }
   detail::throw_if_failed(error);
   reoriented_count(mesh);
   return mesh;

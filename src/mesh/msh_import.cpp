@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "gmsh_module.hpp"
+#include "msh_read_isolated.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/mesh/mesh_validation.hpp"
 
@@ -24,7 +25,7 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
   MshImportResult result;
   TetMesh& mesh = result.mesh;
   detail::GmshError error;
-  detail::MshContents contents = detail::gmsh_module().read_msh(name, options.layers, error);
+  detail::MshContents contents = detail::read_msh_isolated(name, options.layers, error);
   detail::throw_if_failed(error);
   mesh.layers = std::move(contents.layers);
   const std::vector<std::vector<std::size_t>>& layer_corners = contents.layer_corners;

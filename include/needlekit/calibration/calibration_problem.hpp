@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "needlekit/core/units.hpp"
@@ -83,5 +84,8 @@ struct CalibrationProblem {
 // has a readable case and measured data (curves: >= 3 samples, increasing depth, depth_/force_ columns). Throws
 // IoError or InvalidInput naming FILE:LINE and the key.
 CalibrationProblem read_calibration_file(const std::filesystem::path& path);
+// The same for a file's text: `source_name` names it in messages, `base_folder` resolves its case and curve paths.
+CalibrationProblem parse_calibration_toml(std::string_view text, std::string_view source_name,
+                                          const std::filesystem::path& base_folder);
 
 }  // namespace needlekit::calibration

@@ -1,0 +1,21 @@
+// Private to src/mesh: reading a .msh file with the Gmsh module in a child process.
+//
+// Gmsh 4.8's .msh readers (Debian bookworm's libgmsh) crash with SIGSEGV on some malformed files, for example an
+// MSH 2.2 file whose $Nodes count is smaller than the nodes it lists and whose element uses the node left out
+// (found by fuzz_gmsh_msh: tests/data/fuzz-regressions/gmsh_msh/fuzz_gmsh_msh2_node_count_segv.msh). A crash there
+// is in Gmsh, but it would take the whole tool down with no message. So the file is read in a fork()ed child that
+// sends the contents back through a pipe; a child killed by a signal means Gmsh could not read the file.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "gmsh_module.hpp"
+
+namespace needlekit::mesh::detail {
+
+// The module's read_msh(file, layers) run in a child process. Throws InvalidInput naming the file when the child
+// dies by a signal or fails, std::runtime_error when no child can be started; reports the module's own errors in
+// `error`.
+MshContents read_msh_isolated(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error);
+
+}  // namespace needlekit::mesh::detail
