@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "file_format_help.hpp"
+#include "needlekit/core/errors.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
@@ -129,7 +130,13 @@ void add_uncertainty_command(CLI::App& app) {
   command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + patch_inputs_help() + fe_help() + "\n" +
                   design_file_help());
   command->callback([arguments] {
-    switch (io::uncertainty_file_kind(arguments->path)) {
+    const io::UncertaintyFileKind kind = io::uncertainty_file_kind(arguments->path);
+    if (arguments->no_plot && kind != io::UncertaintyFileKind::Patch) {
+      throw InvalidInput(fmt::format("{}: --no-plot applies to patch cases only; a design or FE uncertainty file "
+                                     "writes no plot",
+                                     arguments->path));
+    }
+    switch (kind) {
       case io::UncertaintyFileKind::Patch: return run_patch_uncertainty(*arguments);
       case io::UncertaintyFileKind::FeCase: return run_fe_uncertainty(*arguments);
       case io::UncertaintyFileKind::Design: return run_uncertainty(*arguments);

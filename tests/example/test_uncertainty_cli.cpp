@@ -153,3 +153,10 @@ TEST_F(UncertaintyCli, RobustOptimizeRefusesADesignVariableWithAMeanAndCertified
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("--certified does not apply with min_success_probability"));
 }
+
+TEST_F(UncertaintyCli, NoPlotOnADesignFileIsAnError) {
+  const CliRun r = run("uncertainty " + kExamples + "uncertainty_cone_su8.toml --no-plot --out result");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--no-plot applies to patch cases only"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "result"));
+}

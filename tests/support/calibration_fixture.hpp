@@ -1,6 +1,8 @@
 // Synthetic FE calibration data for the recovery test and the coverage benchmark: an indentation case (a flat
-// 100 um punch into a 1.5 mm silicone block, E = 0.2 MPa, P_c = 0.663 MPa) run once on a "truth" mesh; its curve and
-// puncture point with multiplicative Gaussian noise; the fit of E and P_c on another mesh.
+// 300 um punch, 120 um into a 1 mm silicone layer, E = 0.2 MPa, nu = 0.3, P_c = 0.1 MPa) run once on a "truth" mesh; its
+// curve and puncture point with multiplicative Gaussian noise; the fit of E and P_c on another mesh. The punch is
+// wide against the mesh (a / h = 4-5) and the depth moderate (d / a = 0.8), so that meshes of 30, 40 and 50 um give
+// forces within 0.7 % of each other: the fit then measures the calibration, not the mesh (docs/calibration.md).
 #pragma once
 #include <fmt/format.h>
 
@@ -14,42 +16,54 @@
 
 namespace needlekit::test {
 
-inline constexpr double kTrueModulus = 0.2e6;           // Pa
-inline constexpr double kTrueCriticalPressure = 0.663e6;  // Pa
+inline constexpr double kTrueModulus = 0.2e6;             // Pa, the punch's and the bevel benchmark's phantom
+inline constexpr double kTrueCriticalPressure = 0.663e6;  // Pa, the bevel benchmark's phantom (bench_calibration.cpp)
+inline constexpr double kPunchCriticalPressure = 0.1e6;   // Pa, the punch: punctures at about 90 of its 120 um
 
 inline std::string punch_case(double size_at_tip) {
   return fmt::format(R"(name = "punch"
 [needle]
 shape = "cylinder"
-tip_diameter = "100 um"
+tip_diameter = "300 um"
 length = "500 um"
-segments = 32
+segments = 48
 axial_segments = 2
 [tissue]
-width = "1500 um"
-length = "1500 um"
+width = "2000 um"
+length = "2000 um"
 [[tissue.layers]]
 name = "silicone"
 thickness = "1000 um"
 youngs_modulus = "0.2 MPa"
-poisson_ratio = 0.45
+poisson_ratio = 0.3
 [mesh]
 size_at_tip = "{:g} um"
 size_far = "400 um"
-refinement_radius = "150 um"
+refinement_radius = "250 um"
 [loading]
-depth = "240 um"
+depth = "120 um"
 steps = 8
 [model]
 law = "neo-hookean"
 contact = "tip-nodes"
 [puncture]
-critical_pressure = "0.663 MPa"
+critical_pressure = "0.1 MPa"
 )",
                      size_at_tip * 1e6);
 }
 
-// E and P_c from 50 % and 32 % off the truth, within wide bounds.
+// The punch's E and P_c from 50 % and 32 % off the truth, within wide bounds.
+inline constexpr const char* kPunchModulusAndPressure = R"([[parameters]]
+path = "tissue.layers.0.youngs_modulus"
+initial = "0.3 MPa"
+bounds = ["0.02 MPa", "5 MPa"]
+[[parameters]]
+path = "puncture.critical_pressure"
+initial = "0.068 MPa"
+bounds = ["0.01 MPa", "1 MPa"]
+)";
+
+// The phantom's E and P_c from 50 % and 32 % off the truth, within wide bounds (the bevel benchmark).
 inline constexpr const char* kModulusAndPressure = R"([[parameters]]
 path = "tissue.layers.0.youngs_modulus"
 initial = "0.3 MPa"
@@ -115,10 +129,10 @@ case = "fit_case.toml"
 measured = "measured_{}.csv"
 puncture = {{ depth = "{:.9g} um", force = "{:.9g} N" }}
 )",
-      kModulusAndPressure, tag, s.puncture.depth * 1e6 * (1 + gauss(random)), s.puncture.force * (1 + gauss(random)));
+      kPunchModulusAndPressure, tag, s.puncture.depth * 1e6 * (1 + gauss(random)), s.puncture.force * (1 + gauss(random)));
   RecoveryOutcome outcome;
   outcome.result = calibration::calibrate(calibration::read_calibration_file(s.dir / ("fit_" + tag + ".toml")));
-  const std::array<double, 2> truth{kTrueModulus, kTrueCriticalPressure};
+  const std::array<double, 2> truth{kTrueModulus, kPunchCriticalPressure};
   for (std::size_t j = 0; j < 2 && j < outcome.result.parameters.size(); ++j) {
     const auto& p = outcome.result.parameters[j];
     outcome.error[j] = p.value / truth[j] - 1;
