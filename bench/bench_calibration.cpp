@@ -98,7 +98,7 @@ void BM_CalibrateInsertion(benchmark::State& state) {
   for (std::size_t i = 1; i < p.curve.depth.size(); i += 3)
     if (p.curve.depth[i] > p.curve.depth[i - 1]) csv += fmt::format("{:.9g},{:.9g}\n", p.curve.depth[i] * 1e6, p.curve.force[i]);
   std::ofstream(dir / "curve.csv") << csv;
-  std::ofstream(dir / "fit.toml") << test::kModulusAndPressure << R"([[experiments]]
+  std::ofstream(dir / "fit.toml") << test::phantom_parameters() << R"([[experiments]]
 name = "blunt bevel"
 case = "case.toml"
 measured = "curve.csv"

@@ -52,27 +52,22 @@ critical_pressure = "0.1 MPa"
                      size_at_tip * 1e6);
 }
 
-// The punch's E and P_c from 50 % and 32 % off the truth, within wide bounds.
-inline constexpr const char* kPunchModulusAndPressure = R"([[parameters]]
+// E from 0.3 MPa (50 % off) and P_c from `pressure`, within wide bounds.
+inline std::string modulus_and_pressure(double pressure_mpa, double lower_mpa, double upper_mpa) {
+  return fmt::format(R"([[parameters]]
 path = "tissue.layers.0.youngs_modulus"
 initial = "0.3 MPa"
 bounds = ["0.02 MPa", "5 MPa"]
 [[parameters]]
 path = "puncture.critical_pressure"
-initial = "0.068 MPa"
-bounds = ["0.01 MPa", "1 MPa"]
-)";
-
-// The phantom's E and P_c from 50 % and 32 % off the truth, within wide bounds (the bevel benchmark).
-inline constexpr const char* kModulusAndPressure = R"([[parameters]]
-path = "tissue.layers.0.youngs_modulus"
-initial = "0.3 MPa"
-bounds = ["0.02 MPa", "5 MPa"]
-[[parameters]]
-path = "puncture.critical_pressure"
-initial = "0.45 MPa"
-bounds = ["0.05 MPa", "10 MPa"]
-)";
+initial = "{:g} MPa"
+bounds = ["{:g} MPa", "{:g} MPa"]
+)",
+                     pressure_mpa, lower_mpa, upper_mpa);
+}
+// The punch's P_c from 32 % off; the phantom's (the bevel benchmark) likewise.
+inline std::string punch_parameters() { return modulus_and_pressure(0.068, 0.01, 1); }
+inline std::string phantom_parameters() { return modulus_and_pressure(0.45, 0.05, 10); }
 
 struct SyntheticIndentation {
   std::filesystem::path dir;
@@ -129,7 +124,7 @@ case = "fit_case.toml"
 measured = "measured_{}.csv"
 puncture = {{ depth = "{:.9g} um", force = "{:.9g} N" }}
 )",
-      kPunchModulusAndPressure, tag, s.puncture.depth * 1e6 * (1 + gauss(random)), s.puncture.force * (1 + gauss(random)));
+      punch_parameters(), tag, s.puncture.depth * 1e6 * (1 + gauss(random)), s.puncture.force * (1 + gauss(random)));
   RecoveryOutcome outcome;
   outcome.result = calibration::calibrate(calibration::read_calibration_file(s.dir / ("fit_" + tag + ".toml")));
   const std::array<double, 2> truth{kTrueModulus, kPunchCriticalPressure};
