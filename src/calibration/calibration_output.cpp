@@ -67,6 +67,7 @@ nlohmann::json calibration_json(const CalibrationProblem& problem, const Calibra
       {"iterations", r.iterations},
       {"rms_relative", r.rms_relative},
       {"model_runs", r.model_runs},
+      {"warm_started_steps", r.warm_started_steps},
       {"seconds", r.seconds},
       {"solver", "Ceres Solver, Levenberg-Marquardt with bounds, finite-difference Jacobian"},
       {"parameters", parameters},

@@ -131,7 +131,9 @@ std::string ExperimentModel::case_text(const std::vector<double>& values, bool u
   return text;
 }
 
-Prediction ExperimentModel::predict(const std::vector<double>& values) const {
+Prediction ExperimentModel::predict(const std::vector<double>& values,
+                                    const std::vector<insertion::StepDisplacement>* warm_start,
+                                    bool keep_displacements) const {
   Prediction prediction;
   const std::string text = case_text(values);
   if (experiment_.kind == ExperimentKind::Design) {
@@ -155,8 +157,16 @@ Prediction ExperimentModel::predict(const std::vector<double>& values) const {
     prediction.status = "pre-puncture curve from the case's [pre_puncture] table";
     return cutting(prediction, settings, *settings.pre_puncture, std::nullopt);
   }
-  const insertion::IndentationResult fe = insertion::run_indentation(c);
+  insertion::IndentationOptions fe_options;
+  fe_options.warm_start = warm_start;
+  fe_options.keep_displacements = keep_displacements;
+  insertion::IndentationResult fe = insertion::run_indentation(c, fe_options);
   prediction.model_runs = 1;
+  prediction.warm_started_steps = fe.warm_started_steps;
+  if (keep_displacements) {
+    prediction.displacements =
+        std::make_shared<const std::vector<insertion::StepDisplacement>>(std::move(fe.displacements));
+  }
   prediction.elements = fe.elements;
   prediction.status = fmt::format("FE ({}): {}: {}", io::fe_models_text(c.solver), insertion::to_string(fe.status),
                                   fe.reason);

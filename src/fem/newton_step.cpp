@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "quasi_static_solver_impl.hpp"
 
@@ -155,9 +157,10 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
 }
 
 // One substep from the current converged state (u, d) to displacement `target`.
-bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far) {
+bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far,
+                                      bool predict) {
   // Secant predictor: the last converged state plus the last step's increment scaled to this step.
-  const bool extrapolate = opt.extrapolate_predictor && last_step != 0 && last_increment.size() == ndof;
+  const bool extrapolate = predict && opt.extrapolate_predictor && last_step != 0 && last_increment.size() == ndof;
   if (extrapolate) u += ((target - d) / last_step) * last_increment;
   if (opt.contact == ContactModel::TipNodes) {
     Eigen::VectorXd dup = Eigen::VectorXd::Zero(ndof);
@@ -166,7 +169,7 @@ bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& f
         const int dof = 3 * a + 2;
         if (dofs.tip_dof[dof]) dup[dof] = tip_value(nd, target) - u[dof];
       }
-    if (!extrapolate && opt.linear_predictor && dup.squaredNorm() > 0) {
+    if (predict && !extrapolate && opt.linear_predictor && dup.squaredNorm() > 0) {
       // §3.4: first iterate = linear(ised) elastic solution: K_ff du_f = -(R_f + K_fp du_p).
       IterationRecord rec;
       auto t0 = Clock::now();
@@ -200,8 +203,18 @@ bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& f
   }
 }
 
-StepResult QuasiStaticSolver::advance_to(double target) {
-  auto& m = *impl_;
+StepResult QuasiStaticSolver::advance_to(double target) { return impl_->advance(target, nullptr); }
+
+StepResult QuasiStaticSolver::advance_to(double target, const std::vector<Eigen::Vector3d>& start) {
+  if (start.size() != impl_->u_nodes.size()) {
+    throw std::invalid_argument("advance_to: a start of " + std::to_string(start.size()) + " nodes for a solver of " +
+                                std::to_string(impl_->u_nodes.size()));
+  }
+  return impl_->advance(target, &start);
+}
+
+StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eigen::Vector3d>* start) {
+  auto& m = *this;
   const auto t0 = Impl::Clock::now();
   StepResult res;
   if (!std::isfinite(target)) {
@@ -218,7 +231,13 @@ StepResult QuasiStaticSolver::advance_to(double target) {
     const Eigen::VectorXd u_saved = m.u;
     const auto multipliers_saved = m.contact ? m.contact->multipliers() : std::vector<std::vector<double>>{};
     Impl::Failure failure;
-    if (m.substep(next, res, failure, res.cutbacks)) {
+    const bool warm = start != nullptr && next == target;
+    if (warm) {
+      // A converged state on the same mesh: its fixed dofs are those of this run; the prescribed tip dofs are set
+      // by the substep.
+      for (int n = 0; n < static_cast<int>(start->size()); ++n) m.u.segment<3>(3 * n) = (*start)[n];
+    }
+    if (m.substep(next, res, failure, res.cutbacks, !warm)) {
       const double previous = m.d;
       m.d = next;
       m.last_increment = m.u - u_saved;
@@ -235,6 +254,10 @@ StepResult QuasiStaticSolver::advance_to(double target) {
     }
     m.u = u_saved;
     if (m.contact) m.contact->set_multipliers(multipliers_saved);
+    if (warm) {  // the start did not converge: the ordinary step, predictor and cut-backs, from here on
+      start = nullptr;
+      continue;
+    }
     streak = 0;
     if (res.cutbacks >= m.opt.max_cutbacks) {
       res.status = failure.status;

@@ -181,6 +181,22 @@ std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
   return indenters;
 }
 
+namespace {
+
+// The warm start's field at `depth` (the same load step of the earlier run), if it has one of this mesh's size.
+const std::vector<Eigen::Vector3d>* warm_start_at(const std::vector<StepDisplacement>* warm_start, double depth,
+                                                  std::size_t nodes) {
+  if (warm_start == nullptr) return nullptr;
+  for (const StepDisplacement& step : *warm_start) {
+    if (std::abs(step.depth - depth) <= 1e-12 * std::abs(depth) && step.displacement.size() == nodes) {
+      return &step.displacement;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 IndentationResult run_indentation(const IndentationCase& c, const IndentationOptions& options) {
   const Clock::time_point start = Clock::now();
   validate(c);
@@ -238,7 +254,9 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   for (int k = 1; k <= c.steps; ++k) {
     const double depth = c.depth * k / c.steps;
     const Clock::time_point step_start = Clock::now();
-    const fem::StepResult solved = solver.advance_to(lowest + depth);
+    const std::vector<Eigen::Vector3d>* start = warm_start_at(options.warm_start, depth, solver.nodes().size());
+    result.warm_started_steps += start != nullptr;
+    const fem::StepResult solved = start ? solver.advance_to(lowest + depth, *start) : solver.advance_to(lowest + depth);
     const double step_seconds = seconds_since(step_start);
     if (!solved.converged) {
       failed = true;
@@ -256,6 +274,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     step.external_work = previous_work + 0.5 * (previous_force + step.force) * (depth - previous_depth);
     step.step_seconds = step_seconds;  // wall time of the whole step (the solver's own total leaves out its set-up)
     result.steps.push_back(step);
+    if (options.keep_displacements) result.displacements.push_back({depth, solver.displacement()});
     if (options.on_step) options.on_step(step, solver);
     report("step", static_cast<double>(k) / c.steps);
     samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});

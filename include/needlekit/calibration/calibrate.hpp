@@ -67,6 +67,7 @@ struct CalibrationResult {
   std::vector<std::string> warnings;                  // identifiability, bounds, model notes
   std::vector<ExperimentFit> experiments;
   int model_runs = 0;                                 // FE runs
+  int warm_started_steps = 0;                         // FE load steps of the finite differences started warm
   double seconds = 0;
   std::vector<double> values() const;                 // SI, in the order of the parameters
 };

@@ -7,7 +7,7 @@
 
 namespace needlekit::calibration {
 
-// {"status", "reason", "iterations", "rms_relative", "model_runs", "seconds", "solver",
+// {"status", "reason", "iterations", "rms_relative", "model_runs", "warm_started_steps", "seconds", "solver",
 //  "parameters": {PATH: {"value", "unit" (SI), "ci95": [lo, hi] or null, "standard_error", "initial", "as_given",
 //                        "at_bound"}},
 //  "correlation": {"parameters": [PATH...], "matrix": [[...]] (null where not identifiable)}, "warnings": [...],

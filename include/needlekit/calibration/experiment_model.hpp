@@ -13,6 +13,7 @@
 
 #include "needlekit/calibration/calibration_problem.hpp"
 #include "needlekit/insertion/force_curve.hpp"
+#include "needlekit/insertion/indentation.hpp"
 #include "needlekit/io/insertion_case.hpp"
 
 namespace needlekit::calibration {
@@ -27,6 +28,10 @@ struct Prediction {
   std::vector<std::string> notes;                     // e.g. a puncture-force law used outside its range
   int model_runs = 0;                                 // FE runs (0 for design files)
   int elements = 0;                                   // tetrahedra of the FE mesh (0 for design files)
+  int warm_started_steps = 0;                         // FE load steps that started from a warm start
+  // The FE run's displacement field per load step, when asked: the warm start of the finite-difference runs around
+  // this point.
+  std::shared_ptr<const std::vector<insertion::StepDisplacement>> displacements;
 };
 
 class ExperimentModel {
@@ -44,7 +49,11 @@ public:
   // calibrated cases) with `significant_digits`.
   std::string case_text(const std::vector<double>& values, bool user_units = false, int significant_digits = 17) const;
 
-  Prediction predict(const std::vector<double>& values) const;
+  // `warm_start`: the displacements of an earlier prediction of this experiment (FE cases: its load steps start
+  // from them); `keep_displacements`: return this run's in Prediction::displacements.
+  Prediction predict(const std::vector<double>& values,
+                     const std::vector<insertion::StepDisplacement>* warm_start = nullptr,
+                     bool keep_displacements = false) const;
 
   // Weighted relative residuals: for each measured curve sample (F_model(d_i) − F_i)/max(|F_i|, 0.05·max|F|), then
   // (d_model − d)/d and (F_model − F)/F of the puncture point. No model puncture: the model's last sample stands in.

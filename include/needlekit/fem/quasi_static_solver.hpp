@@ -259,6 +259,11 @@ public:
   // smaller than the current one), with automatic cut-back. Never throws for numerical failure: the result says
   // where and why it stopped, and the solver keeps the last converged state.
   StepResult advance_to(double indenter_displacement);
+  // The same step with Newton started from `start` (m, one vector per node of nodes()) instead of the predictor: a
+  // warm start from the same step of a run on the same mesh with slightly different parameters (the finite
+  // differences of a calibration). The prescribed dofs are set as usual; a start that does not converge is dropped
+  // and the step runs as advance_to would. `start` of another size is an std::invalid_argument.
+  StepResult advance_to(double indenter_displacement, const std::vector<Eigen::Vector3d>& start);
 
   double indenter_displacement() const;                    // m, last converged
   const std::vector<Eigen::Vector3d>& nodes() const;       // reference positions: the mesh's nodes, then (T10)

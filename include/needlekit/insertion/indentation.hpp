@@ -96,6 +96,12 @@ struct IndentationProgress {
   double fraction = 0;   // [0, 1], of the planned steps (or up to the puncture point)
 };
 
+// The displacement field of one converged step (m, one vector per FE node), for warm starts.
+struct StepDisplacement {
+  double depth = 0;  // m
+  std::vector<Eigen::Vector3d> displacement;
+};
+
 struct IndentationOptions {
   // Called on the calling thread at each stage and after each converged step.
   std::function<void(const IndentationProgress&)> progress;
@@ -103,6 +109,12 @@ struct IndentationOptions {
   std::function<void(const IndentationStep&, const fem::QuasiStaticSolver&)> on_step;
   // Called once after meshing with the tissue mesh that is solved (e.g. for its layer ids in output files).
   std::function<void(const mesh::TetMesh&)> on_mesh;
+  // Warm start: the step displacements of an earlier run of the same case on the same mesh (its
+  // IndentationResult::displacements), e.g. at slightly different material parameters. A load step at a depth found
+  // there starts Newton from that field (QuasiStaticSolver::advance_to(depth, start)); other steps run as usual.
+  const std::vector<StepDisplacement>* warm_start = nullptr;
+  // Keep every converged load step's displacement field in IndentationResult::displacements.
+  bool keep_displacements = false;
 };
 
 struct IndentationResult {
@@ -110,6 +122,8 @@ struct IndentationResult {
   std::string reason;                         // why the run stopped (always set)
   std::vector<IndentationStep> steps;         // every converged step, in order
   std::optional<PuncturePoint> puncture;      // empty: no criterion fired within the simulated depth
+  std::vector<StepDisplacement> displacements;  // per converged load step, with IndentationOptions::keep_displacements
+  int warm_started_steps = 0;                 // load steps that started from IndentationOptions::warm_start
   int elements = 0;                           // tetrahedra of the tissue mesh
   int nodes = 0;                              // FE nodes (with the mid-edge nodes of quadratic elements)
   int dofs = 0;                               // free degrees of freedom
