@@ -4,8 +4,9 @@
 // parallel over experiments and parameters (TBB); then 95 % intervals, correlations and identifiability warnings
 // from the Jacobian at the optimum (parameter_statistics.hpp).
 //
-// Each FE run starts from the undeformed tissue: the FE API has no warm start from an earlier solution; the mesh
-// and the post-puncture loads are built once per experiment.
+// The mesh and the post-puncture loads are built once per experiment. The FE runs of a Jacobian warm-start: each
+// load step of a perturbed run starts Newton from the centre run's field at the same depth
+// (IndentationOptions::warm_start).
 #pragma once
 #include <Eigen/Core>
 #include <functional>
