@@ -72,6 +72,13 @@ ParameterStatistics parameter_statistics(const Eigen::MatrixXd& jacobian, const 
     if (!s.identifiable[j]) continue;
     s.standard_error[j] = std::sqrt(std::max(covariance(j, j), 0.0));
     s.ci95[j] = std::pair{values[j] - t * s.standard_error[j], values[j] + t * s.standard_error[j]};
+    // Identifiable by the singular values, yet the interval is wider than the value: the data hardly pin it down
+    // (e.g. a critical pressure above every pressure the needles reach, so that the criterion never fires).
+    if (t * s.standard_error[j] > std::abs(values[j])) {
+      s.warnings.push_back(fmt::format("{}: hardly determined by the data: its 95 % interval [{:.4g}, {:.4g}] is wider "
+                                       "than the value {:.4g} (SI)",
+                                       names[j], s.ci95[j]->first, s.ci95[j]->second, values[j]));
+    }
   }
   for (Eigen::Index i = 0; i < n; ++i) {
     for (Eigen::Index j = 0; j < n; ++j) {

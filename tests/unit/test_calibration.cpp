@@ -1,6 +1,7 @@
 // Calibration (calibration/*.hpp): case-file paths, the analytic model's exact answers (alpha, tau and a puncture-
 // force law recovered from noise-free synthetic data to 1e-6), K and S reported as degenerate, and bad input named
 // by file and key.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <iterator>
 
 #include "../support/expect_invalid.hpp"
+#include "needlekit/calibration/parameter_statistics.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/io/design_config.hpp"
@@ -251,3 +253,18 @@ TEST(CalibrationBadInput, NamesFileAndKey) {
 
 }  // namespace
 }  // namespace needlekit
+
+// A parameter the residuals barely depend on (the §6.2 phantom's P_c once the criterion never fires) is identifiable
+// by the singular values of the scaled Jacobian, but its interval is wider than its value: a warning says so.
+TEST(ParameterStatistics, AnIntervalWiderThanTheValueIsReported) {
+  Eigen::MatrixXd jacobian(4, 2);
+  jacobian << 1, 1e-3, 1, -1e-3, 1, 1e-3, 1, -1e-3;
+  Eigen::VectorXd residuals(4);
+  residuals << 0.1, -0.1, 0.1, -0.1;
+  const needlekit::calibration::ParameterStatistics s =
+      needlekit::calibration::parameter_statistics(jacobian, residuals, {1.0, 1.0}, {"a", "b"});
+  ASSERT_TRUE(s.ci95[0] && s.ci95[1]);
+  EXPECT_NEAR(s.standard_error[1], std::sqrt(0.02 / 4e-6), 1e-9);  // s^2 = 0.04 / (4 - 2), |J_b|^2 = 4e-6
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_THAT(s.warnings[0], testing::HasSubstr("b: hardly determined by the data: its 95 % interval"));
+}
