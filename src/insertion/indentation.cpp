@@ -72,6 +72,18 @@ PuncturePoint puncture_in_first_step(fem::QuasiStaticSolver& solver, const Inden
   return located ? *located : fired;
 }
 
+// The warm start's field at `depth` (the same load step of the earlier run), if it has one of this mesh's size.
+const std::vector<Eigen::Vector3d>* warm_start_at(const std::vector<StepDisplacement>* warm_start, double depth,
+                                                  std::size_t nodes) {
+  if (warm_start == nullptr) return nullptr;
+  for (const StepDisplacement& step : *warm_start) {
+    if (std::abs(step.depth - depth) <= 1e-12 * std::abs(depth) && step.displacement.size() == nodes) {
+      return &step.displacement;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 double tissue_height(const IndentationCase& c) {
@@ -180,22 +192,6 @@ std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
   }
   return indenters;
 }
-
-namespace {
-
-// The warm start's field at `depth` (the same load step of the earlier run), if it has one of this mesh's size.
-const std::vector<Eigen::Vector3d>* warm_start_at(const std::vector<StepDisplacement>* warm_start, double depth,
-                                                  std::size_t nodes) {
-  if (warm_start == nullptr) return nullptr;
-  for (const StepDisplacement& step : *warm_start) {
-    if (std::abs(step.depth - depth) <= 1e-12 * std::abs(depth) && step.displacement.size() == nodes) {
-      return &step.displacement;
-    }
-  }
-  return nullptr;
-}
-
-}  // namespace
 
 IndentationResult run_indentation(const IndentationCase& c, const IndentationOptions& options) {
   const Clock::time_point start = Clock::now();
