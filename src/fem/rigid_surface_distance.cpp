@@ -33,7 +33,9 @@ RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, c
       const double angle = std::acos(std::clamp(e1.dot(e2), -1.0, 1.0));
       vertex_normal_[t[k]] += angle * face_normal_[f];
       const int a = t[k], b = t[(k + 1) % 3];
-      edge_sum[{std::min(a, b), std::max(a, b)}] += face_normal_[f];
+      // try_emplace with an explicit zero: Eigen's default constructor leaves a vector uninitialised, so
+      // operator[] would add to garbage (which made surface-contact runs differ from run to run).
+      edge_sum.try_emplace({std::min(a, b), std::max(a, b)}, Eigen::Vector3d::Zero()).first->second += face_normal_[f];
     }
   }
   const Eigen::Vector3d along = direction.normalized();
@@ -44,7 +46,7 @@ RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, c
   for (size_t f = 0; f < nt; ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = t_[f][k], b = t_[f][(k + 1) % 3];
-      edge_normal_[f][k] = edge_sum[{std::min(a, b), std::max(a, b)}];
+      edge_normal_[f][k] = edge_sum.at({std::min(a, b), std::max(a, b)});
     }
 }
 
