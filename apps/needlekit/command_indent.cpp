@@ -73,7 +73,7 @@ void run_indent(const IndentArguments& arguments) {
   fmt::print("{}: {} tetrahedra, {} nodes, {} unknowns ({} solver); mesh {:.2f} s, total {:.2f} s\n",
              indentation_case.name, result.elements, result.nodes, result.dofs, fem::to_string(result.linear_solver),
              result.mesh_seconds, result.total_seconds);
-  fmt::print("models: {}\n", io::fe_models_text(indentation_case.solver));
+  fmt::print("models: {}\n", io::fe_models_text(indentation_case));
   fmt::print("{:>10} {:>12} {:>14} {:>10}\n", "depth_um", "force_N", "pressure_MPa", "newton");
   for (const insertion::IndentationStep& step : result.steps) {
     fmt::print("{:>10.4g} {:>12.5g} {:>14.5g} {:>10}\n", step.depth * 1e6, step.force, step.contact_pressure * 1e-6,

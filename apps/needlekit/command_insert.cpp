@@ -106,7 +106,7 @@ void run_insert(const InsertArguments& arguments) {
   if (fe) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
                   {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds},
-                  {"models", io::fe_models_json(indentation_case.solver)}};
+                  {"models", io::fe_models_json(indentation_case)}};
   }
   const auto& loads = result.loads;
   const auto& classes = loads.classification;
@@ -162,7 +162,7 @@ void run_insert(const InsertArguments& arguments) {
                indentation_case.name, count, classes.alpha.size(), classes.beta.size(), classes.side, classes.back,
                classes.channel, classes.occluded);
     if (fe)
-      fmt::print("FE indentation ({}): {}: {}\n", io::fe_models_text(indentation_case.solver),
+      fmt::print("FE indentation ({}): {}: {}\n", io::fe_models_text(indentation_case),
                  insertion::to_string(fe->status), fe->reason);
     for (const auto& event : curve.punctures)
       fmt::print("needle {} punctures at {:.4g} um: force {:.5g} N before, {:.5g} N after (relaxation drop {:.5g} N)\n",

@@ -9,6 +9,7 @@
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
+#include "needlekit/needle/rounded_edges.hpp"
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/patch_placement.hpp"
 
@@ -103,6 +104,8 @@ std::string indentation_case_help() {
   [needle]     shape, tip_diameter, base_diameter, bore_diameter, length as in design files (material is ignored: the
                needle is rigid), or mesh = "needle.stl" + mesh_unit = "um" (needle frame: axis z, tip at max z)
                tip_height = "0 um"       >= 0, the tip's height above the surface at the start
+               edge_radius = "{:g} um"     surface contact, parametric needle: its edges rounded with this radius
+                                         (default {:g} um, or half the largest the tip allows; < D1/2)
   [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
   [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = {}
                or [[tissue.layers]] name, thickness (the last may be "rest"),
@@ -123,6 +126,7 @@ std::string indentation_case_help() {
 Choices:
 {}{}{}{}{}{}{}Settings of [solver]:
 {})",
+      needle::kTypicalEdgeRadius * 1e6, needle::kTypicalEdgeRadius * 1e6,
       quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
       choices_of(fem::kContactModelNames), choices_of(fem::kElementOrderNames), choices_of(fem::kBoundaryConditionNames),
       choices_of(io::kPredictorNames), choices_of(fem::kLinearSolverNames),

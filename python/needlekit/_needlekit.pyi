@@ -1499,6 +1499,11 @@ class IndentationCase:
     @depth.setter
     def depth(self, value: Any) -> None: ...
     @property
+    def edge_radius(self) -> Optional[float]:
+        """m, surface contact on a parametric needle: its edges rounded with this radius (None: the default, 2 um or half the largest the tip allows)"""
+    @edge_radius.setter
+    def edge_radius(self, value: Any) -> None: ...
+    @property
     def geometry(self) -> Optional[NeedleGeometry]:
         ...
     @geometry.setter

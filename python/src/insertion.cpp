@@ -110,7 +110,10 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("steps", &IndentationCase::steps)
       .def_readwrite("solver", &IndentationCase::solver)
       .def_readwrite("puncture", &IndentationCase::puncture)
-      .def_readwrite("stop_at_puncture", &IndentationCase::stop_at_puncture);
+      .def_readwrite("stop_at_puncture", &IndentationCase::stop_at_puncture)
+      .def_readwrite("edge_radius", &IndentationCase::edge_radius,
+                     "m, surface contact on a parametric needle: its edges rounded with this radius (None: the "
+                     "default, 2 um or half the largest the tip allows)");
   def_quantity(indentation, "depth", &IndentationCase::depth, Dimension::Length, "m, final depth");
   m.def("read_indentation_case", &io::read_indentation_case, py::arg("path"),
         "Reads an indentation case file; raises InvalidInput naming file, line and key.");

@@ -168,7 +168,7 @@ Prediction ExperimentModel::predict(const std::vector<double>& values,
         std::make_shared<const std::vector<insertion::StepDisplacement>>(std::move(fe.displacements));
   }
   prediction.elements = fe.elements;
-  prediction.status = fmt::format("FE ({}): {}: {}", io::fe_models_text(c.solver), insertion::to_string(fe.status),
+  prediction.status = fmt::format("FE ({}): {}: {}", io::fe_models_text(c), insertion::to_string(fe.status),
                                   fe.reason);
   if (fe.steps.empty()) {
     prediction.failure = fmt::format("{}: the FE converged no load step ({})", experiment_.name, fe.reason);

@@ -73,7 +73,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     rec.assembly_seconds = assembled ? carried_assembly_seconds : seconds_since(t0);
     assembled = false;
     if (!ev.valid) {
-      failure = {StepStatus::InvertedElement, "an element inverted (J <= 0)"};
+      failure = inverted(ev);
       return false;
     }
     if (contact) {
@@ -177,7 +177,7 @@ bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& f
       const Eval ev = evaluate(u, target, true, true, &dup, &kdup);
       rec.assembly_seconds = seconds_since(t0);
       if (!ev.valid) {
-        failure = {StepStatus::InvertedElement, "an element inverted (J <= 0)"};
+        failure = inverted(ev);
         return false;
       }
       const Eigen::VectorXd r = free_residual();

@@ -83,6 +83,7 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
 
 bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, double& energy, tbb::task_arena& arena) {
   const size_t ne = space_.elements.size(), nnode = space_.nodes.size();
+  inverted_element_ = -1;
   std::atomic<bool> valid{true};
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 1024), [&](const tbb::blocked_range<size_t>& r) {
@@ -102,7 +103,11 @@ bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, dou
       }
     });
   });
-  if (!valid) return false;
+  if (!valid) {
+    for (size_t e = 0; e < ne && inverted_element_ < 0; ++e)
+      if (treated_[e] && !(element_j_[e] > 0)) inverted_element_ = static_cast<int>(e);
+    return false;
+  }
   // Nodal volume ratios, energies, pressures U'(J̄) and curvatures U''(J̄)/V_a, with U = λ/2 (ln J)^2.
   std::vector<double> node_pressure(nnode, 0.0);
   energy = deterministic_sum(nnode, arena, [&](size_t n) {
@@ -122,7 +127,16 @@ bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, dou
     node_curvature_[n] = lambda * (1 - lnj) / (j * j) / node_volume_[n];
     return node_volume_[n] * 0.5 * lambda * lnj * lnj;
   });
-  if (!valid) return false;
+  if (!valid) {
+    for (size_t n = 0; n < nnode && inverted_element_ < 0; ++n) {
+      if (node_volume_[n] <= 0) continue;
+      double v = 0;
+      for (int k = node_element_pointers_[n]; k < node_element_pointers_[n + 1]; ++k)
+        v += element_j_[static_cast<size_t>(node_elements_[k])] * space_.volumes[static_cast<size_t>(node_elements_[k])];
+      if (!(v > 0)) inverted_element_ = node_elements_[node_element_pointers_[n]];
+    }
+    return false;
+  }
   for (size_t e = 0; e < ne; ++e) {
     if (!treated_[e]) continue;
     const int* c = &space_.connectivity[4 * e];

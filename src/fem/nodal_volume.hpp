@@ -34,8 +34,10 @@ public:
   bool treated(int element) const { return treated_[static_cast<size_t>(element)] != 0; }
 
   // From the displacement u: J_e, J_e h_e of the treated elements, J̄_a, the pressures and (with_tangent) g_a.
-  // The volumetric energy into `energy`. False when some J_e or J̄_a <= 0 (inverted).
+  // The volumetric energy into `energy`. False when some J_e or J̄_a <= 0 (inverted); inverted_element() then names
+  // the lowest-numbered element with J_e <= 0 (or, when only a nodal J̄_a is, the first element of that node).
   bool update(const Eigen::VectorXd& u, bool with_tangent, double& energy, tbb::task_arena& arena);
+  int inverted_element() const { return inverted_element_; }
   // p̄_e (Pa) and J_e h_e of a treated element at the last update.
   double element_pressure(int element) const { return element_pressure_[static_cast<size_t>(element)]; }
   double element_volume_ratio(int element) const { return element_j_[static_cast<size_t>(element)]; }
@@ -63,6 +65,7 @@ private:
   std::vector<double> element_j_, element_pressure_;
   std::vector<Eigen::Matrix<double, 3, 4>> element_jh_;
   std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, Pa/m^3
+  int inverted_element_ = -1;
   std::vector<Eigen::Vector3d> patch_gradient_;             // g_a restricted to each patch node, aligned with
                                                             // patch_nodes_
 };

@@ -28,6 +28,12 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   std::vector<double> block_energy;
   double strain_energy = 0;
   std::atomic<bool> valid{true};
+  std::atomic<int> first_inverted{std::numeric_limits<int>::max()};
+  const auto record_inverted = [&](int e) {  // an atomic minimum: the same element whatever the threads
+    valid = false;
+    for (int now = first_inverted.load(); e < now && !first_inverted.compare_exchange_weak(now, e);) {
+    }
+  };
   const int nq = space.points;
   const auto& conn = space.connectivity;
   const auto& free_index = dofs.free_index;
@@ -52,7 +58,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
             for (int q = 0; q < nq; ++q) {
               const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g[q].transpose();
               const auto s = stress_response(opt.law, space.lame[e], f, false);
-              if (!s.valid) valid = false;
+              if (!s.valid) record_inverted(e);
               else en += w[q] * s.energy_density;
             }
             continue;
@@ -61,7 +67,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
           const bool ok = detail::tet_kernel<N>(g, w, nq, opt.law, space.lame[e], ue, we, fe,
                                                 want_tangent ? &ke : nullptr);
           if (!ok) {
-            valid = false;
+            record_inverted(e);
             continue;
           }
           if constexpr (N == 4) {
@@ -107,6 +113,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   Eval ev;
   ev.strain_energy = strain_energy;
   ev.valid = valid;
+  if (!ev.valid && first_inverted < std::numeric_limits<int>::max()) ev.inverted_element = first_inverted;
   return ev;
 }
 
@@ -117,6 +124,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
   if (nodal && !nodal->update(uu, want_tangent, volumetric_energy, arena)) {
     Eval inverted;
     inverted.valid = false;
+    inverted.inverted_element = nodal->inverted_element();
     return inverted;
   }
   Eval ev = space.nodes_per_element == 4 ? element_pass<4>(uu, want_force, want_tangent, dup, kdup)
@@ -130,6 +138,19 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
     ev.contact_energy = contact->evaluate(space.nodes, uu, disp, want_force, want_tangent, fcontact,
                                           dofs.free_index, system->pattern(), system->values());
   return ev;
+}
+
+QuasiStaticSolver::Impl::Failure QuasiStaticSolver::Impl::inverted(const Eval& ev) const {
+  if (ev.inverted_element < 0) return {StepStatus::InvertedElement, "an element inverted (J <= 0)"};
+  const int e = ev.inverted_element;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int a = 0; a < 4; ++a) centre += space.nodes[static_cast<size_t>(space.elements[static_cast<size_t>(e)][a])] / 4;
+  const double um = 1e6;
+  std::ostringstream s;
+  s.precision(4);
+  s << "tetrahedron " << e << " inverted (J <= 0); its centre at (" << centre.x() * um << ", " << centre.y() * um
+    << ") um, " << (space.box_max.z() - centre.z()) * um << " um below the top surface (reference positions)";
+  return {StepStatus::InvertedElement, s.str()};
 }
 
 Eigen::VectorXd QuasiStaticSolver::Impl::free_residual() const {
@@ -231,8 +252,12 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
     check(ind.direction.norm() > 0 && ind.direction.allFinite(), name + ": direction must be a non-zero vector");
     Impl::Needle nd;
     nd.direction = ind.direction.normalized();
+    check(std::isfinite(ind.edge_radius) && ind.edge_radius >= 0,
+          name + ": edge radius " + str(ind.edge_radius) + " m, expected a finite length >= 0");
+    check(ind.edge_radius == 0 || o.contact == ContactModel::Surface,
+          name + ": an edge radius applies to surface contact only (the tip-nodes rule takes the tip face as flat)");
     double zmin = std::numeric_limits<double>::infinity();
-    for (const auto& v : ind.surface.vertices) zmin = std::min(zmin, v.z());
+    for (const auto& v : ind.surface.vertices) zmin = std::min(zmin, v.z() - ind.edge_radius);
     check(zmin >= m.top.z - tol, name + " starts inside the tissue: its lowest point is at z = " + str(zmin) +
           " m, below the top surface z = " + str(m.top.z) + " m");
     if (o.contact == ContactModel::TipNodes) {

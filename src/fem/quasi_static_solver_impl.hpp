@@ -63,6 +63,7 @@ struct QuasiStaticSolver::Impl {
     double strain_energy = 0;
     double contact_energy = 0;
     bool valid = true;
+    int inverted_element = -1;  // when not valid: the lowest-numbered element found inverted (-1: none named)
     double potential() const { return strain_energy + contact_energy; }
   };
   template <int N>
@@ -73,6 +74,8 @@ struct QuasiStaticSolver::Impl {
   Eval evaluate(const Eigen::VectorXd& uu, double disp, bool want_force, bool want_tangent,
                 const Eigen::VectorXd* dup = nullptr, Eigen::VectorXd* kdup = nullptr);
   Eigen::VectorXd free_residual() const;
+  // The failure of an evaluation that found an inverted element: which element, where in the reference mesh.
+  Failure inverted(const Eval& ev) const;
   double tip_value(const Needle& nd, double disp) const { return -std::max(0.0, disp - nd.gap); }
   void add_free(Eigen::VectorXd& uu, const Eigen::VectorXd& du, double alpha) const;
   // Forces, pressures and flags of the converged state (fint/fcontact of the last evaluation).

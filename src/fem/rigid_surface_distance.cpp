@@ -8,8 +8,9 @@
 
 namespace needlekit::fem::detail {
 
-RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, const Eigen::Vector3d& direction)
-    : v_(mesh.vertices), t_(mesh.triangles) {
+RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, const Eigen::Vector3d& direction,
+                                           double offset)
+    : v_(mesh.vertices), t_(mesh.triangles), offset_(offset) {
   const size_t nt = t_.size();
   face_normal_.resize(nt);
   vertex_normal_.assign(v_.size(), Eigen::Vector3d::Zero());
@@ -38,6 +39,8 @@ RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, c
       edge_sum.try_emplace({std::min(a, b), std::max(a, b)}, Eigen::Vector3d::Zero()).first->second += face_normal_[f];
     }
   }
+  lo_.array() -= offset_;
+  hi_.array() += offset_;
   const Eigen::Vector3d along = direction.normalized();
   for (size_t f = 0; f < nt; ++f)
     if (face_normal_[f].dot(along) > kLeadingCosine) leading_.push_back(static_cast<int>(f));
@@ -103,7 +106,7 @@ RigidSurfaceDistance::Nearest RigidSurfaceDistance::nearest(const Eigen::Vector3
 }
 
 SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, double reach, bool ahead) const {
-  const Nearest all = nearest(q, reach, nullptr);
+  const Nearest all = nearest(q, reach + offset_, nullptr);
   const double best = all.squared_distance;
   const int best_f = all.triangle, best_feature = all.feature;
   const Eigen::Vector3d best_p = all.point;
@@ -128,12 +131,12 @@ SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, d
     // motion pushes it.
     const Nearest lead = nearest(q, std::numeric_limits<double>::infinity(), &leading_);
     const double lead_dist = std::sqrt(lead.squared_distance);
-    out.distance = -lead_dist;
+    out.distance = -lead_dist - offset_;
     out.normal = lead_dist > 1e-12 * (hi_ - lo_).norm() ? Eigen::Vector3d((lead.point - q) / lead_dist)
                                                         : face_normal_[lead.triangle];
     return out;
   }
-  out.distance = inside ? -dist : dist;
+  out.distance = (inside ? -dist : dist) - offset_;
   if (dist > 1e-12 * (hi_ - lo_).norm()) out.normal = inside ? Eigen::Vector3d(-diff / dist) : Eigen::Vector3d(diff / dist);
   else out.normal = pseudo.normalized();
   return out;

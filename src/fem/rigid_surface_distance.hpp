@@ -18,7 +18,9 @@ class RigidSurfaceDistance {
 public:
   // `direction`: the needle's direction of motion. Triangles whose outward normal points along it (n . direction >
   // kLeadingCosine) are the needle's leading faces, the ones that can push tissue ahead of the needle.
-  RigidSurfaceDistance(const geometry::TriangleMesh& mesh, const Eigen::Vector3d& direction);
+  // `offset` >= 0: distances are to the set of points within `offset` of the mesh (the mesh is a needle's eroded
+  // core, Indenter::edge_radius): the mesh's distance minus `offset`, with the same gradient direction.
+  RigidSurfaceDistance(const geometry::TriangleMesh& mesh, const Eigen::Vector3d& direction, double offset = 0);
   // Signed distance of q, or a positive value >= `reach` (normal undefined) when q is farther than `reach`.
   // With `ahead` (a node that was ahead of the needle, under its leading faces, at the last converged state), inside
   // the needle the distance and normal are those to the nearest point of the leading faces (the way out that the
@@ -28,6 +30,7 @@ public:
   // slides past it.
   SignedDistance signed_distance(const Eigen::Vector3d& q, double reach, bool ahead = false) const;
   static constexpr double kLeadingCosine = 1e-3;
+  // The body's bounding box (the mesh's, grown by the offset).
   const Eigen::Vector3d& box_min() const { return lo_; }
   const Eigen::Vector3d& box_max() const { return hi_; }
 
@@ -48,6 +51,7 @@ private:
   std::vector<Eigen::Vector3d> tri_lo_, tri_hi_;
   std::vector<int> leading_;  // indices of the leading triangles
   Eigen::Vector3d lo_, hi_;
+  double offset_ = 0;
 };
 
 }  // namespace needlekit::fem::detail

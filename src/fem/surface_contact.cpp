@@ -19,7 +19,7 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
   for (const Indenter& needle : needles) {
     NeedleContact nc;
     nc.direction = needle.direction.normalized();
-    nc.distance = std::make_unique<RigidSurfaceDistance>(needle.surface, nc.direction);
+    nc.distance = std::make_unique<RigidSurfaceDistance>(needle.surface, nc.direction, needle.edge_radius);
     nc.lambda.assign(top.nodes.size(), 0.0);
     nc.gap_now.assign(top.nodes.size(), std::numeric_limits<double>::infinity());
     nc.force_now.assign(top.nodes.size(), 0.0);

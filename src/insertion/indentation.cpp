@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/needle/rounded_edges.hpp"
 
 namespace needlekit::insertion {
 namespace {
@@ -110,6 +111,19 @@ void validate(const IndentationCase& c) {
   if (c.needle.triangles.empty() || c.needle.vertices.empty()) {
     throw InvalidInput("needle: the needle surface mesh is empty, expected a closed triangle mesh");
   }
+  if (c.edge_radius) {
+    if (!c.geometry) {
+      throw InvalidInput("needle.edge_radius: given for a needle given as a mesh, whose edges are the mesh's; "
+                         "expected edge_radius only with a parametric needle (shape, tip_diameter, ...)");
+    }
+    if (c.solver.contact != fem::ContactModel::Surface) {
+      throw InvalidInput("needle.edge_radius: given with contact = \"tip-nodes\", which takes the tip face as flat; "
+                         "expected contact = \"surface\" or no edge_radius");
+    }
+  }
+  if (c.geometry && c.solver.contact == fem::ContactModel::Surface) {
+    needle::eroded_needle(*c.geometry, effective_edge_radius(c));  // throws for a radius outside its range
+  }
   if (c.needles.empty()) throw InvalidInput("needles: no needle, expected at least one insertion site");
   for (std::size_t i = 0; i < c.needles.size(); ++i) {
     const NeedleSite& site = c.needles[i];
@@ -161,6 +175,11 @@ void validate(const IndentationCase& c) {
   validate(c.puncture);
 }
 
+double effective_edge_radius(const IndentationCase& c) {
+  if (!c.geometry || c.solver.contact != fem::ContactModel::Surface) return 0.0;
+  return c.edge_radius.value_or(needle::default_edge_radius(*c.geometry));
+}
+
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
   double tip = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector3d& v : c.needle.vertices) {
@@ -178,10 +197,18 @@ std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
     }
   }
   tip_centre /= std::max(on_tip, 1);
+  const double edge_radius = effective_edge_radius(c);
+  geometry::TriangleMesh body = c.needle;  // with rounded edges the eroded core, in the same needle frame
+  if (edge_radius > 0) {
+    const needle::ErodedNeedle core = needle::eroded_needle(*c.geometry, edge_radius);
+    body = needle::needle_surface_mesh(core.core, c.needle_mesh);
+    for (Eigen::Vector3d& v : body.vertices) v.z() += core.base_offset;
+  }
   std::vector<fem::Indenter> indenters;
   for (const NeedleSite& site : c.needles) {
     fem::Indenter indenter;
-    indenter.surface = c.needle;
+    indenter.surface = body;
+    indenter.edge_radius = edge_radius;
     // Half-turn about x (a proper rotation: the outward orientation is kept), tip down at z = tip_height, the tip's
     // centre over the site.
     for (Eigen::Vector3d& v : indenter.surface.vertices) {
@@ -254,23 +281,33 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     result.warm_started_steps += start != nullptr;
     const fem::StepResult solved = start ? solver.advance_to(lowest + depth, *start) : solver.advance_to(lowest + depth);
     const double step_seconds = seconds_since(step_start);
+    // A step that failed after some of its cut-back substeps converged leaves the solver in the deepest converged
+    // state inside the step: kept as a last, shorter step (and searched for puncture), so that the run reports the
+    // depth it reached, not the end of the step before.
+    const double reached = solved.indenter_displacement - lowest;
+    const double kept = result.steps.empty() ? 0.0 : result.steps.back().depth;
+    const bool partial = !solved.converged && reached > kept + 1e-9 * c.depth;
     if (!solved.converged) {
       failed = true;
       result.status = IndentationStatus::SolverFailed;
-      result.reason = fmt::format("load step {} of {} (to depth {}) did not converge: {}; {} completed step{} kept",
-                                  k, c.steps, um(depth), solved.reason, result.steps.size(),
-                                  result.steps.size() == 1 ? "" : "s");
-      break;
+      const std::size_t completed = result.steps.size() + (partial ? 1 : 0);
+      result.reason = fmt::format("load step {} of {} (to depth {}) did not converge: {}; {} completed step{} kept{}",
+                                  k, c.steps, um(depth), solved.reason, completed, completed == 1 ? "" : "s",
+                                  partial ? fmt::format(", the last one the step's deepest converged state at {}",
+                                                        um(reached))
+                                          : "");
+      if (!partial) break;
     }
-    IndentationStep step = step_of(solved, depth);
+    const double step_depth = partial ? reached : depth;
+    IndentationStep step = step_of(solved, step_depth);
     // External work of the needles, trapezoidal over the converged steps (the needles move only along z).
     const double previous_depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
     const double previous_force = result.steps.empty() ? 0.0 : result.steps.back().force;
     const double previous_work = result.steps.empty() ? 0.0 : result.steps.back().external_work;
-    step.external_work = previous_work + 0.5 * (previous_force + step.force) * (depth - previous_depth);
+    step.external_work = previous_work + 0.5 * (previous_force + step.force) * (step_depth - previous_depth);
     step.step_seconds = step_seconds;  // wall time of the whole step (the solver's own total leaves out its set-up)
     result.steps.push_back(step);
-    if (options.keep_displacements) result.displacements.push_back({depth, solver.displacement()});
+    if (options.keep_displacements) result.displacements.push_back({step_depth, solver.displacement()});
     if (options.on_step) options.on_step(step, solver);
     report("step", static_cast<double>(k) / c.steps);
     samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});
@@ -279,15 +316,25 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       if (result.puncture && samples.size() == 1)
         result.puncture = puncture_in_first_step(solver, c, lowest, samples.front(), *result.puncture);
     }
+    if (partial) {
+      // Punctured before the solver gave up: with stop_at_puncture that is the run's outcome (finer load steps
+      // would have stopped there); the failure stays in the reason.
+      if (result.puncture && c.stop_at_puncture) {
+        failed = false;
+        result.reason = fmt::format("; the solver then failed: {}", result.reason);
+      }
+      break;
+    }
     if (result.puncture && c.stop_at_puncture) break;
   }
   if (!failed) {
     if (result.puncture) {
+      const std::string after = result.reason;  // the solver's failure after the puncture, if any
       result.status = IndentationStatus::Punctured;
-      result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}",
+      result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}{}",
                                   to_string(result.puncture->criterion), um(result.puncture->depth),
                                   result.puncture->force,
-                                  c.stop_at_puncture ? "" : fmt::format("; continued to {}", um(c.depth)));
+                                  c.stop_at_puncture ? "" : fmt::format("; continued to {}", um(c.depth)), after);
     } else {
       result.status = IndentationStatus::ReachedDepth;
       result.reason = fmt::format("reached the final depth {} without puncture{}", um(c.depth),

@@ -26,6 +26,8 @@ double quantity_at_least_zero(const Section& section, const toml::node& node, st
 struct NeedleRead {
   geometry::TriangleMesh mesh;
   std::optional<needle::NeedleGeometry> geometry;
+  needle::NeedleMeshOptions mesh_options;
+  std::optional<double> edge_radius;
   double tip_height = 0;
 };
 
@@ -34,6 +36,9 @@ NeedleRead read_needle(const Section& section, const toml::table& root, const st
   if (const toml::node* node = section.optional("tip_height")) {
     result.tip_height = quantity_at_least_zero(section, *node, "tip_height", Dimension::Length,
                                                "the needle would start inside the tissue");
+  }
+  if (const toml::node* node = section.optional("edge_radius")) {
+    result.edge_radius = quantity_at_least_zero(section, *node, "edge_radius", Dimension::Length, "a radius is a size");
   }
   if (const toml::node* mesh_node = section.optional("mesh")) {
     for (std::string_view key : {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "segments",
@@ -94,6 +99,7 @@ NeedleRead read_needle(const Section& section, const toml::table& root, const st
   }
   result.mesh = needle::needle_surface_mesh(geometry, mesh_options);
   result.geometry = geometry;
+  result.mesh_options = mesh_options;
   return result;
 }
 
@@ -234,10 +240,12 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
 
   const Section needle = top.required_subsection(
       "needle", {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "material", "mesh", "mesh_unit",
-                 "tip_height", "segments", "axial_segments"});
+                 "tip_height", "segments", "axial_segments", "edge_radius"});
   NeedleRead needle_read = read_needle(needle, root, base_directory);
   result.needle = std::move(needle_read.mesh);
   result.geometry = needle_read.geometry;
+  result.needle_mesh = needle_read.mesh_options;
+  result.edge_radius = needle_read.edge_radius;
   // [tissue] and [mesh]: the reader shared with `needlekit tissue-mesh` (tissue_config.hpp).
   top.required("tissue", "a table [tissue] with a preset or [[tissue.layers]]");
   const TissueCase tissue = tissue_case_of(root, file, base_directory);

@@ -111,17 +111,22 @@ std::string solver_statistics_csv(const insertion::IndentationResult& result) {
   return out.str();
 }
 
-nlohmann::json fe_models_json(const fem::SolverOptions& solver) {
+nlohmann::json fe_models_json(const insertion::IndentationCase& c) {
+  const fem::SolverOptions& solver = c.solver;
   return {{"law", fem::to_string(solver.law)},
           {"element", fem::to_string(solver.order)},
           {"contact", fem::to_string(solver.contact)},
           {"boundary", fem::to_string(solver.boundary)},
-          {"volumetric", fem::to_string(solver.volumetric)}};
+          {"volumetric", fem::to_string(solver.volumetric)},
+          {"edge_radius_um", insertion::effective_edge_radius(c) * 1e6}};
 }
 
-std::string fe_models_text(const fem::SolverOptions& solver) {
-  return fmt::format("{} law, {} tetrahedra, {} volume, {} contact, {} boundary", fem::to_string(solver.law),
+std::string fe_models_text(const insertion::IndentationCase& c) {
+  const fem::SolverOptions& solver = c.solver;
+  const double edge_radius = insertion::effective_edge_radius(c);
+  return fmt::format("{} law, {} tetrahedra, {} volume, {} contact{}, {} boundary", fem::to_string(solver.law),
                      fem::to_string(solver.order), fem::to_string(solver.volumetric), fem::to_string(solver.contact),
+                     edge_radius > 0 ? fmt::format(" (needle edges rounded, radius {:g} um)", edge_radius * 1e6) : "",
                      fem::to_string(solver.boundary));
 }
 
@@ -167,6 +172,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["boundary"] = name_of(fem::kBoundaryConditionNames, c.solver.boundary);
   json["volumetric"] = name_of(fem::kVolumetricFormulationNames, c.solver.volumetric);
   json["nodal_average_elements"] = result.nodal_average_elements;
+  json["edge_radius_um"] = insertion::effective_edge_radius(c) * 1e6;
   nlohmann::json needles = nlohmann::json::array();
   for (const insertion::NeedleSite& site : c.needles) {
     needles.push_back({{"x_um", site.position.x() * 1e6}, {"y_um", site.position.y() * 1e6},

@@ -11,6 +11,7 @@
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
+#include "needlekit/needle/rounded_edges.hpp"
 #include "../support/test_text.hpp"
 
 using namespace needlekit;
@@ -177,7 +178,8 @@ depth = "200 um"
   EXPECT_EQ(c.solver.law, fem::MaterialLaw::NeoHookean);
   EXPECT_EQ(c.solver.contact, fem::ContactModel::Surface);
 
-  // Placed tip-down: the lowest vertex of each needle is its tip, at the tip height, above the site.
+  // Placed tip-down: the lowest point of each needle is its tip, at the tip height, above the site. With surface
+  // contact the solver gets the eroded core and the edge radius: the core's lowest vertex is that radius higher.
   const auto indenters = insertion::placed_indenters(c);
   ASSERT_EQ(indenters.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
@@ -189,7 +191,9 @@ depth = "200 um"
       centre += v.head<2>();
     }
     centre /= static_cast<double>(indenters[i].surface.vertices.size());
-    EXPECT_NEAR(lowest, c.needles[i].tip_height, 1e-15);
+    const double rho = indenters[i].edge_radius;
+    EXPECT_DOUBLE_EQ(rho, insertion::effective_edge_radius(c));
+    EXPECT_NEAR(lowest - rho, c.needles[i].tip_height, 1e-15);
     EXPECT_NEAR(highest, c.needles[i].tip_height + 1000e-6, 1e-12);
     EXPECT_NEAR((centre - c.needles[i].position).norm(), 0, 1e-6);
     EXPECT_GT(geometry::signed_volume(indenters[i].surface), 0);  // still outward-oriented
@@ -208,6 +212,25 @@ TEST(IndentationCase, NeedleFromStl) {
   EXPECT_FALSE(c.geometry.has_value());
   EXPECT_NEAR(geometry::signed_volume(c.needle), needle::volume(cone), 2e-3 * needle::volume(cone));
   std::filesystem::remove_all(dir);
+}
+
+TEST(IndentationCase, EdgeRadius) {
+  // Surface contact on a parametric needle: the given radius, or the default; the models name it.
+  const std::string surface = replaced(kCase, "contact = \"tip-nodes\"", "contact = \"surface\"");
+  const insertion::IndentationCase given =
+      parse(replaced(surface, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"5 um\""));
+  ASSERT_TRUE(given.edge_radius.has_value());
+  EXPECT_DOUBLE_EQ(*given.edge_radius, 5e-6);
+  EXPECT_DOUBLE_EQ(insertion::effective_edge_radius(given), 5e-6);
+  EXPECT_DOUBLE_EQ(insertion::effective_edge_radius(parse(surface)), needle::kTypicalEdgeRadius);
+  EXPECT_EQ(insertion::effective_edge_radius(parse(kCase)), 0.0);  // tip nodes: a flat face
+  // Bad input: larger than the tip's radius, with tip-nodes contact, negative.
+  EXPECT_THAT(error_of(replaced(surface, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"120 um\"")),
+              HasSubstr("key 'needle.edge_radius': 120 um, expected at least 0 and less than 115 um (the tip's radius)"));
+  EXPECT_THAT(error_of(replaced(kCase, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"5 um\"")),
+              HasSubstr("key 'needle.edge_radius': given with contact = \"tip-nodes\""));
+  EXPECT_THAT(error_of(replaced(surface, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"-1 um\"")),
+              HasSubstr("case.toml:6: key 'needle.edge_radius': '-1 um' is negative"));
 }
 
 TEST(IndentationCase, ErrorsNameFileLineAndKey) {

@@ -29,13 +29,16 @@ struct PunchRun {
   int newton_iterations = 0;  // over all steps (each one linear solve)
 };
 
+// `edge_radius` > 0 (surface contact): the punch's edges rounded with it, given to the solver as the eroded core
+// (needle/rounded_edges.hpp) with its tip that radius above the surface.
 PunchRun punch(double extent_over_a, int core, double nu, double depth, SolverOptions o = {}, int steps = 1,
-               double radius_factor = 1.0) {
+               double radius_factor = 1.0, double edge_radius = 0) {
   const double extent = extent_over_a * kA;
   const auto mesh = quarter_punch_block(kA, extent, core, kE, nu);
   o.boundary = BoundaryCondition::QuarterSymmetry;
   const double corner = -extent / 2;
-  QuasiStaticSolver solver(mesh, {{placed_needle(flat_cylinder(radius_factor * kA, 300e-6), corner, corner, 0, 256), {0, 0, -1}}}, o);
+  const auto body = flat_cylinder(radius_factor * kA - edge_radius, 300e-6 - edge_radius);
+  QuasiStaticSolver solver(mesh, {{placed_needle(body, corner, corner, edge_radius, 256), {0, 0, -1}, edge_radius}}, o);
   PunchRun run;
   for (int s = 1; s <= steps; ++s) {
     run.result = solver.advance_to(depth * s / steps);
@@ -134,6 +137,23 @@ TEST(FlatPunch, SurfaceContactMatchesTheTipNodeRuleForAFlatTip) {
   EXPECT_NEAR(b.result.contact_area[0] / a.result.contact_area[0], 1.0, 0.15);
   EXPECT_LT(b.result.max_penetration, 1e-2 * 0.01 * kA);
   EXPECT_NEAR(b.result.mean_contact_pressure[0] / a.result.mean_contact_pressure[0], 1.0, 0.1);
+}
+
+TEST(FlatPunch, RoundedEdgesApproachTheSharpPunchAndCarryLess) {
+  // Surface contact with the punch's edge rounded (Indenter::edge_radius): as the radius goes to zero the force goes
+  // to the sharp punch's; a radius of the order of the depth leaves part of the rim out of contact and carries less.
+  SolverOptions surface;
+  surface.contact = ContactModel::Surface;
+  const double depth = 0.02 * kA;
+  const auto sharp = punch(10, 3, 0.4, depth, surface, 1, 1.05);
+  const auto fine = punch(10, 3, 0.4, depth, surface, 1, 1.05, 0.2e-6);
+  const auto round = punch(10, 3, 0.4, depth, surface, 1, 1.05, 10e-6);
+  ASSERT_TRUE(sharp.result.converged && fine.result.converged && round.result.converged)
+      << fine.result.reason << round.result.reason;
+  EXPECT_NEAR(fine.force / sharp.force, 1.0, 0.01);
+  EXPECT_LT(round.force, 0.99 * fine.force);
+  EXPECT_GT(round.force, 0.5 * sharp.force);
+  EXPECT_LT(round.result.max_penetration, 1e-2 * depth);
 }
 
 }  // namespace

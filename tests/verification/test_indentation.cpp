@@ -131,7 +131,8 @@ TEST(Indentation, StopsAtTheStepThatCrossesTheCriticalPressure) {
 }
 
 // St Venant-Kirchhoff fails under large compression (an element inverts): a 230 um punch pushed 280 um into a
-// 300 um layer stops after the first step(s) with the reason, and the converged steps are kept.
+// 300 um layer stops after the first step(s) with the reason, and the converged steps are kept: the full load steps
+// and, last, the deepest state that the failed step's cut-backs reached, inside that step.
 TEST(Indentation, SolverFailureKeepsTheCompletedSteps) {
   insertion::IndentationCase c = flat_punch_case(300e-6, 280e-6, 7, 0.3);
   c.solver.law = fem::MaterialLaw::StVenantKirchhoff;
@@ -139,12 +140,18 @@ TEST(Indentation, SolverFailureKeepsTheCompletedSteps) {
   ASSERT_EQ(result.status, insertion::IndentationStatus::SolverFailed) << result.reason;
   EXPECT_THAT(result.reason, HasSubstr("did not converge"));
   EXPECT_THAT(result.reason, HasSubstr(fmt_steps(result.steps.size())));
-  ASSERT_GE(result.steps.size(), 1u);
+  EXPECT_THAT(result.reason, HasSubstr("tetrahedron "));  // which element inverted, and where
+  EXPECT_THAT(result.reason, HasSubstr("below the top surface"));
+  ASSERT_GE(result.steps.size(), 2u);
   EXPECT_LT(result.steps.size(), 7u);
+  const std::size_t full = result.steps.size() - 1;
+  EXPECT_THAT(result.reason, HasSubstr("the step's deepest converged state at"));
   for (std::size_t k = 0; k < result.steps.size(); ++k) {
-    EXPECT_NEAR(result.steps[k].depth, 40e-6 * static_cast<double>(k + 1), 1e-12);
+    if (k < full) EXPECT_NEAR(result.steps[k].depth, 40e-6 * static_cast<double>(k + 1), 1e-12);
     EXPECT_GT(result.steps[k].force, k == 0 ? 0.0 : result.steps[k - 1].force);
   }
+  EXPECT_GT(result.steps[full].depth, 40e-6 * static_cast<double>(full));
+  EXPECT_LT(result.steps[full].depth, 40e-6 * static_cast<double>(full + 1));
   EXPECT_FALSE(result.puncture.has_value());
   EXPECT_EQ(insertion::pre_puncture_curve(result).curve.depth.size(), result.steps.size() + 1);
 }

@@ -125,6 +125,9 @@ VolumetricFormulation volumetric_formulation_from_string(const std::string& text
 struct Indenter {
   geometry::TriangleMesh surface;               // m
   Eigen::Vector3d direction{0.0, 0.0, -1.0};    // unit after normalisation; TipNodes requires (0, 0, -1)
+  // m, >= 0, Surface contact only: the rigid body is every point within edge_radius of `surface`, which is then
+  // the needle's eroded core (needle/rounded_edges.hpp): the needle with its edges rounded with this radius.
+  double edge_radius = 0;
 };
 
 // Called after every Newton iteration (from the calling thread).

@@ -24,6 +24,7 @@
 #include "needlekit/insertion/puncture_criteria.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
+#include "needlekit/needle/needle_surface_mesh.hpp"
 
 namespace needlekit::insertion {
 
@@ -37,6 +38,10 @@ struct IndentationCase {
   std::string name = "indentation";          // for messages and output file names
   geometry::TriangleMesh needle;             // m, closed and outward-oriented, in the needle frame (tip at max z)
   std::optional<needle::NeedleGeometry> geometry;  // the parametric needle the mesh was built from, if any
+  needle::NeedleMeshOptions needle_mesh;     // the segments `needle` was built with (the rounded core's too)
+  // m, surface contact on a parametric needle: its edges rounded with this radius (needle/rounded_edges.hpp; unset:
+  // needle::default_edge_radius). An error with tip-nodes contact (a flat face) or a needle given as a mesh.
+  std::optional<double> edge_radius;
   std::vector<NeedleSite> needles{NeedleSite{}};   // at least one; all move by the same displacement
   mesh::LayeredBlockOptions block;           // the tissue block (insertion_sites are taken from `needles`)
   std::optional<mesh::TetMesh> tissue_mesh;  // when set, used as is instead of meshing `block`
@@ -56,7 +61,12 @@ void validate(const IndentationCase& indentation_case);
 // the mesher's default).
 double tissue_height(const IndentationCase& indentation_case);
 
-// The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them.
+// m: the edge radius the contact uses: 0 for tip-nodes contact or a needle given as a mesh, else edge_radius or its
+// default.
+double effective_edge_radius(const IndentationCase& indentation_case);
+
+// The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them
+// (with rounded edges, each needle's eroded core and its edge radius).
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& indentation_case);
 
 enum class IndentationStatus {

@@ -31,9 +31,10 @@ std::string solver_statistics_csv(const insertion::IndentationResult& result);
 
 // {"puncture_depth_um", "puncture_force_N" (null if none), "criterion" ("critical-pressure" | "fracture-energy" |
 //  "none"), "critical_pressure_MPa", "toughness_J_per_m2" (null when not used)}.
-// The models of an FE run, named as in case files: {"law", "element", "contact", "boundary"}; and one line of text.
-nlohmann::json fe_models_json(const fem::SolverOptions& solver);
-std::string fe_models_text(const fem::SolverOptions& solver);
+// The models of an FE run, named as in case files: {"law", "element", "contact", "boundary", "volumetric",
+// "edge_radius_um" (0: sharp edges: tip-nodes contact or a needle given as a mesh)}; and one line of text.
+nlohmann::json fe_models_json(const insertion::IndentationCase& indentation_case);
+std::string fe_models_text(const insertion::IndentationCase& indentation_case);
 
 nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
                              const insertion::IndentationResult& result);
