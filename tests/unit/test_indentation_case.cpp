@@ -211,26 +211,30 @@ TEST(IndentationCase, NeedleFromStl) {
   const insertion::IndentationCase c = io::read_indentation_case(dir / "case.toml");
   EXPECT_FALSE(c.geometry.has_value());
   EXPECT_NEAR(geometry::signed_volume(c.needle), needle::volume(cone), 2e-3 * needle::volume(cone));
+  // A mesh's edges are the mesh's: an edge radius is bad input there.
+  std::ofstream(dir / "rounded.toml") << replaced(text, "mesh_unit = \"um\"", "mesh_unit = \"um\"\nedge_radius = \"2 um\"");
+  EXPECT_THAT([&] { io::read_indentation_case(dir / "rounded.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("key 'needle.edge_radius': given for a needle given as a mesh")));
   std::filesystem::remove_all(dir);
 }
 
 TEST(IndentationCase, EdgeRadius) {
-  // Surface contact on a parametric needle: the given radius, or the default; the models name it.
+  // Surface contact on a parametric needle: the given radius, or the default; tip nodes: none (a flat face).
   const std::string surface = replaced(kCase, "contact = \"tip-nodes\"", "contact = \"surface\"");
-  const insertion::IndentationCase given =
-      parse(replaced(surface, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"5 um\""));
+  const auto with_radius = [](std::string_view text, const std::string& radius) {
+    return replaced(text, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"" + radius + "\"");
+  };
+  const insertion::IndentationCase given = parse(with_radius(surface, "5 um"));
   ASSERT_TRUE(given.edge_radius.has_value());
   EXPECT_DOUBLE_EQ(*given.edge_radius, 5e-6);
   EXPECT_DOUBLE_EQ(insertion::effective_edge_radius(given), 5e-6);
   EXPECT_DOUBLE_EQ(insertion::effective_edge_radius(parse(surface)), needle::kTypicalEdgeRadius);
-  EXPECT_EQ(insertion::effective_edge_radius(parse(kCase)), 0.0);  // tip nodes: a flat face
-  // Bad input: larger than the tip's radius, with tip-nodes contact, negative.
-  EXPECT_THAT(error_of(replaced(surface, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"120 um\"")),
+  EXPECT_EQ(insertion::effective_edge_radius(parse(kCase)), 0.0);
+  // Bad input: not less than the tip's radius, with tip-nodes contact, negative.
+  EXPECT_THAT(error_of(with_radius(surface, "120 um")),
               HasSubstr("key 'needle.edge_radius': 120 um, expected at least 0 and less than 115 um (the tip's radius)"));
-  EXPECT_THAT(error_of(replaced(kCase, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"5 um\"")),
-              HasSubstr("key 'needle.edge_radius': given with contact = \"tip-nodes\""));
-  EXPECT_THAT(error_of(replaced(surface, "length = \"1000 um\"", "length = \"1000 um\"\nedge_radius = \"-1 um\"")),
-              HasSubstr("case.toml:6: key 'needle.edge_radius': '-1 um' is negative"));
+  EXPECT_THAT(error_of(with_radius(kCase, "5 um")), HasSubstr("key 'needle.edge_radius': given with contact = \"tip-nodes\""));
+  EXPECT_THAT(error_of(with_radius(surface, "-1 um")), HasSubstr("case.toml:6: key 'needle.edge_radius': '-1 um' is negative"));
 }
 
 TEST(IndentationCase, ErrorsNameFileLineAndKey) {
