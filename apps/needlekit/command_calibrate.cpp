@@ -67,9 +67,12 @@ std::string plot_script() {
 
 std::string interval_text(const calibration::FittedParameter& p) {
   if (!p.ci95) return "not identifiable";
-  return fmt::format("[{}, {}] (+-{:.3g} %)", calibration::as_given(p.spec, p.ci95->first),
+  return fmt::format("[{}, {}] (+-{:.3g} %{})", calibration::as_given(p.spec, p.ci95->first),
                      calibration::as_given(p.spec, p.ci95->second),
-                     100 * (p.ci95->second - p.value) / std::abs(p.value));
+                     100 * (p.ci95->second - p.value) / std::abs(p.value),
+                     p.discretisation_error > 0
+                         ? fmt::format(", of which mesh {:.3g} %", 100 * p.discretisation_error / std::abs(p.value))
+                         : "");
 }
 
 void print_result(const calibration::CalibrationProblem& problem, const calibration::CalibrationResult& r) {

@@ -1297,7 +1297,10 @@ class FittedParameter:
         ...
     @property
     def ci95(self) -> Optional[Tuple[float, float]]:
-        """SI (lo, hi), or None"""
+        """SI (lo, hi), or None; includes discretisation_error"""
+    @property
+    def discretisation_error(self) -> float:
+        """SI, >= 0: the estimated FE mesh error, in ci95"""
     @property
     def spec(self) -> ParameterSpec:
         ...

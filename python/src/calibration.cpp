@@ -71,7 +71,9 @@ void bind_result(py::module_& m) {
       .def_readonly("spec", &FittedParameter::spec)
       .def_readonly("value", &FittedParameter::value, "SI")
       .def_readonly("standard_error", &FittedParameter::standard_error, "SI; NaN when not identifiable")
-      .def_readonly("ci95", &FittedParameter::ci95, "SI (lo, hi), or None")
+      .def_readonly("ci95", &FittedParameter::ci95, "SI (lo, hi), or None; includes discretisation_error")
+      .def_readonly("discretisation_error", &FittedParameter::discretisation_error,
+                    "SI, >= 0: the estimated FE mesh error, in ci95")
       .def_readonly("at_bound", &FittedParameter::at_bound);
   py::class_<Prediction>(m, "CalibrationPrediction", "The model of one experiment at the fitted values.")
       .def_readonly("ok", &Prediction::ok)

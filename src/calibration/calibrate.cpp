@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <map>
 #include <mutex>
 
 #include "needlekit/calibration/case_parameters.hpp"
+#include "needlekit/calibration/discretisation_error.hpp"
 #include "needlekit/calibration/parameter_statistics.hpp"
 #include "needlekit/core/errors.hpp"
 
@@ -286,12 +288,30 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
     for (const ParameterSpec& spec : problem.parameters) names.push_back(spec.path);
     std::optional<Eigen::MatrixXd> jac = p.ok ? evaluator.jacobian(at) : std::nullopt;
     ParameterStatistics stats;
+    DiscretisationError mesh_error;
+    int extra_runs = 0;
     if (jac) {
       Eigen::MatrixXd per_unit = *jac;  // dr/dθ_j = dr/dx_j / scale_j
       for (std::size_t j = 0; j < n; ++j) per_unit.col(static_cast<Eigen::Index>(j)) /= evaluator.scale()[j];
       stats = parameter_statistics(per_unit, p.residuals, theta, names);
       result.correlation = stats.correlation;
       result.warnings.insert(result.warnings.end(), stats.warnings.begin(), stats.warnings.end());
+      if (problem.solver.mesh_error) {
+        mesh_error = discretisation_error(problem, models, theta, per_unit, p.residuals,
+                                          problem.solver.mesh_error_refinement);
+        extra_runs = mesh_error.model_runs;
+        if (!mesh_error.ok) {
+          result.warnings.push_back(fmt::format("the discretisation error was not estimated: {}", mesh_error.failure));
+        } else if (!mesh_error.refined.empty()) {
+          result.warnings.push_back(fmt::format(
+              "the 95 % intervals include the estimated FE discretisation error (the fit re-run at the optimum on "
+              "meshes {:g} times finer: {}; first-order Richardson)",
+              problem.solver.mesh_error_refinement, fmt::join(mesh_error.refined, ", ")));
+        }
+        for (const std::string& name : mesh_error.not_refined)
+          result.warnings.push_back(fmt::format("{}: its mesh is given (or its curve), so its discretisation error is "
+                                                "not in the intervals", name));
+      }
     } else {
       result.correlation = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), NAN);
     }
@@ -301,6 +321,13 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
       fitted.value = theta[j];
       fitted.standard_error = jac ? stats.standard_error[j] : NAN;
       if (jac) fitted.ci95 = stats.ci95[j];
+      if (mesh_error.ok && !mesh_error.parameter_error.empty()) {
+        fitted.discretisation_error = mesh_error.parameter_error[j];
+        if (fitted.ci95) {
+          fitted.ci95->first -= fitted.discretisation_error;
+          fitted.ci95->second += fitted.discretisation_error;
+        }
+      }
       const double tolerance = 1e-9 * (fitted.spec.upper - fitted.spec.lower);
       fitted.at_bound = theta[j] <= fitted.spec.lower + tolerance || theta[j] >= fitted.spec.upper - tolerance;
       if (fitted.at_bound) {
@@ -329,7 +356,7 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
       result.experiments.push_back(std::move(fit));
     }
     result.rms_relative = rms_of(all);
-    result.model_runs = evaluator.model_runs();
+    result.model_runs = evaluator.model_runs() + extra_runs;
     result.warm_started_steps = evaluator.warm_started_steps();
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   };

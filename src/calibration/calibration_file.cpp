@@ -148,13 +148,18 @@ CalibrationProblem parse_calibration_toml(std::string_view text, std::string_vie
   problem.name = path.stem().string();
   if (const toml::node* node = top.optional("name")) problem.name = text_of(top, *node, "name", "a name");
   if (const auto solver = top.optional_subsection(
-          "solver", {"max_iterations", "relative_step", "function_tolerance", "parameter_tolerance"})) {
+          "solver", {"max_iterations", "relative_step", "function_tolerance", "parameter_tolerance", "mesh_error",
+                     "mesh_error_refinement"})) {
     if (const toml::node* node = solver->optional("max_iterations"))
       problem.solver.max_iterations = integer_at_least(*solver, *node, "max_iterations", 1);
     problem.solver.relative_step = fraction_of(*solver, "relative_step", problem.solver.relative_step, 0.1);
     problem.solver.function_tolerance = fraction_of(*solver, "function_tolerance", problem.solver.function_tolerance, 1);
     problem.solver.parameter_tolerance =
         fraction_of(*solver, "parameter_tolerance", problem.solver.parameter_tolerance, 1);
+    if (const toml::node* node = solver->optional("mesh_error"))
+      problem.solver.mesh_error = boolean_of(*solver, *node, "mesh_error");
+    problem.solver.mesh_error_refinement =
+        fraction_of(*solver, "mesh_error_refinement", problem.solver.mesh_error_refinement, 1);
   }
   for (std::string_view key : {"parameters", "experiments"}) {
     const toml::node& node = top.required(key, fmt::format("[[{}]] entries", key));

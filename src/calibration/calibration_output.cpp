@@ -31,6 +31,7 @@ nlohmann::json calibration_json(const CalibrationProblem& problem, const Calibra
         {"unit", units::si_symbol(p.spec.dimension)},
         {"ci95", p.ci95 ? nlohmann::json::array({p.ci95->first, p.ci95->second}) : nlohmann::json(nullptr)},
         {"standard_error", number_or_null(p.standard_error)},
+        {"discretisation_error", p.discretisation_error},
         {"initial", p.spec.initial},
         {"as_given", as_given(p.spec, p.value)},
         {"at_bound", p.at_bound},

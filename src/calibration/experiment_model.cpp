@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <fmt/format.h>
 
 #include "needlekit/analysis/performance_index.hpp"
@@ -69,8 +70,12 @@ double force_at(const insertion::ForceDepthCurve& curve, double depth) {
   return y.back();
 }
 
-ExperimentModel::ExperimentModel(const ExperimentSpec& experiment, const std::vector<ParameterSpec>& parameters)
+ExperimentModel::ExperimentModel(const ExperimentSpec& experiment, const std::vector<ParameterSpec>& parameters,
+                                 double mesh_scale)
     : experiment_(experiment), parameters_(parameters), setup_(std::make_unique<Setup>()) {
+  if (!(mesh_scale > 0 && mesh_scale <= 1)) {
+    throw std::invalid_argument(fmt::format("ExperimentModel: mesh_scale {} outside (0, 1]", mesh_scale));
+  }
   for (const ParameterSpec& p : parameters_)
     uses_.push_back(case_value(experiment_.case_text, p.path, experiment_.case_path.string()).has_value());
   if (experiment_.measured && experiment_.curve_weight > 0) {
@@ -108,6 +113,8 @@ ExperimentModel::ExperimentModel(const ExperimentSpec& experiment, const std::ve
     block.insertion_sites.clear();
     for (const insertion::NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
     block.split = false;  // the two-grid coarse level is not kept with a reused mesh
+    block.size_at_site *= mesh_scale;
+    block.size_far *= mesh_scale;
     setup_->tissue = mesh::layered_block_mesh(block).mesh;
   }
   if (insertion) {
@@ -118,6 +125,7 @@ ExperimentModel::ExperimentModel(const ExperimentSpec& experiment, const std::ve
 }
 
 ExperimentModel::~ExperimentModel() = default;
+bool ExperimentModel::meshes_block() const { return setup_->tissue.has_value(); }
 ExperimentModel::ExperimentModel(ExperimentModel&&) noexcept = default;
 
 std::string ExperimentModel::case_text(const std::vector<double>& values, bool user_units, int digits) const {

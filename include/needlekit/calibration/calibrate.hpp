@@ -45,7 +45,8 @@ struct FittedParameter {
   ParameterSpec spec;
   double value = 0;                                   // SI
   double standard_error = 0;                          // SI; NaN when not identifiable
-  std::optional<std::pair<double, double>> ci95;      // SI
+  std::optional<std::pair<double, double>> ci95;      // SI: the noise's interval widened by discretisation_error
+  double discretisation_error = 0;                    // SI, >= 0: estimated FE mesh error (discretisation_error.hpp)
   bool at_bound = false;                              // the optimum lies on a bound (the interval ignores it)
 };
 

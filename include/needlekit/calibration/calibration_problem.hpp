@@ -4,6 +4,7 @@
 //   name = "phantom"                                    optional; names the outputs (default: the file's stem)
 //   [solver]                                            optional
 //   max_iterations = 30        relative_step = 1e-3     function_tolerance = 1e-10     parameter_tolerance = 1e-10
+//   mesh_error = true          mesh_error_refinement = 0.75
 //   [[parameters]]
 //   path = "tissue.layers.0.youngs_modulus"             a key of the experiments' case files (parameter_kinds())
 //   initial = "0.1 MPa"                                  with the unit of the key's dimension (a number if the key is)
@@ -69,6 +70,9 @@ struct SolverSettings {
                                        // (1e-7 for analytic experiments only, 1e-3 when an FE run is involved)
   double function_tolerance = 1e-10;   // (0, 1): relative decrease of the cost that counts as converged
   double parameter_tolerance = 1e-10;  // (0, 1): relative step size that counts as converged
+  bool mesh_error = true;              // widen the 95 % intervals by the estimated discretisation error of the FE
+                                       // experiments (discretisation_error.hpp; one finer run per FE experiment)
+  double mesh_error_refinement = 0.75; // (0, 1): the finer meshes' element sizes relative to the fit's
 };
 
 struct CalibrationProblem {

@@ -37,12 +37,17 @@ struct Prediction {
 class ExperimentModel {
 public:
   // Throws InvalidInput naming the case file and key when the case does not read with the initial values, or when
-  // the measured curve goes deeper than the model's curve can.
-  ExperimentModel(const ExperimentSpec& experiment, const std::vector<ParameterSpec>& parameters);
+  // the measured curve goes deeper than the model's curve can. `mesh_scale` in (0, 1]: the FE block's element sizes
+  // (size_at_tip, size_far) times this factor (the finer model of the discretisation-error estimate).
+  ExperimentModel(const ExperimentSpec& experiment, const std::vector<ParameterSpec>& parameters,
+                  double mesh_scale = 1.0);
   ~ExperimentModel();
   ExperimentModel(ExperimentModel&&) noexcept;
 
   const ExperimentSpec& experiment() const { return experiment_; }
+  // Whether the model meshes its own FE block (and so can be refined by mesh_scale): FE cases without a given .msh
+  // mesh or a given pre-puncture curve.
+  bool meshes_block() const;
   // Whether the parameter's path exists in this experiment's case.
   bool uses(std::size_t parameter) const { return uses_[parameter]; }
   // The case text with the parameters put in: SI at full precision, or in the units the user gave them (written
