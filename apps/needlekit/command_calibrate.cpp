@@ -43,7 +43,9 @@ std::string help_text() {
   return fmt::format(R"(CALIBRATION file (TOML):
   name = "phantom"                                   optional, names the outputs
   [solver]  max_iterations = 30, relative_step = 1e-3 (finite differences; default 1e-7 analytic, 1e-3 FE),
-            function_tolerance = 1e-10, parameter_tolerance = 1e-10
+            function_tolerance = 1e-10, parameter_tolerance = 1e-10,
+            mesh_error = true (the 95 % intervals include the FE discretisation error, from one run per FE
+            experiment on a mesh mesh_error_refinement = 0.75 times finer)
   [[parameters]]
   path = "tissue.layers.0.youngs_modulus"           a key of the experiments' case files (below)
   initial = "0.1 MPa"                                with a unit (a number for dimensionless keys)
