@@ -75,7 +75,9 @@ NeedleRead read_needle(const Section& section, const toml::table& root, const st
                                    std::pair{"length", geometry.length}}) {
     const double smallest = std::min(geometry.tip_diameter, geometry.length);
     if (value > kMaxNeedleAspect * smallest) {
-      section.fail(*section.optional(key), key,
+      // A cylinder may leave base_diameter out (it is the tip's): then the tip_diameter key is the one to name.
+      const std::string_view named = section.optional(key) ? std::string_view(key) : std::string_view("tip_diameter");
+      section.fail(*section.optional(named), named,
                    fmt::format("{:g} um is more than {:g} times the needle's smallest dimension ({:g} um), expected "
                                "a needle in proportion",
                                value * 1e6, kMaxNeedleAspect, smallest * 1e6));

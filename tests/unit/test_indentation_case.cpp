@@ -271,6 +271,11 @@ TEST(IndentationCase, ErrorsNameFileLineAndKey) {
               HasSubstr("key 'needles[0]': (2000 um, 0 um) is outside the 3000 um x 3000 um block"));
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 0")),
               HasSubstr("key 'loading.steps': 0 is out of range, expected an integer in [1, 10000]"));
+  // A cylinder out of proportion whose base_diameter is left out (it is the tip's): the message names tip_diameter
+  // (fuzzing found the reader naming the missing key through a null node).
+  EXPECT_THAT(error_of(replaced(kCase, "tip_diameter = \"230 um\"\nlength = \"1000 um\"",
+                                "tip_diameter = \"2301111111 um\"\nlength = \"100 um\"")),
+              HasSubstr("case.toml:4: key 'needle.tip_diameter': 2.30111e+09 um is more than 1e+06 times"));
   // The work limits (core/limits.hpp): a typo cannot ask for days of load steps or a needle mesh of 1e9 quads.
   EXPECT_THAT(error_of(replaced(kCase, "steps = 20", "steps = 200000")),
               HasSubstr("key 'loading.steps': 200000 is out of range, expected an integer in [1, 10000] (the upper end "
