@@ -81,6 +81,15 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
   patch_gradient_.assign(patch_nodes_.size(), Eigen::Vector3d::Zero());
 }
 
+double NodalVolumeAverage::node_volume_ratio(size_t n) const {
+  double v = 0;
+  for (int k = node_element_pointers_[n]; k < node_element_pointers_[n + 1]; ++k) {
+    const size_t e = static_cast<size_t>(node_elements_[k]);
+    v += element_j_[e] * space_.volumes[e] / 4;
+  }
+  return v / node_volume_[n];
+}
+
 bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, double& energy, tbb::task_arena& arena) {
   const size_t ne = space_.elements.size(), nnode = space_.nodes.size();
   inverted_element_ = -1;
@@ -112,12 +121,7 @@ bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, dou
   std::vector<double> node_pressure(nnode, 0.0);
   energy = deterministic_sum(nnode, arena, [&](size_t n) {
     if (node_volume_[n] <= 0) return 0.0;
-    double v = 0;
-    for (int k = node_element_pointers_[n]; k < node_element_pointers_[n + 1]; ++k) {
-      const size_t e = static_cast<size_t>(node_elements_[k]);
-      v += element_j_[e] * space_.volumes[e] / 4;
-    }
-    const double j = v / node_volume_[n];
+    const double j = node_volume_ratio(n);
     if (!(j > 0)) {
       valid = false;
       return 0.0;
@@ -128,13 +132,8 @@ bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, dou
     return node_volume_[n] * 0.5 * lambda * lnj * lnj;
   });
   if (!valid) {
-    for (size_t n = 0; n < nnode && inverted_element_ < 0; ++n) {
-      if (node_volume_[n] <= 0) continue;
-      double v = 0;
-      for (int k = node_element_pointers_[n]; k < node_element_pointers_[n + 1]; ++k)
-        v += element_j_[static_cast<size_t>(node_elements_[k])] * space_.volumes[static_cast<size_t>(node_elements_[k])];
-      if (!(v > 0)) inverted_element_ = node_elements_[node_element_pointers_[n]];
-    }
+    for (size_t n = 0; n < nnode && inverted_element_ < 0; ++n)
+      if (node_volume_[n] > 0 && !(node_volume_ratio(n) > 0)) inverted_element_ = node_elements_[node_element_pointers_[n]];
     return false;
   }
   for (size_t e = 0; e < ne; ++e) {

@@ -66,6 +66,8 @@ private:
   std::vector<Eigen::Matrix<double, 3, 4>> element_jh_;
   std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, Pa/m^3
   int inverted_element_ = -1;
+  // J̄_a = Σ_e J_e V_e/4 / V_a over the treated elements of node n (node_volume_[n] > 0).
+  double node_volume_ratio(size_t n) const;
   std::vector<Eigen::Vector3d> patch_gradient_;             // g_a restricted to each patch node, aligned with
                                                             // patch_nodes_
 };

@@ -27,10 +27,9 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   constexpr size_t kBlock = 64;
   std::vector<double> block_energy;
   double strain_energy = 0;
-  std::atomic<bool> valid{true};
+  // The lowest-numbered inverted element (an atomic minimum: the same whatever the threads); none: the state is valid.
   std::atomic<int> first_inverted{std::numeric_limits<int>::max()};
-  const auto record_inverted = [&](int e) {  // an atomic minimum: the same element whatever the threads
-    valid = false;
+  const auto record_inverted = [&](int e) {
     for (int now = first_inverted.load(); e < now && !first_inverted.compare_exchange_weak(now, e);) {
     }
   };
@@ -112,8 +111,8 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   }
   Eval ev;
   ev.strain_energy = strain_energy;
-  ev.valid = valid;
-  if (!ev.valid && first_inverted < std::numeric_limits<int>::max()) ev.inverted_element = first_inverted;
+  ev.valid = first_inverted == std::numeric_limits<int>::max();
+  if (!ev.valid) ev.inverted_element = first_inverted;
   return ev;
 }
 

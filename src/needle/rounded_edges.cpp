@@ -24,7 +24,7 @@ ErodedNeedle eroded_needle(const NeedleGeometry& needle, double radius, std::str
   if (!std::isfinite(radius) || radius < 0 || radius >= limit) {
     throw InvalidInput(fmt::format("{}.edge_radius: {:.6g} um, expected at least 0 and less than {:.6g} um ({})",
                                    where, radius * 1e6, limit * 1e6,
-                                   needle.hollow() ? "half the tip's radius or a quarter of its wall, (D1 - D3) / 4"
+                                   needle.hollow() ? "the tip's radius or a quarter of its wall, (D1 - D3) / 4"
                                    : needle.shape == Shape::Bevel ? "half the tip face's sagitta D1"
                                                                   : "the tip's radius"));
   }
