@@ -161,6 +161,13 @@ bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, dou
   return true;
 }
 
+double NodalVolumeAverage::element_bulk_curvature(int element) const {
+  const int* c = &space_.connectivity[4 * static_cast<size_t>(element)];
+  double sum = 0;
+  for (int a = 0; a < 4; ++a) sum += std::max(0.0, node_curvature_[c[a]] * node_volume_[c[a]]);
+  return sum / 4;
+}
+
 void NodalVolumeAverage::add_patch_tangent(const std::vector<int>& free_index, const UpperPattern& pattern,
                                            std::vector<double>& values, tbb::task_arena& arena) const {
   const size_t nnode = space_.nodes.size();

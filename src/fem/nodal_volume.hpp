@@ -43,6 +43,11 @@ public:
   double element_volume_ratio(int element) const { return element_j_[static_cast<size_t>(element)]; }
   const Eigen::Matrix<double, 3, 4>& element_jh(int element) const { return element_jh_[static_cast<size_t>(element)]; }
 
+  // c_e = (1/4) Σ_{a∈e} max(U_a''(J̄_a), 0) (Pa) at the last update: the split preconditioner's element bulk term
+  // c_e V_e (J_e h_e)(J_e h_e)^T bounds the patch term from above, as g_a g_a^T / V_a <= Σ_{e∋a} V_e/4 (J_e h_e)(J_e h_e)^T
+  // (Cauchy-Schwarz on the weights V_e/4), and it couples the element's own nodes only.
+  double element_bulk_curvature(int element) const;
+
   // Adds Σ_a U_a''/V_a g_a g_a^T into the upper-triangle `values` (columns in parallel, each written by one task:
   // deterministic whatever the number of threads).
   void add_patch_tangent(const std::vector<int>& free_index, const UpperPattern& pattern, std::vector<double>& values,

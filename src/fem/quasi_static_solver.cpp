@@ -129,14 +129,38 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
   Eval ev = space.nodes_per_element == 4 ? element_pass<4>(uu, want_force, want_tangent, dup, kdup)
                                          : element_pass<10>(uu, want_force, want_tangent, dup, kdup);
   ev.strain_energy += volumetric_energy;
-  if (ev.valid && nodal && want_tangent) {
-    nodal->add_patch_tangent(dofs.free_index, system->pattern(), system->values(), arena);
-    if (kdup) nodal->add_prescribed_coupling(dofs.free_index, *dup, *kdup);
-  }
   if (ev.valid && contact)
     ev.contact_energy = contact->evaluate(space.nodes, uu, disp, want_force, want_tangent, fcontact,
                                           dofs.free_index, system->pattern(), system->values());
+  if (ev.valid && nodal && want_tangent) {
+    if (system->splits_preconditioner()) {  // P: everything so far (one-ring) plus the element bulk term
+      system->capture_preconditioner();
+      add_bulk_preconditioner();
+    }
+    nodal->add_patch_tangent(dofs.free_index, system->pattern(), system->values(), arena);
+    if (kdup) nodal->add_prescribed_coupling(dofs.free_index, *dup, *kdup);
+  }
   return ev;
+}
+
+void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
+  std::vector<double>& pre = system->preconditioner_values();
+  for (const auto& color : space.colors)  // within a colour no two elements share a node, nor an entry
+    arena.execute([&] {
+      tbb::parallel_for(size_t{0}, color.size(), [&](size_t k) {
+        const int e = color[k];
+        if (!nodal->treated(e)) return;
+        const double scale = nodal->element_bulk_curvature(e) * space.volumes[static_cast<size_t>(e)];
+        if (scale == 0) return;
+        const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
+        const int32_t* slot = system->element_slots(static_cast<size_t>(e));
+        for (int col = 0; col < 12; ++col)
+          for (int row = 0; row < 12; ++row)
+            if (slot[col * 12 + row] >= 0)
+              pre[static_cast<size_t>(system->preconditioner_slot(slot[col * 12 + row]))] +=
+                  scale * jh(row % 3, row / 3) * jh(col % 3, col / 3);
+      });
+    });
 }
 
 QuasiStaticSolver::Impl::Failure QuasiStaticSolver::Impl::inverted(const Eval& ev) const {

@@ -73,6 +73,8 @@ struct QuasiStaticSolver::Impl {
   // the system's values; with dup the product K_fp dup of the prescribed dofs into kdup (the linear predictor).
   Eval evaluate(const Eigen::VectorXd& uu, double disp, bool want_force, bool want_tangent,
                 const Eigen::VectorXd* dup = nullptr, Eigen::VectorXd* kdup = nullptr);
+  // The split preconditioner's bulk term (tangent_system.hpp) into the system's preconditioner values.
+  void add_bulk_preconditioner();
   Eigen::VectorXd free_residual() const;
   // The failure of an evaluation that found an inverted element: which element, where in the reference mesh.
   Failure inverted(const Eval& ev) const;

@@ -23,6 +23,10 @@ constexpr double kFactorFlopSpeedup = 7.0;
 // deform the tissue alike).
 constexpr int kRecycled = 12;
 constexpr int kTwoGridMaxIterations = 200;
+// Split preconditioner: CG iterations allowed on a fresh factor of P before K itself is factorized. P^-1 K has its
+// spectrum in about [μ/(λ+μ), 1] (P's element bulk term bounds the nodal one from above, tangent_system.hpp): about
+// 50 at ν = 0.49 and 500 at ν = 0.499, i.e. some 20-70 iterations at the Newton forcing terms.
+constexpr int kSplitMaxIterations = 400;
 // Column ranges of the symmetric product: enough for the cores of a workstation; each costs one vector of partial
 // sums per product.
 constexpr int kProductParts = 8;
@@ -59,10 +63,29 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
     });
   });
   const int64_t free_count = static_cast<int64_t>(pattern_.column_pointers.size()) - 1;
-  if (solver_ == LinearSolver::TwoGrid)
+  if (solver_ == LinearSolver::TwoGrid) {
     two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_);
-  else
+  } else if (solver_ == LinearSolver::CholeskyCg && group_pointers) {
+    pre_pattern_ = upper_pattern(conn, nn, node_count, free_index);
+    pre_values_.assign(pre_pattern_.row_indices.size(), 0.0);
+    full_to_pre_.assign(values_.size(), -1);
+    for (int64_t c = 0; c < free_count; ++c) {  // both patterns sorted per column, P's a subset of K's
+      int64_t k = pattern_.column_pointers[static_cast<size_t>(c)];
+      for (int64_t q = pre_pattern_.column_pointers[static_cast<size_t>(c)];
+           q < pre_pattern_.column_pointers[static_cast<size_t>(c) + 1]; ++q) {
+        while (pattern_.row_indices[static_cast<size_t>(k)] < pre_pattern_.row_indices[static_cast<size_t>(q)]) ++k;
+        full_to_pre_[static_cast<size_t>(k)] = static_cast<int32_t>(q);
+      }
+    }
+    cholesky_ = std::make_unique<SparseCholesky>(free_count, pre_pattern_.column_pointers, pre_pattern_.row_indices);
+  } else {
     cholesky_ = std::make_unique<SparseCholesky>(free_count, pattern_.column_pointers, pattern_.row_indices);
+  }
+}
+
+void TangentSystem::capture_preconditioner() {
+  for (size_t k = 0; k < values_.size(); ++k)
+    if (full_to_pre_[k] >= 0) pre_values_[static_cast<size_t>(full_to_pre_[k])] = values_[k];
 }
 
 // Threaded over column ranges; each range scatters its transposed part into its own vector (the symmetric product
@@ -184,16 +207,65 @@ bool TangentSystem::cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int
 
 // `shifted` = `base` with its diagonal raised by the fraction beta (for a tangent that is not positive definite);
 // the off-diagonal entries of `shifted` are left as they are. The diagonal is the last entry of each column.
-void TangentSystem::shift_diagonal(const std::vector<double>& base, double beta, std::vector<double>& shifted) const {
-  for (size_t c = 0; c + 1 < pattern_.column_pointers.size(); ++c) {
-    const auto diagonal = static_cast<size_t>(pattern_.column_pointers[c + 1] - 1);
+void TangentSystem::shift_diagonal(const UpperPattern& pattern, const std::vector<double>& base, double beta,
+                                   std::vector<double>& shifted) {
+  for (size_t c = 0; c + 1 < pattern.column_pointers.size(); ++c) {
+    const auto diagonal = static_cast<size_t>(pattern.column_pointers[c + 1] - 1);
     shifted[diagonal] = base[diagonal] * (1 + beta);
   }
 }
 
+bool TangentSystem::factorize_or_shift(SparseCholesky& cholesky, const std::vector<double>& values,
+                                       const UpperPattern& pattern) {
+  if (cholesky.factorize(values)) return true;
+  std::vector<double> shifted = values;
+  for (double beta : {1e-6, 1e-4, 1e-2, 1e-1, 1.0}) {
+    shift_diagonal(pattern, values, beta, shifted);
+    if (cholesky.factorize(shifted)) return true;
+  }
+  return false;
+}
+
 bool TangentSystem::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
-  return solver_ == LinearSolver::TwoGrid ? two_grid_solve(rhs, du, rec, forcing)
-                                          : cholesky_solve(rhs, du, rec, forcing);
+  if (solver_ == LinearSolver::TwoGrid) return two_grid_solve(rhs, du, rec, forcing);
+  return splits_preconditioner() ? split_solve(rhs, du, rec, forcing) : cholesky_solve(rhs, du, rec, forcing);
+}
+
+// CG on K preconditioned by the factor of P: first on the last factor, while its solves cost no more than those on a
+// fresh one plus half the CG iterations a factorization is worth; then on a fresh factor; then K's own factor.
+bool TangentSystem::split_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
+                                double forcing) {
+  const double tol = std::max(forcing, options_.linear_tolerance);
+  const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { z = apply_factor(r); };
+  const int budget = cg_budget();
+  int its = 0;
+  rec.linear_iterations = 0;
+  if (have_factor_ && 2 * last_cg_iterations_ <= 2 * fresh_cg_iterations_ + budget) {
+    if (cg_solve(rhs, du, its, tol, fresh_cg_iterations_ + budget, precondition)) {
+      rec.linear_iterations = last_cg_iterations_ = its;
+      remember(du);
+      return true;
+    }
+    rec.linear_iterations = its;
+  }
+  rec.factorized = true;
+  have_factor_ = factorize_or_shift(*cholesky_, pre_values_, pre_pattern_);
+  if (have_factor_ && cg_solve(rhs, du, its, tol, kSplitMaxIterations, precondition)) {
+    rec.linear_iterations += its;
+    fresh_cg_iterations_ = last_cg_iterations_ = its;
+    remember(du);
+    return true;
+  }
+  rec.linear_iterations += its;
+  if (!full_cholesky_)
+    full_cholesky_ = std::make_unique<SparseCholesky>(static_cast<int64_t>(pattern_.column_pointers.size()) - 1,
+                                                      pattern_.column_pointers, pattern_.row_indices);
+  if (!factorize_or_shift(*full_cholesky_, values_, pattern_)) return false;
+  const std::vector<double> b(rhs.data(), rhs.data() + rhs.size());
+  const std::vector<double> x = full_cholesky_->solve(b);
+  du = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+  remember(du);
+  return du.allFinite();
 }
 
 // CG preconditioned by the last factorization when allowed, else (or on failure) a fresh factorization (with a
@@ -218,18 +290,7 @@ bool TangentSystem::cholesky_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
   rec.factorized = true;
   rec.linear_iterations = 0;
   have_factor_ = false;
-  if (!cholesky_->factorize(values_)) {
-    bool ok = false;
-    std::vector<double> shifted = values_;
-    for (double beta : {1e-6, 1e-4, 1e-2, 1e-1, 1.0}) {
-      shift_diagonal(values_, beta, shifted);
-      if (cholesky_->factorize(shifted)) {
-        ok = true;
-        break;
-      }
-    }
-    if (!ok) return false;
-  }
+  if (!factorize_or_shift(*cholesky_, values_, pattern_)) return false;
   have_factor_ = true;
   du = apply_factor(rhs);
   remember(du);
@@ -264,7 +325,7 @@ bool TangentSystem::two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
   if (!ok) {
     const std::vector<double> unshifted = values_;
     for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
-      shift_diagonal(unshifted, beta, values_);
+      shift_diagonal(pattern_, unshifted, beta, values_);
       ok = (have_factor_ = two_grid_->update(values_, multiply_k)) &&
            cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
       rec.linear_iterations += its;

@@ -2,6 +2,13 @@
 // symmetric sparse product (upper-triangular CSC, threaded), preconditioned conjugate gradients with Krylov
 // recycling, and the choice between a fresh CHOLMOD factorization, CG on the last one (Cholesky-CG) and CG with the
 // two-grid cycle.
+//
+// Split preconditioner (Cholesky-CG with node groups, i.e. the nodal-averaged tetrahedron of nodal_volume.hpp): the
+// groups make K's pattern the mesh's two-ring, whose Cholesky factor costs several times the one-ring's (measured 8x
+// the CPU of a Newton solve on the §6.2 phantom). CG then runs on the full K, preconditioned by the factor of a
+// one-ring matrix P that the assembly provides (capture_preconditioner + preconditioner_values: the element part of K
+// plus a per-element bulk term that bounds the nodal one from above). If CG on a fresh factor of P still fails, K
+// itself is factorized (on its two-ring pattern, analysed on first use).
 #pragma once
 #include <tbb/task_arena.h>
 
@@ -42,6 +49,14 @@ public:
   // Records CG iterations and whether a factorization was taken in `record`. False if K could not be solved.
   bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double forcing);
 
+  // Split preconditioner (see above): P's values on the one-ring pattern. capture_preconditioner() sets them to the
+  // one-ring entries of values() as assembled so far; the bulk term is then added through preconditioner_slot(),
+  // which maps an element slot of values() to P's entry.
+  bool splits_preconditioner() const { return !full_to_pre_.empty(); }
+  void capture_preconditioner();
+  std::vector<double>& preconditioner_values() { return pre_values_; }
+  int32_t preconditioner_slot(int32_t slot) const { return full_to_pre_[static_cast<size_t>(slot)]; }
+
   LinearSolver solver() const { return solver_; }
   double factor_nonzeros() const;
   double factor_flops() const;
@@ -49,6 +64,10 @@ public:
 private:
   bool cholesky_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing);
   bool two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing);
+  bool split_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing);
+  // Factorizes `values` (on `cholesky`'s pattern), raising the diagonal by growing fractions if it is not positive
+  // definite (a shifted Newton step is still a descent direction). False if even the largest shift fails.
+  bool factorize_or_shift(SparseCholesky& cholesky, const std::vector<double>& values, const UpperPattern& pattern);
   int cg_budget() const;
   Eigen::VectorXd apply_factor(const Eigen::VectorXd& r);
   void remember(const Eigen::VectorXd& solution);
@@ -56,7 +75,8 @@ private:
   template <class Preconditioner>
   bool cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget,
                 Preconditioner&& precondition);
-  void shift_diagonal(const std::vector<double>& base, double beta, std::vector<double>& shifted) const;
+  static void shift_diagonal(const UpperPattern& pattern, const std::vector<double>& base, double beta,
+                             std::vector<double>& shifted);
 
   const SolverOptions& options_;
   tbb::task_arena& arena_;
@@ -66,7 +86,14 @@ private:
   std::vector<double> values_;
   size_t slots_per_element_ = 0;
   std::vector<int32_t> value_slot_;
-  std::unique_ptr<SparseCholesky> cholesky_;         // Cholesky, CholeskyCg
+  std::unique_ptr<SparseCholesky> cholesky_;         // Cholesky, CholeskyCg (of P with the split preconditioner)
+  // Split preconditioner: P's one-ring pattern and values, per entry of values_ its entry in P (-1: none), and the
+  // factor of K itself, made on first use.
+  UpperPattern pre_pattern_;
+  std::vector<double> pre_values_;
+  std::vector<int32_t> full_to_pre_;
+  std::unique_ptr<SparseCholesky> full_cholesky_;
+  int fresh_cg_iterations_ = 0;  // of the last solve on a fresh factor of P
   std::unique_ptr<TwoGridPreconditioner> two_grid_;  // TwoGrid
   std::vector<Eigen::VectorXd> partial_;  // multiply's per-range products, kept between calls (CG's hot path)
   bool have_factor_ = false;
