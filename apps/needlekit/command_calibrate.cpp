@@ -13,12 +13,13 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
-#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 
 #ifndef NEEDLEKIT_SCRIPTS_DIR
@@ -129,7 +130,7 @@ void run_calibrate(const CalibrateArguments& arguments) {
   json["files"] = files;
   StagedFiles outputs;  // all or none: a failed plot or an interrupt leaves no partial set
   const std::filesystem::path staged_csv = outputs.write(csv_path, calibration::calibration_curves_csv(problem, result));
-  outputs.write(json_path, json.dump(2) + "\n");
+  outputs.write(json_path, io::json_text(json));
   if (!arguments.write_case.empty())
     outputs.write(arguments.write_case, calibration::calibrated_case_text(problem, 0, result.values()));
   if (!arguments.no_plot) {
@@ -144,7 +145,7 @@ void run_calibrate(const CalibrateArguments& arguments) {
   }
   outputs.commit();
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_result(problem, result);
     fmt::print("wrote {}\n", fmt::join(files, ", "));

@@ -8,6 +8,7 @@
 #include "file_format_help.hpp"
 #include "needlekit/analysis/performance_index.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 #include "terminal_warnings.hpp"
@@ -86,9 +87,9 @@ void run_evaluate(const EvaluateArguments& arguments) {
   result.notes.insert(result.notes.end(), warnings.begin(), warnings.end());
   print_warnings(warnings);
   const nlohmann::json json = io::performance_json(file.design, result);
-  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
+  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, io::json_text(json));
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_table(file, result);
   }

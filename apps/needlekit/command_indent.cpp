@@ -13,6 +13,7 @@
 #include "needlekit/core/units.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/indentation_output.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
 #include "terminal_warnings.hpp"
@@ -66,7 +67,7 @@ void run_indent(const IndentArguments& arguments) {
   // A load step that did not converge: the completed steps are kept and printed, the exit code is 3.
   const bool failed = result.status == insertion::IndentationStatus::SolverFailed;
   if (arguments.json) {
-    fmt::print("{}\n", io::indentation_json(indentation_case, result).dump(2));
+    fmt::print("{}", io::json_text(io::indentation_json(indentation_case, result)));
     if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
     return;
   }

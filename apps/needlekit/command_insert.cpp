@@ -21,6 +21,7 @@
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
@@ -135,7 +136,7 @@ void run_insert(const InsertArguments& arguments) {
   StagedFiles outputs;
   std::filesystem::path staged_csv;
   if (has_curve) staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
-  outputs.write(json_path, json.dump(2) + "\n");
+  outputs.write(json_path, io::json_text(json));
   if (has_curve && !arguments.no_plot) {
     const std::string s = fit ? fmt::format("S = {:.4g} (fitted; case {:.4g})", result.scale, c.options.model.scale)
                               : fmt::format("S = {:.4g}", result.scale);
@@ -156,7 +157,7 @@ void run_insert(const InsertArguments& arguments) {
   outputs.commit();
 
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
                indentation_case.name, count, classes.alpha.size(), classes.beta.size(), classes.side, classes.back,

@@ -10,6 +10,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "progress_bar.hpp"
@@ -105,9 +106,9 @@ void run_robust(const OptimizeArguments& arguments, const io::SpaceFile& file, a
   nlohmann::json json = io::robust_design_json(file.space, options, result);
   json["top"].erase(json["top"].begin() + std::min<std::ptrdiff_t>(arguments.top, std::ssize(json["top"])),
                     json["top"].end());  // the listing keeps --top designs; all were candidates
-  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
+  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, io::json_text(json));
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_robust(json["robust"]);
   }
@@ -138,9 +139,9 @@ void run_optimize(const OptimizeArguments& arguments) {
   progress.finish();  // after Ctrl-C: throws Interrupted, nothing written
 
   const nlohmann::json json = io::optimizer_json(space, result);
-  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, json.dump(2) + "\n");
+  if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, io::json_text(json));
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_table(space, result);
   }

@@ -16,6 +16,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/geometry/body_surface.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
@@ -162,11 +163,11 @@ void run_patch(const PatchArguments& arguments) {
     if (!arguments.out_dir.empty()) {  // both files or none
       StagedFiles outputs;
       outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.csv", csv);
-      outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.json", points.dump(2) + "\n");
+      outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.json", io::json_text(points));
       outputs.commit();
     }
     if (arguments.json) {
-      fmt::print("{}\n", points.dump(2));
+      fmt::print("{}", io::json_text(points));
     } else {
       fmt::print("{}", csv);
     }
@@ -203,11 +204,11 @@ void run_patch(const PatchArguments& arguments) {
                                 attribution->readme.lexically_normal().string(), fmt::join(attribution->entries, "\n- "),
                                 fmt::join(attribution->notices, "\n")));
     }
-    outputs.write(out / "summary.json", summary.dump(2) + "\n");
+    outputs.write(out / "summary.json", io::json_text(summary));
     outputs.commit();
   }
   if (arguments.json) {
-    fmt::print("{}\n", summary.dump(2));
+    fmt::print("{}", io::json_text(summary));
   } else {
     print_summary(c, summary);
   }

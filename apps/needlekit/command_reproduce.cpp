@@ -21,6 +21,7 @@
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "progress_bar.hpp"
 #include "reproduce_report.hpp"
 #include "reproduce_sections.hpp"
@@ -216,7 +217,7 @@ void run_reproduce(const ReproduceArguments& arguments) {
     }
     results["finished_utc"] = utc_now();
     results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    context.write("results.json", results.dump(2) + "\n");
+    context.write("results.json", io::json_text(results));
 
     ProgressBar bar("report (figures, report.html)");
     bar.update(0);

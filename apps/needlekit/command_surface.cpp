@@ -13,13 +13,14 @@
 #include <Eigen/Geometry>
 
 #include "commands.hpp"
-#include "needlekit/io/scale_warnings.hpp"
-#include "terminal_warnings.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/geometry/geodesic_distance.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
+#include "needlekit/io/json_text.hpp"
+#include "needlekit/io/scale_warnings.hpp"
+#include "terminal_warnings.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -94,7 +95,7 @@ void run_surface(const SurfaceArguments& arguments) {
     if (!d.reason.empty()) out["geodesic"]["reason"] = d.reason;
   }
   if (arguments.json) {
-    fmt::print("{}\n", out.dump(2));
+    fmt::print("{}", io::json_text(out));
     return;
   }
   fmt::print("{}: {} vertices, {} triangles, {}, usable (manifold, consistently oriented)\n", arguments.mesh_path,

@@ -12,6 +12,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 #include "terminal_warnings.hpp"
@@ -64,7 +65,7 @@ void run_sweep(const SweepArguments& arguments) {
   const std::string csv = io::sweep_csv(result);
   if (!arguments.csv_path.empty()) io::write_text_file_atomically(arguments.csv_path, csv);
   if (arguments.json) {
-    fmt::print("{}\n", io::sweep_json(result).dump(2));
+    fmt::print("{}", io::json_text(io::sweep_json(result)));
   } else if (arguments.csv_path.empty()) {
     fmt::print("{}", csv);
   }

@@ -10,8 +10,9 @@
 
 #include "commands.hpp"
 #include "needlekit/core/atomic_file.hpp"
-#include "needlekit/core/interrupt.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/tet_mesh_vtu.hpp"
 #include "needlekit/io/tissue_config.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
@@ -68,7 +69,7 @@ void run_tissue_mesh(const TissueMeshArguments& arguments) {
                                 {"height_um", extent.z() * 1e6},   {"elements", result.mesh.tets.size()},
                                 {"nodes", result.mesh.nodes.size()}, {"mesh_seconds", result.mesh_seconds},
                                 {"layers", layers},                {"file", file.string()}};
-    fmt::print("{}\n", out.dump(2));
+    fmt::print("{}", io::json_text(out));
     return;
   }
   if (tissue.msh_file.empty()) {

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "file_format_help.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
@@ -59,10 +60,10 @@ void run_uncertainty(const UncertaintyArguments& arguments) {
     std::filesystem::create_directories(dir);
     io::write_text_file_atomically(dir / "performance_index_histogram.csv", io::index_histogram_csv(result));
     io::write_text_file_atomically(dir / "sobol_indices.csv", io::sobol_csv(result));
-    io::write_text_file_atomically(dir / "uncertainty.json", json.dump(2) + "\n");
+    io::write_text_file_atomically(dir / "uncertainty.json", io::json_text(json));
   }
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_table(json);
   }

@@ -2,10 +2,11 @@
 
 #include <filesystem>
 
+#include "commands.hpp"
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/io/fe_uncertainty_config.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
-#include "commands.hpp"
 #include "progress_bar.hpp"
 #include "uncertainty_commands.hpp"
 
@@ -61,12 +62,12 @@ void run_fe_uncertainty(const UncertaintyArguments& arguments) {
     const std::filesystem::path dir(arguments.out_dir);
     create_output_directory(dir);
     StagedFiles outputs;
-    outputs.write(dir / "uncertainty.json", json.dump(2) + "\n");
+    outputs.write(dir / "uncertainty.json", io::json_text(json));
     outputs.write(dir / "fe_runs.csv", io::fe_runs_csv(file, result));
     outputs.commit();
   }
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_table(json);
   }

@@ -7,6 +7,7 @@
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/geometry/body_surface.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "uncertainty_commands.hpp"
@@ -71,7 +72,7 @@ void run_patch_uncertainty(const UncertaintyArguments& arguments) {
     const std::filesystem::path csv = outputs.write(dir / "needle_probabilities.csv", io::patch_probability_csv(result));
     outputs.write(dir / "needle_probabilities.vtu",
                   io::vtu_document(io::patch_probability_grid(result), dir / "needle_probabilities.vtu"));
-    outputs.write(dir / "uncertainty.json", json.dump(2) + "\n");
+    outputs.write(dir / "uncertainty.json", io::json_text(json));
     if (!arguments.no_plot) {
       const std::filesystem::path png = dir / "needle_probabilities.png";
       const std::vector<std::string> command{
@@ -87,7 +88,7 @@ void run_patch_uncertainty(const UncertaintyArguments& arguments) {
     outputs.commit();
   }
   if (arguments.json) {
-    fmt::print("{}\n", json.dump(2));
+    fmt::print("{}", io::json_text(json));
   } else {
     print_table(json);
   }

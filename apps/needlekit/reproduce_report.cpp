@@ -8,6 +8,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 
 namespace needlekit::cli::reproduce {
@@ -67,7 +68,7 @@ std::string RunContext::write(const std::filesystem::path& relative, std::string
 
 std::string csv_text(const std::vector<std::string>& columns, const nlohmann::json& rows) {
   auto cell_text = [](const nlohmann::json& cell) {
-    if (!cell.is_string()) return cell.is_null() ? std::string() : cell.dump();
+    if (!cell.is_string()) return cell.is_null() ? std::string() : io::rounded_numbers(cell).dump();
     std::string text = cell.get<std::string>();
     if (text.find_first_of(",\"\n") == std::string::npos) return text;
     std::string quoted = "\"";

@@ -6,6 +6,7 @@
 
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "reproduce_sections.hpp"
 
 namespace needlekit::cli::reproduce {
@@ -27,7 +28,7 @@ void calibrated_phantom(const RunContext& context, SectionReport& report, const 
   };
   const calibration::CalibrationResult result = calibration::calibrate(problem, options);
   const std::string json = context.write("section_6_2/calibration_6_2.json",
-                                         calibration::calibration_json(problem, result).dump(2) + "\n");
+                                         io::json_text(calibration::calibration_json(problem, result)));
   report.data_file(json);
   std::string fitted;
   for (const calibration::FittedParameter& p : result.parameters)

@@ -13,6 +13,7 @@
 #include "needlekit/analysis/sensitivity_sweep.hpp"
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 #include "reproduce_sections.hpp"
@@ -88,7 +89,7 @@ void table_6_1(const RunContext& context, SectionReport& report) {
                                             "deformation_um", "cutting_depth_um", "Q_um2", "critical_buckling_load_N",
                                             "performance_index_per_um", "published_performance_index_per_um", "status"};
   report.data_file(context.write("section_6_3/table_6_1.csv", csv_text(columns, rows)));
-  report.data_file(context.write("section_6_3/table_6_1_evaluations.json", evaluations.dump(2) + "\n"));
+  report.data_file(context.write("section_6_3/table_6_1_evaluations.json", io::json_text(evaluations)));
   report.table("Table 6.1 needles: every quantity of the performance index (silicon, skin, T = 50 um, 10 x 10 "
                "needles on 1 cm)",
                columns, rows);
@@ -258,7 +259,7 @@ void table_6_3(const RunContext& context, SectionReport& report, const SectionPr
       best[compat ? 0 : 1] = result.top.front();
       report.data_file(context.write(
           fmt::format("section_6_3/table_6_3_{}{}.json", row.key, compat ? "_published_compat" : "_corrected_pitch"),
-          io::optimizer_json(space, result).dump(2) + "\n"));
+          io::json_text(io::optimizer_json(space, result))));
     }
     const std::string prefix = fmt::format("6.3.2.{}.", row.key);
     const analysis::DesignCandidate& c = best[0];
@@ -326,7 +327,7 @@ void certified_optimum(const RunContext& context, SectionReport& report) {
   if (result.status != analysis::OptimizerStatus::Optimal) {
     throw std::runtime_error(fmt::format("certified optimum: {}: {}", analysis::to_string(result.status), result.reason));
   }
-  report.data_file(context.write("section_6_3/certified_1um_cone_solid.json", io::optimizer_json(space, result).dump(2) + "\n"));
+  report.data_file(context.write("section_6_3/certified_1um_cone_solid.json", io::json_text(io::optimizer_json(space, result))));
   const analysis::DesignCandidate& c = result.top.front();
   report.table(fmt::format("Beyond the dissertation: the solid cone's certified optimum on a 1 um grid of the Fig 6.20 "
                            "bounds (examples/{}; {:.3g} grid points, {} evaluated, {:.3f} s)",

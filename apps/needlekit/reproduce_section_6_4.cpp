@@ -17,11 +17,12 @@
 #include "needlekit/analysis/performance_index.hpp"
 #include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
-#include "needlekit/patch/fit_and_evaluate.hpp"
 #include "needlekit/materials/needle_material.hpp"
+#include "needlekit/patch/fit_and_evaluate.hpp"
 #include "reproduce_sections.hpp"
 
 namespace needlekit::cli::reproduce {
@@ -119,7 +120,7 @@ void render(const RunContext& context, SectionReport& report, Surfaces& surfaces
   const std::string needles = context.write(fmt::format("section_6_4/{}_needles.csv", name),
                                             io::patch_needles_csv(run.design, run.fit, run.evaluation));
   report.data_file(needles);
-  report.data_file(context.write(fmt::format("section_6_4/{}_summary.json", name), run.summary.dump(2) + "\n"));
+  report.data_file(context.write(fmt::format("section_6_4/{}_summary.json", name), io::json_text(run.summary)));
   // Surface triangles within the patch's reach, in mm.
   const geometry::SurfaceMesh& surface = surfaces.get(run.input);
   const Eigen::Vector3d center = run.fit.frame.surface_point;
@@ -140,8 +141,9 @@ void render(const RunContext& context, SectionReport& report, Surfaces& surfaces
     triangles.push_back(tri);
   }
   const std::string surface_file = context.write(fmt::format("section_6_4/{}_surface.json", name),
-                                                 nlohmann::json{{"unit", "mm"}, {"vertices", vertices},
-                                                                {"triangles", triangles}}.dump() + "\n");
+                                                 io::rounded_numbers(nlohmann::json{{"unit", "mm"}, {"vertices", vertices},
+                                                                                    {"triangles", triangles}})
+                                                     .dump() + "\n");
   report.data_file(surface_file);
   report.figure(fmt::format("figures/{}.png", name), caption,
                 {{"kind", "patch3d"},

@@ -9,6 +9,7 @@
 
 #include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
@@ -93,7 +94,7 @@ void design_study(const RunContext& context, SectionReport& report) {
                "leaves the nominal index unchanged at both quantiles, yet its total index is large.");
   report.data_file(context.write("uncertainty/performance_index_histogram.csv", io::index_histogram_csv(r)));
   report.data_file(context.write("uncertainty/sobol_indices.csv", io::sobol_csv(r)));
-  report.data_file(context.write("uncertainty/uncertainty.json", json.dump(2) + "\n"));
+  report.data_file(context.write("uncertainty/uncertainty.json", io::json_text(json)));
 }
 
 void robust_design(const RunContext& context, SectionReport& report) {

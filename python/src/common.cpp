@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/units.hpp"
 
 namespace needlekit::python {
 
@@ -152,7 +153,7 @@ py::object to_python(const nlohmann::json& j) {
     case nlohmann::json::value_t::number_unsigned:
       return py::int_(j.get<std::uint64_t>());
     case nlohmann::json::value_t::number_float:
-      return py::float_(j.get<double>());
+      return py::float_(units::round_to_12_digits(j.get<double>()));  // as the CLI writes it (io/json_text.hpp)
     case nlohmann::json::value_t::string:
       return py::str(j.get<std::string>());
     case nlohmann::json::value_t::array: {

@@ -111,7 +111,8 @@ std::vector<double> values_from(py::handle value, std::string_view what);
 template <std::size_t N>
 std::vector<std::array<int, N>> index_rows_from(py::handle value, std::string_view what);
 
-// JSON as Python dicts, lists, floats, ints, strings, bools and None (numbers exactly as in the JSON object).
+// JSON as Python dicts, lists, floats, ints, strings, bools and None, numbers as the CLI writes them (floats rounded
+// to 12 significant digits, io/json_text.hpp).
 py::object to_python(const nlohmann::json& json);
 
 // Calls the user's progress callback (optional) and checks for Ctrl-C, from library progress callbacks running with

@@ -1,4 +1,5 @@
 #include "needlekit/io/indentation_output.hpp"
+#include "needlekit/io/json_text.hpp"
 
 #include <fmt/format.h>
 
@@ -239,7 +240,7 @@ void IndentationWriter::write_step(const insertion::IndentationStep& step, const
 
 void IndentationWriter::write_result(const nlohmann::json& json) {
   const std::filesystem::path path = directory_ / (case_.name + "_result.json");
-  write_text_file_atomically(path, json.dump(2) + "\n");
+  write_text_file_atomically(path, io::json_text(json));
   remember(path);
 }
 
@@ -259,7 +260,7 @@ void IndentationWriter::finish(const insertion::IndentationResult& result) {
     remember(path);
   };
   write_curves(result);
-  write("_puncture.json", puncture_json(case_, result).dump(2) + "\n");
+  write("_puncture.json", io::json_text(puncture_json(case_, result)));
   write_result(indentation_json(case_, result));
 }
 
