@@ -174,7 +174,9 @@ struct SolverOptions {
   // do not depend on the machine's load), capped by max_reuse_iterations, and the factor is renewed at once when
   // the previous CG solve used more than half of that. TwoGrid: CG with the two-grid cycle, whose coarse operator
   // is renewed when a solve needed more than two_grid_refresh_iterations. Both start from the projection of the
-  // solution on the last 12 solutions (Krylov recycling).
+  // solution on the last 12 solutions (Krylov recycling). With the nodal-averaged volume, CholeskyCg factorizes a
+  // one-ring matrix that bounds the tangent from above, not the two-ring tangent itself, and CG always runs
+  // (docs/fem_solver.md); Cholesky factorizes the tangent itself.
   LinearSolver linear_solver = LinearSolver::Automatic;
   int two_grid_refresh_iterations = 25;  // >= 1: see above
   int max_reuse_iterations = 40;         // >= 1: cap on the CG iterations of one solve
