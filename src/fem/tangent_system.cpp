@@ -23,7 +23,7 @@ constexpr double kFactorFlopSpeedup = 7.0;
 // deform the tissue alike).
 constexpr int kRecycled = 12;
 constexpr int kTwoGridMaxIterations = 200;
-// Split preconditioner: CG iterations allowed on a fresh factor of P before K itself is factorized. P^-1 K has its
+// Split preconditioner: CG iterations allowed on a fresh factor of P before its diagonal shift. P^-1 K has its
 // spectrum in about [μ/(λ+μ), 1] (P's element bulk term bounds the nodal one from above, tangent_system.hpp): about
 // 50 at ν = 0.49 and 500 at ν = 0.499, i.e. some 20-70 iterations at the Newton forcing terms.
 constexpr int kSplitMaxIterations = 400;
@@ -232,7 +232,10 @@ bool TangentSystem::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, Itera
 }
 
 // CG on K preconditioned by the factor of P: first on the last factor, while its solves cost no more than those on a
-// fresh one plus half the CG iterations a factorization is worth; then on a fresh factor; then K's own factor.
+// fresh one plus half the CG iterations a factorization is worth; then on a fresh factor. If CG still fails (K not
+// positive definite: CG meets a direction of non-positive curvature), the diagonals of K and P are raised by growing
+// fractions, as for a failed factorization: a shifted Newton step is still a descent direction. K itself is never
+// factorized (its two-ring factor is what this avoids).
 bool TangentSystem::split_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
                                 double forcing) {
   const double tol = std::max(forcing, options_.linear_tolerance);
@@ -250,22 +253,26 @@ bool TangentSystem::split_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du,
   }
   rec.factorized = true;
   have_factor_ = factorize_or_shift(*cholesky_, pre_values_, pre_pattern_);
-  if (have_factor_ && cg_solve(rhs, du, its, tol, kSplitMaxIterations, precondition)) {
-    rec.linear_iterations += its;
-    fresh_cg_iterations_ = last_cg_iterations_ = its;
-    remember(du);
-    return true;
-  }
+  bool ok = have_factor_ && cg_solve(rhs, du, its, tol, kSplitMaxIterations, precondition);
   rec.linear_iterations += its;
-  if (!full_cholesky_)
-    full_cholesky_ = std::make_unique<SparseCholesky>(static_cast<int64_t>(pattern_.column_pointers.size()) - 1,
-                                                      pattern_.column_pointers, pattern_.row_indices);
-  if (!factorize_or_shift(*full_cholesky_, values_, pattern_)) return false;
-  const std::vector<double> b(rhs.data(), rhs.data() + rhs.size());
-  const std::vector<double> x = full_cholesky_->solve(b);
-  du = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+  if (!ok) {
+    const std::vector<double> unshifted = values_, unshifted_pre = pre_values_;
+    for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
+      shift_diagonal(pattern_, unshifted, beta, values_);
+      shift_diagonal(pre_pattern_, unshifted_pre, beta, pre_values_);
+      ok = (have_factor_ = factorize_or_shift(*cholesky_, pre_values_, pre_pattern_)) &&
+           cg_solve(rhs, du, its, tol, kSplitMaxIterations, precondition);
+      rec.linear_iterations += its;
+      if (ok) break;
+    }
+    values_ = unshifted;  // the products of later solves use the tangent itself
+    pre_values_ = unshifted_pre;
+    have_factor_ = false;  // the factor was the shifted P's
+  }
+  if (!ok) return false;
+  fresh_cg_iterations_ = last_cg_iterations_ = its;
   remember(du);
-  return du.allFinite();
+  return true;
 }
 
 // CG preconditioned by the last factorization when allowed, else (or on failure) a fresh factorization (with a

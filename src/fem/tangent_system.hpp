@@ -7,8 +7,8 @@
 // groups make K's pattern the mesh's two-ring, whose Cholesky factor costs several times the one-ring's (measured 8x
 // the CPU of a Newton solve on the §6.2 phantom). CG then runs on the full K, preconditioned by the factor of a
 // one-ring matrix P that the assembly provides (capture_preconditioner + preconditioner_values: the element part of K
-// plus a per-element bulk term that bounds the nodal one from above). If CG on a fresh factor of P still fails, K
-// itself is factorized (on its two-ring pattern, analysed on first use).
+// plus a per-element bulk term that bounds the nodal one from above). If CG on a fresh factor of P still fails (K not
+// positive definite), both diagonals are shifted, as in the two-grid solve.
 #pragma once
 #include <tbb/task_arena.h>
 
@@ -87,12 +87,10 @@ private:
   size_t slots_per_element_ = 0;
   std::vector<int32_t> value_slot_;
   std::unique_ptr<SparseCholesky> cholesky_;         // Cholesky, CholeskyCg (of P with the split preconditioner)
-  // Split preconditioner: P's one-ring pattern and values, per entry of values_ its entry in P (-1: none), and the
-  // factor of K itself, made on first use.
+  // Split preconditioner: P's one-ring pattern and values, per entry of values_ its entry in P (-1: none).
   UpperPattern pre_pattern_;
   std::vector<double> pre_values_;
   std::vector<int32_t> full_to_pre_;
-  std::unique_ptr<SparseCholesky> full_cholesky_;
   int fresh_cg_iterations_ = 0;  // of the last solve on a fresh factor of P
   std::unique_ptr<TwoGridPreconditioner> two_grid_;  // TwoGrid
   std::vector<Eigen::VectorXd> partial_;  // multiply's per-range products, kept between calls (CG's hot path)
