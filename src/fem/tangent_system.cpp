@@ -226,6 +226,27 @@ bool TangentSystem::factorize_or_shift(SparseCholesky& cholesky, const std::vect
   return false;
 }
 
+// CG after it failed on a fresh preconditioner (K not positive definite): K's diagonal is raised by growing fractions,
+// as for a failed factorization (a shifted Newton step is still a descent direction), `refresh(beta)` rebuilds the
+// preconditioner for the shifted K, and CG is tried again. K's values are restored afterwards, and the preconditioner,
+// built for a shifted K, is marked stale.
+template <class Refresh, class Preconditioner>
+bool TangentSystem::shifted_cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
+                                     double tolerance, int budget, int& iterations, Refresh&& refresh,
+                                     Preconditioner&& precondition) {
+  const std::vector<double> unshifted = values_;
+  bool ok = false;
+  for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
+    shift_diagonal(pattern_, unshifted, beta, values_);
+    ok = (have_factor_ = refresh(beta)) && cg_solve(rhs, du, iterations, tolerance, budget, precondition);
+    rec.linear_iterations += iterations;
+    if (ok) break;
+  }
+  values_ = unshifted;  // the products of later solves use the tangent itself
+  have_factor_ = false;
+  return ok;
+}
+
 bool TangentSystem::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing) {
   if (solver_ == LinearSolver::TwoGrid) return two_grid_solve(rhs, du, rec, forcing);
   return splits_preconditioner() ? split_solve(rhs, du, rec, forcing) : cholesky_solve(rhs, du, rec, forcing);
@@ -256,18 +277,13 @@ bool TangentSystem::split_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du,
   bool ok = have_factor_ && cg_solve(rhs, du, its, tol, kSplitMaxIterations, precondition);
   rec.linear_iterations += its;
   if (!ok) {
-    const std::vector<double> unshifted = values_, unshifted_pre = pre_values_;
-    for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
-      shift_diagonal(pattern_, unshifted, beta, values_);
+    const std::vector<double> unshifted_pre = pre_values_;
+    const auto shift_p = [&](double beta) {  // P with the same shift as K
       shift_diagonal(pre_pattern_, unshifted_pre, beta, pre_values_);
-      ok = (have_factor_ = factorize_or_shift(*cholesky_, pre_values_, pre_pattern_)) &&
-           cg_solve(rhs, du, its, tol, kSplitMaxIterations, precondition);
-      rec.linear_iterations += its;
-      if (ok) break;
-    }
-    values_ = unshifted;  // the products of later solves use the tangent itself
+      return factorize_or_shift(*cholesky_, pre_values_, pre_pattern_);
+    };
+    ok = shifted_cg_solve(rhs, du, rec, tol, kSplitMaxIterations, its, shift_p, precondition);
     pre_values_ = unshifted_pre;
-    have_factor_ = false;  // the factor was the shifted P's
   }
   if (!ok) return false;
   fresh_cg_iterations_ = last_cg_iterations_ = its;
@@ -330,16 +346,8 @@ bool TangentSystem::two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
             cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
   rec.linear_iterations += its;
   if (!ok) {
-    const std::vector<double> unshifted = values_;
-    for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
-      shift_diagonal(pattern_, unshifted, beta, values_);
-      ok = (have_factor_ = two_grid_->update(values_, multiply_k)) &&
-           cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
-      rec.linear_iterations += its;
-      if (ok) break;
-    }
-    values_ = unshifted;
-    have_factor_ = false;  // the coarse operator was the shifted one's
+    const auto update_coarse = [&](double) { return two_grid_->update(values_, multiply_k); };
+    ok = shifted_cg_solve(rhs, du, rec, tol, kTwoGridMaxIterations, its, update_coarse, precondition);
   }
   last_cg_iterations_ = its;
   if (ok) remember(du);

@@ -75,6 +75,9 @@ private:
   template <class Preconditioner>
   bool cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations, double tolerance, int budget,
                 Preconditioner&& precondition);
+  template <class Refresh, class Preconditioner>
+  bool shifted_cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double tolerance,
+                        int budget, int& iterations, Refresh&& refresh, Preconditioner&& precondition);
   static void shift_diagonal(const UpperPattern& pattern, const std::vector<double>& base, double beta,
                              std::vector<double>& shifted);
 

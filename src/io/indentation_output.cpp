@@ -1,5 +1,4 @@
 #include "needlekit/io/indentation_output.hpp"
-#include "needlekit/io/json_text.hpp"
 
 #include <fmt/format.h>
 
@@ -9,6 +8,7 @@
 
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 
