@@ -3425,6 +3425,11 @@ class SolverOptions:
     def threads(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
+    @property
+    def volumetric_stabilization(self) -> float:
+        """>= 0: with the nodal-averaged volume, the bulk modulus each tetrahedron keeps, in multiples of its shear modulus"""
+    @volumetric_stabilization.setter
+    def volumetric_stabilization(self, value: Any) -> None: ...
 
 class SpaceFile:
     ...

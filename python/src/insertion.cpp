@@ -92,6 +92,9 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("linear_solver", &SolverOptions::linear_solver)
       .def_readwrite("penalty_factor", &SolverOptions::penalty_factor, "> 0")
       .def_readwrite("penetration_tolerance", &SolverOptions::penetration_tolerance, "(0, 1)")
+      .def_readwrite("volumetric_stabilization", &SolverOptions::volumetric_stabilization,
+                     ">= 0: with the nodal-averaged volume, the bulk modulus each tetrahedron keeps, in multiples of "
+                     "its shear modulus")
       .def_readwrite("threads", &SolverOptions::threads, "0: all cores");
 
   py::class_<NeedleSite> site(m, "NeedleSite");

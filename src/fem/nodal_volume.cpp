@@ -35,8 +35,9 @@ double deterministic_sum(size_t n, tbb::task_arena& arena, F&& value) {
 
 }  // namespace
 
-NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<char>& treated)
-    : space_(space), treated_(treated) {
+NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<char>& treated,
+                                       double stabilization)
+    : space_(space), treated_(treated), stabilization_(stabilization) {
   const size_t ne = space.elements.size(), nnode = space.nodes.size();
   element_j_.assign(ne, 1.0);
   element_pressure_.assign(ne, 0.0);
@@ -51,7 +52,7 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
       const int n = space.connectivity[4 * e + a];
       count[static_cast<size_t>(n) + 1]++;
       node_volume_[n] += space.volumes[e] / 4;
-      node_lambda_[n] += space.lame[e].lambda * space.volumes[e] / 4;
+      node_lambda_[n] += (space.lame[e].lambda - element_lambda(space.lame[e])) * space.volumes[e] / 4;
     }
   }
   for (size_t n = 0; n < nnode; ++n) {
@@ -65,7 +66,7 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
     if (treated_[e])
       for (int a = 0; a < 4; ++a) node_elements_[static_cast<size_t>(fill[space.connectivity[4 * e + a]]++)] = static_cast<int>(e);
   for (size_t e = 0; e < ne; ++e)
-    if (treated_[e]) space.lame[e].lambda = 0;  // the element part keeps μ only
+    if (treated_[e]) space.lame[e].lambda = element_lambda(space.lame[e]);  // the element part keeps μ and λ_s
   // Patches: the nodes of the treated elements around each node.
   patch_pointers_.assign(nnode + 1, 0);
   for (size_t n = 0; n < nnode; ++n) {
@@ -79,6 +80,10 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
   }
   node_curvature_.assign(nnode, 0.0);
   patch_gradient_.assign(patch_nodes_.size(), Eigen::Vector3d::Zero());
+}
+
+double NodalVolumeAverage::element_lambda(const LameConstants& lame) const {
+  return std::min(lame.lambda, stabilization_ * lame.mu);
 }
 
 double NodalVolumeAverage::node_volume_ratio(size_t n) const {

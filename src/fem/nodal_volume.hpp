@@ -2,13 +2,20 @@
 // element for incompressible and nearly incompressible dynamic explicit applications", Commun Numer Meth Eng 14,
 // 437-449; the nodal-averaged J of FEBio's UT4) for linear tetrahedra, as a potential for implicit Newton.
 //
-// The neo-Hookean energy is split into the element part W_e = μ/2 (I1 - 3) - μ ln J, evaluated per element as
-// usual, and the volumetric part U(J) = λ/2 (ln J)^2 — the term whose large modulus locks linear tetrahedra as
-// ν → 1/2 — evaluated at the nodes on the nodal volume ratio
+// The neo-Hookean energy is split into the element part W_e = μ/2 (I1 - 3) - μ ln J + λ_s/2 (ln J)^2, evaluated per
+// element as usual, and the rest of the volumetric part, U(J) = (λ - λ_s)/2 (ln J)^2 — the term whose large modulus
+// locks linear tetrahedra as ν → 1/2 — evaluated at the nodes on the nodal volume ratio
 //     J̄_a = v_a / V_a,   v_a = Σ_{e∋a} J_e V_e / 4,   V_a = Σ_{e∋a} V_e / 4        (Bonet & Burton, Eqs 8-10)
-// with λ_a = Σ_{e∋a} λ_e V_e / 4 / V_a. Total energy Π = Σ_e V_e W_e(F_e) + Σ_a V_a U_a(J̄_a). One volume constraint
-// per node instead of per element removes the locking (about one constraint per unknown for tets instead of five
-// or six). A homogeneous deformation gives J̄_a = J_e = J everywhere: the standard law exactly.
+// with λ_a = Σ_{e∋a} (λ_e - λ_s,e) V_e / 4 / V_a. Total energy Π = Σ_e V_e W_e(F_e) + Σ_a V_a U_a(J̄_a). One volume
+// constraint per node instead of per element removes the locking (about one constraint per unknown for tets instead
+// of five or six). A homogeneous deformation gives J̄_a = J_e = J everywhere: the standard law exactly.
+// Stabilisation: λ_s = min(λ, β μ) with β = SolverOptions::volumetric_stabilization. With λ_s = 0 the element
+// volumes are free wherever their patch averages are kept (the nodal average's spurious volumetric modes): deep
+// under a flat punch at ν = 0.49 single elements then collapse and invert. The element's own share λ_s resists that
+// like a material of ν = β / (2 (β + 1)) (0.25 at the default β = 1), which linear tetrahedra carry without
+// locking. This is the volumetric counterpart of the α-blend of the standard element into FEBio's UT4 (Gee,
+// Dohrmann, Key & Wall 2009, "A uniform nodal strain tetrahedron with isochoric stabilization", Int J Numer Meth
+// Eng 78, 429-443), with the element's share tied to μ rather than to λ so that it does not lock as ν → 1/2.
 //
 // With h_b = F_e^-T ∇N_b (so ∂J_e/∂u_b = J_e h_b) and g_a = ∂v_a/∂u = Σ_{e∋a} V_e/4 J_e h_e:
 //     force   f = Σ_e V_e p̄_e J_e h_e + element part,   p̄_e = (1/4) Σ_{a∈e} U_a'(J̄_a)
@@ -27,9 +34,10 @@ namespace needlekit::fem::detail {
 
 class NodalVolumeAverage {
 public:
-  // `treated`: per element, 1 when its volumetric term is averaged at the nodes (linear tetrahedra only). Sets the
-  // treated elements' λ in space.lame to 0 (the element part keeps μ only) and keeps λ for the nodes.
-  NodalVolumeAverage(FunctionSpace& space, const std::vector<char>& treated);
+  // `treated`: per element, 1 when its volumetric term is averaged at the nodes (linear tetrahedra only).
+  // `stabilization`: β >= 0 above. Sets the treated elements' λ in space.lame to λ_s = min(λ, β μ) and keeps λ - λ_s
+  // for the nodes.
+  NodalVolumeAverage(FunctionSpace& space, const std::vector<char>& treated, double stabilization);
   int element_count() const { return element_count_; }
   bool treated(int element) const { return treated_[static_cast<size_t>(element)] != 0; }
 
@@ -63,6 +71,7 @@ public:
 private:
   const FunctionSpace& space_;
   std::vector<char> treated_;
+  double stabilization_;  // β: the element keeps λ_s = min(λ, β μ)
   int element_count_ = 0;
   std::vector<int> node_element_pointers_, node_elements_;  // node -> treated elements containing it
   std::vector<int> patch_pointers_, patch_nodes_;           // node -> nodes of its patch (itself included)
@@ -71,6 +80,7 @@ private:
   std::vector<Eigen::Matrix<double, 3, 4>> element_jh_;
   std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, Pa/m^3
   int inverted_element_ = -1;
+  double element_lambda(const LameConstants& lame) const;  // λ_s (Pa)
   // J̄_a = Σ_e J_e V_e/4 / V_a over the treated elements of node n (node_volume_[n] > 0).
   double node_volume_ratio(size_t n) const;
   std::vector<Eigen::Vector3d> patch_gradient_;             // g_a restricted to each patch node, aligned with

@@ -314,7 +314,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
                    mesh.layers[mesh.tet_layer[e]].poisson_ratio >= kNearlyIncompressible;
       any = any || treated[e];
     }
-    if (any) m.nodal = std::make_unique<detail::NodalVolumeAverage>(m.space, treated);
+    if (any) m.nodal = std::make_unique<detail::NodalVolumeAverage>(m.space, treated, o.volumetric_stabilization);
   }
   LinearSolver solver = o.linear_solver;
   if (solver == LinearSolver::Automatic)

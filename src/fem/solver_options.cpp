@@ -1,4 +1,5 @@
 // Names of the solver's enums and the validation of its options.
+#include <cmath>
 #include <sstream>
 
 #include "needlekit/core/errors.hpp"
@@ -66,6 +67,8 @@ void SolverOptions::validate() const {
   check(max_reuse_iterations >= 1, "max_reuse_iterations", max_reuse_iterations, ">= 1");
   check(linear_tolerance > 0 && linear_tolerance < 1, "linear_tolerance", linear_tolerance, "(0, 1)");
   check(threads >= 0, "threads", threads, ">= 0");
+  check(volumetric_stabilization >= 0 && std::isfinite(volumetric_stabilization), "volumetric_stabilization",
+        volumetric_stabilization, ">= 0");
   check(two_grid_refresh_iterations >= 1, "two_grid_refresh_iterations", two_grid_refresh_iterations, ">= 1");
   if (volumetric == VolumetricFormulation::NodalAverage) {
     if (law != MaterialLaw::NeoHookean)

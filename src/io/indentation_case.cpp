@@ -1,4 +1,5 @@
 #include "needlekit/io/indentation_case.hpp"
+#include <algorithm>
 
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
@@ -152,7 +153,8 @@ void read_model(const Section& section, fem::SolverOptions& solver) {
 }
 
 // [solver]: Newton tolerances and strategy (fem::SolverOptions; defaults and meanings in quasi_static_solver.hpp).
-void read_solver(const Section& section, fem::SolverOptions& solver) {
+// `layers`: the tissue's, to tell whether the nodal-averaged volume applies to any of them.
+void read_solver(const Section& section, fem::SolverOptions& solver, const std::vector<mesh::TissueLayer>& layers) {
   for (const auto& parameter : kSolverTolerances) {  // declared once in indentation_case.hpp
     if (const toml::node* node = section.optional(parameter.key)) {
       if (!node->is_number()) {
@@ -185,6 +187,23 @@ void read_solver(const Section& section, fem::SolverOptions& solver) {
   }
   if (const toml::node* node = section.optional("volumetric")) {
     solver.volumetric = choice_of(section, *node, "volumetric", fem::kVolumetricFormulationNames);
+  }
+  if (const toml::node* node = section.optional("volumetric_stabilization")) {  // not silently ignored either
+    if (solver.law != fem::MaterialLaw::NeoHookean || solver.order != fem::ElementOrder::Linear ||
+        solver.volumetric == fem::VolumetricFormulation::Element) {
+      section.fail(*node, "volumetric_stabilization",
+                   "applies only to the nodal-averaged volume (law = \"neo-hookean\", element = \"linear\", "
+                   "volumetric = \"auto\" or \"nodal-average\"); remove it");
+    }
+    const bool nearly_incompressible = std::any_of(layers.begin(), layers.end(), [](const mesh::TissueLayer& l) {
+      return l.poisson_ratio >= fem::kNearlyIncompressible;
+    });
+    if (solver.volumetric == fem::VolumetricFormulation::Automatic && !nearly_incompressible) {
+      section.fail(*node, "volumetric_stabilization",
+                   fmt::format("applies only to the nodal-averaged volume, which volumetric = \"auto\" gives layers "
+                               "with poisson_ratio >= {} and no layer has one; remove it",
+                               fem::kNearlyIncompressible));
+    }
   }
   if (solver.contact != fem::ContactModel::Surface) {  // settings of the surface contact: not silently ignored
     for (std::string_view key : {"penalty_factor", "penetration_tolerance"}) {
@@ -286,7 +305,8 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric"};
     for (const auto& parameter : kSolverTolerances) keys.push_back(parameter.key);
     for (const auto& parameter : kSolverCounts) keys.push_back(parameter.key);
-    read_solver(top.subsection(*node, "solver", keys), result.solver);
+    read_solver(top.subsection(*node, "solver", keys), result.solver,
+                result.tissue_mesh ? result.tissue_mesh->layers : result.block.layers);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
     result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);

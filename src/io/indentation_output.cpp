@@ -119,14 +119,22 @@ nlohmann::json fe_models_json(const insertion::IndentationCase& c) {
           {"contact", fem::to_string(solver.contact)},
           {"boundary", fem::to_string(solver.boundary)},
           {"volumetric", fem::to_string(solver.volumetric)},
+          {"volumetric_stabilization_per_shear_modulus", solver.volumetric_stabilization},
           {"edge_radius_um", insertion::effective_edge_radius(c) * 1e6}};
 }
 
 std::string fe_models_text(const insertion::IndentationCase& c) {
   const fem::SolverOptions& solver = c.solver;
   const double edge_radius = insertion::effective_edge_radius(c);
-  return fmt::format("{} law, {} tetrahedra, {} volume, {} contact{}, {} boundary", fem::to_string(solver.law),
-                     fem::to_string(solver.order), fem::to_string(solver.volumetric), fem::to_string(solver.contact),
+  const bool nodal_average_possible = solver.law == fem::MaterialLaw::NeoHookean &&
+                                     solver.order == fem::ElementOrder::Linear &&
+                                     solver.volumetric != fem::VolumetricFormulation::Element;
+  return fmt::format("{} law, {} tetrahedra, {} volume{}, {} contact{}, {} boundary", fem::to_string(solver.law),
+                     fem::to_string(solver.order), fem::to_string(solver.volumetric),
+                     nodal_average_possible
+                         ? fmt::format(" (nodal average stabilised by {:g} x shear modulus)", solver.volumetric_stabilization)
+                         : "",
+                     fem::to_string(solver.contact),
                      edge_radius > 0 ? fmt::format(" (needle edges rounded, radius {:g} um)", edge_radius * 1e6) : "",
                      fem::to_string(solver.boundary));
 }
@@ -173,6 +181,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["boundary"] = name_of(fem::kBoundaryConditionNames, c.solver.boundary);
   json["volumetric"] = name_of(fem::kVolumetricFormulationNames, c.solver.volumetric);
   json["nodal_average_elements"] = result.nodal_average_elements;
+  json["volumetric_stabilization_per_shear_modulus"] = c.solver.volumetric_stabilization;
   json["edge_radius_um"] = insertion::effective_edge_radius(c) * 1e6;
   nlohmann::json needles = nlohmann::json::array();
   for (const insertion::NeedleSite& site : c.needles) {

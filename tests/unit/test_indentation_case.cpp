@@ -144,6 +144,30 @@ TEST(IndentationCase, SolverSection) {
               HasSubstr("unknown key 'solver.tolerance'"));
 }
 
+// [solver] volumetric_stabilization applies to the nodal-averaged volume only: an error wherever it cannot act.
+TEST(IndentationCase, VolumetricStabilization) {
+  const std::string neo_hookean_linear =
+      replaced(replaced(kCase, "law = \"svk\"", "law = \"neo-hookean\""), "element = \"quadratic\"", "element = \"linear\"");
+  const auto with = [&](std::string_view base, std::string_view lines) {
+    return replaced(base, "[puncture]", "[solver]\n" + std::string(lines) + "[puncture]");
+  };
+  const std::string incompressible = replaced(neo_hookean_linear, "poisson_ratio = 0.4", "poisson_ratio = 0.49");
+  EXPECT_DOUBLE_EQ(parse(incompressible).solver.volumetric_stabilization, fem::SolverOptions{}.volumetric_stabilization);
+  EXPECT_DOUBLE_EQ(parse(with(incompressible, "volumetric_stabilization = 1.5\n")).solver.volumetric_stabilization, 1.5);
+  EXPECT_DOUBLE_EQ(
+      parse(with(neo_hookean_linear, "volumetric = \"nodal-average\"\nvolumetric_stabilization = 0\n")).solver.volumetric_stabilization,
+      0.0);
+  EXPECT_THAT(error_of(with(incompressible, "volumetric_stabilization = -1\n")),
+              HasSubstr("key 'solver.volumetric_stabilization': -1 is out of range, expected a number >= 0"));
+  EXPECT_THAT(error_of(with(neo_hookean_linear, "volumetric_stabilization = 1\n")),
+              HasSubstr("key 'solver.volumetric_stabilization': applies only to the nodal-averaged volume, which "
+                        "volumetric = \"auto\" gives layers with poisson_ratio >= 0.45 and no layer has one"));
+  EXPECT_THAT(error_of(with(incompressible, "volumetric = \"element\"\nvolumetric_stabilization = 1\n")),
+              HasSubstr("key 'solver.volumetric_stabilization': applies only to the nodal-averaged volume"));
+  EXPECT_THAT(error_of(with(kCase, "volumetric_stabilization = 1\n")),
+              HasSubstr("key 'solver.volumetric_stabilization': applies only to the nodal-averaged volume"));
+}
+
 TEST(IndentationCase, PresetsHeightsAndArrays) {
   // The skin preset in a taller block, and two needles.
   const std::string text = R"([needle]

@@ -1,7 +1,7 @@
 // The locking-free linear tetrahedron: the neo-Hookean law's volumetric term on nodal-averaged volume ratios (Bonet
 // & Burton 1998; src/fem/nodal_volume.hpp). Its assembled tangent against central differences of its assembled
-// forces, and those against central differences of its energy (µm and m scale); a homogeneous stretch is the
-// closed form exactly (every nodal volume ratio is the element's); and the flat punch at ν = 0.49 and 0.499 against
+// forces, and those against central differences of its energy (µm and m scale); its stabilisation as the exact blend
+// of the nodal and per-element bulk terms; a homogeneous stretch is the closed form exactly (every nodal volume ratio is the element's); and the flat punch at ν = 0.49 and 0.499 against
 // the reference for the §6.2 block, with the error falling under refinement.
 #include <gtest/gtest.h>
 
@@ -84,6 +84,42 @@ TEST_P(NodalVolumeTangent, MatchesCentralDifferencesOfForcesAndEnergy) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MicrometreAndMetre, NodalVolumeTangent, ::testing::Values(300e-6, 1.0));
+
+// The stabilisation keeps λ_s = min(λ, β μ) of the bulk term per element and averages λ - λ_s at the nodes, so on a
+// uniform block the energy and forces are the blend (1 - t) Π_nodal + t Π_element with t = β μ / λ, exactly; and
+// β >= λ/μ is the per-element formulation itself.
+TEST(NodalVolume, StabilizationBlendsTheNodalAndElementBulkTerms) {
+  constexpr double kSide = 300e-6, kNu = 0.49;
+  const auto mesh = small_block(kSide, kNu);
+  const auto lame = lame_constants(0.2e6, kNu);
+  const auto evaluate = [&](VolumetricFormulation volumetric, double stabilization) {
+    SolverOptions o;
+    o.law = MaterialLaw::NeoHookean;
+    o.boundary = BoundaryCondition::BottomFixed;
+    o.volumetric = volumetric;
+    o.volumetric_stabilization = stabilization;
+    o.contact = ContactModel::Surface;  // out of reach, as above
+    QuasiStaticSolver solver(
+        mesh, {{test_support::box_surface({-kSide, -kSide, kSide}, {kSide, kSide, 2 * kSide}), {0, 0, -1}}}, o);
+    auto u = displacement_field(solver.nodes(), kSide);
+    for (auto& x : u) x *= 1.5;  // 7.5 %: J_e and the nodal averages differ clearly
+    return solver.linearization(u, 0);
+  };
+  const auto nodal = evaluate(VolumetricFormulation::NodalAverage, 0);
+  const auto element = evaluate(VolumetricFormulation::Element, 0);
+  ASSERT_TRUE(nodal.valid && element.valid);
+  ASSERT_GT(std::abs(element.energy - nodal.energy), 1e-3 * std::abs(nodal.energy)) << "the test needs them apart";
+  for (double beta : {1.0, 2.5, 10.0}) {
+    const double t = beta * lame.mu / lame.lambda;
+    const auto blended = evaluate(VolumetricFormulation::NodalAverage, beta);
+    EXPECT_NEAR(blended.energy, (1 - t) * nodal.energy + t * element.energy, 1e-10 * std::abs(nodal.energy)) << beta;
+    EXPECT_LT((blended.gradient - ((1 - t) * nodal.gradient + t * element.gradient)).norm(),
+              1e-10 * nodal.gradient.norm()) << beta;
+  }
+  const auto full = evaluate(VolumetricFormulation::NodalAverage, 2 * lame.lambda / lame.mu);
+  EXPECT_NEAR(full.energy, element.energy, 1e-12 * std::abs(element.energy));
+  EXPECT_LT((full.gradient - element.gradient).norm(), 1e-12 * element.gradient.norm());
+}
 
 // Uniaxial stress of a graded block to 20 % compression at ν = 0.49 (symmetry planes, rigid plate): with every
 // nodal volume ratio equal to the elements', the plate force is the neo-Hookean closed form and every element

@@ -142,6 +142,10 @@ struct SolverOptions {
   MaterialLaw law = MaterialLaw::StVenantKirchhoff;   // constitutive law
   ElementOrder order = ElementOrder::Linear;          // element order
   VolumetricFormulation volumetric = VolumetricFormulation::Automatic;  // linear tetrahedra near incompressibility
+  double volumetric_stabilization = 1.0;  // >= 0, nodal-averaged volume only: each tetrahedron keeps the bulk term
+                                          // min(λ, this × μ) for itself, the nodes carry the rest (0: Bonet &
+                                          // Burton's pure nodal average, whose elements can collapse at depth;
+                                          // docs/fem_solver.md)
   ContactModel contact = ContactModel::TipNodes;      // needle model
   BoundaryCondition boundary = BoundaryCondition::SidesAndBottomFixed;  // on the mesh's bounding box faces
   double boundary_tolerance = 1e-9;      // m, >= 0: a node is on a box face within this distance (plus 1e-9 of
