@@ -115,6 +115,7 @@ void run_calibrate(const CalibrateArguments& arguments) {
                p.iteration, p.rms_relative, fmt::join(values, ", "), p.model_runs, p.seconds);
     return !interrupt_requested();
   };
+  options.stop_requested = [] { return interrupt_requested(); };  // Ctrl-C inside an FE run, not after it
   const calibration::CalibrationResult result = calibration::calibrate(problem, options);
   if (result.status == calibration::CalibrationStatus::Stopped) throw Interrupted();  // nothing written
 

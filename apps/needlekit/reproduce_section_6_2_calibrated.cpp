@@ -6,6 +6,7 @@
 
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "reproduce_sections.hpp"
 
@@ -26,7 +27,9 @@ void calibrated_phantom(const RunContext& context, SectionReport& report, const 
     context.check_interrupt();
     return true;
   };
+  options.stop_requested = [] { return interrupt_requested(); };  // Ctrl-C inside an FE run, not after it
   const calibration::CalibrationResult result = calibration::calibrate(problem, options);
+  context.check_interrupt();
   const std::string json = context.write("section_6_2/calibration_6_2.json",
                                          io::json_text(calibration::calibration_json(problem, result)));
   report.data_file(json);

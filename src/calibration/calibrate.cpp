@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -32,8 +33,9 @@ struct Point {
 // (Ceres asks for the same point more than once), and the finite-difference Jacobian dr/dx.
 class Evaluator {
 public:
-  Evaluator(const CalibrationProblem& problem, std::vector<ExperimentModel>& models, double relative_step)
-      : problem_(problem), models_(models), step_(relative_step) {
+  Evaluator(const CalibrationProblem& problem, std::vector<ExperimentModel>& models, double relative_step,
+            std::function<bool()> stop_requested)
+      : problem_(problem), models_(models), step_(relative_step), stop_requested_(std::move(stop_requested)) {
     for (const ParameterSpec& p : problem.parameters) {
       scale_.push_back(std::abs(p.initial));
       lower_.push_back(p.lower / std::abs(p.initial));
@@ -55,6 +57,7 @@ public:
   }
   const std::vector<double>& scale() const { return scale_; }
   int model_runs() const { return runs_; }
+  bool stopped() const { return stopped_; }
   int warm_started_steps() const { return warm_started_steps_; }
 
   Point point(const std::vector<double>& x) {
@@ -118,12 +121,13 @@ private:
                  const std::vector<insertion::StepDisplacement>* warm_start = nullptr, bool keep = false) {
     Prediction p;
     try {
-      p = models_[e].predict(values(x), warm_start, keep);
+      p = models_[e].predict(values(x), warm_start, keep, stop_requested_);
     } catch (const InvalidInput& error) {  // e.g. a value the case reader refuses
       p.ok = false;
       p.failure = fmt::format("{}: {}", models_[e].experiment().name, error.what());
     }
     std::lock_guard lock(mutex_);
+    stopped_ = stopped_ || p.stopped;
     runs_ += p.model_runs;
     warm_started_steps_ += p.warm_started_steps;
     return p;
@@ -159,12 +163,14 @@ private:
   std::vector<WarmStart> warm_starts_ = std::vector<WarmStart>(models_.size());
   int warm_started_steps_ = 0;
   double step_;
+  std::function<bool()> stop_requested_;  // CalibrationOptions::stop_requested, passed to every FE run
   std::vector<double> scale_, lower_, upper_;
   std::vector<std::size_t> offset_;
   std::size_t residuals_ = 0;
   std::map<std::vector<double>, Point> cache_;
   std::mutex mutex_;
   int runs_ = 0;
+  bool stopped_ = false;  // an FE run was stopped on request
 };
 
 // All residuals as one Ceres residual block of the scaled parameters.
@@ -275,7 +281,7 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
                                    problem.file.string()));
   }
   const double step = problem.solver.relative_step > 0 ? problem.solver.relative_step : (fe ? 1e-3 : 1e-7);
-  Evaluator evaluator(problem, models, step);
+  Evaluator evaluator(problem, models, step, options.stop_requested);
   const std::size_t n = problem.parameters.size();
   std::vector<double> x(n);
   for (std::size_t j = 0; j < n; ++j) x[j] = problem.parameters[j].initial / evaluator.scale()[j];
@@ -362,10 +368,16 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
   };
 
   // The initial point and its Jacobian: a parameter no experiment depends on is bad input.
+  const auto stopped_in_a_run = [&] {
+    result.status = CalibrationStatus::Stopped;
+    result.reason = fmt::format("stopped on request during an FE run of iteration {}; the best point so far is kept",
+                                std::max(result.iterations, 0));
+  };
   const Point initial = evaluator.point(x);
   if (!initial.ok) {
     result.status = CalibrationStatus::Failed;
     result.reason = fmt::format("the model fails at the initial values: {}", initial.failure);
+    if (evaluator.stopped()) stopped_in_a_run();
     finish(x);
     return result;
   }
@@ -411,6 +423,8 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
     result.status = CalibrationStatus::Stopped;
     result.reason = fmt::format("stopped on request after iteration {}; the best point so far is kept",
                                 result.iterations);
+  } else if (evaluator.stopped()) {
+    stopped_in_a_run();
   }
   finish(x);
   return result;

@@ -141,7 +141,7 @@ std::string ExperimentModel::case_text(const std::vector<double>& values, bool u
 
 Prediction ExperimentModel::predict(const std::vector<double>& values,
                                     const std::vector<insertion::StepDisplacement>* warm_start,
-                                    bool keep_displacements) const {
+                                    bool keep_displacements, const std::function<bool()>& stop_requested) const {
   Prediction prediction;
   const std::string text = case_text(values);
   if (experiment_.kind == ExperimentKind::Design) {
@@ -168,7 +168,20 @@ Prediction ExperimentModel::predict(const std::vector<double>& values,
   insertion::IndentationOptions fe_options;
   fe_options.warm_start = warm_start;
   fe_options.keep_displacements = keep_displacements;
-  insertion::IndentationResult fe = insertion::run_indentation(c, fe_options);
+  struct StopRequested {};  // thrown from the FE's progress (every Newton iteration), caught right here
+  if (stop_requested) {
+    fe_options.progress = [&stop_requested](const insertion::IndentationProgress&) {
+      if (stop_requested()) throw StopRequested{};
+    };
+  }
+  insertion::IndentationResult fe;
+  try {
+    fe = insertion::run_indentation(c, fe_options);
+  } catch (const StopRequested&) {
+    prediction.stopped = true;
+    prediction.failure = fmt::format("{}: stopped on request", experiment_.name);
+    return prediction;
+  }
   prediction.model_runs = 1;
   prediction.warm_started_steps = fe.warm_started_steps;
   if (keep_displacements) {

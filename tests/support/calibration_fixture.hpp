@@ -108,7 +108,8 @@ struct RecoveryOutcome {
 };
 
 // Writes the noisy data (2 % on every force and on the puncture point) and fits E and P_c on a mesh of `fit_size`.
-inline RecoveryOutcome recover(const SyntheticIndentation& s, double fit_size, unsigned seed, double noise = 0.02) {
+inline RecoveryOutcome recover(const SyntheticIndentation& s, double fit_size, unsigned seed, double noise = 0.02,
+                               const calibration::CalibrationOptions& options = {}) {
   std::mt19937 random(seed);
   std::normal_distribution<double> gauss(0.0, noise);
   std::string csv = "depth_um,force_N\n";
@@ -126,7 +127,8 @@ puncture = {{ depth = "{:.9g} um", force = "{:.9g} N" }}
 )",
       punch_parameters(), tag, s.puncture.depth * 1e6 * (1 + gauss(random)), s.puncture.force * (1 + gauss(random)));
   RecoveryOutcome outcome;
-  outcome.result = calibration::calibrate(calibration::read_calibration_file(s.dir / ("fit_" + tag + ".toml")));
+  outcome.result =
+      calibration::calibrate(calibration::read_calibration_file(s.dir / ("fit_" + tag + ".toml")), options);
   const std::array<double, 2> truth{kTrueModulus, kPunchCriticalPressure};
   for (std::size_t j = 0; j < 2 && j < outcome.result.parameters.size(); ++j) {
     const auto& p = outcome.result.parameters[j];

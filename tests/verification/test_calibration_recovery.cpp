@@ -4,6 +4,8 @@
 // wide. The coverage over 20 noise seeds is the benchmark BM_CalibrationCoverage (BENCHMARKS.md, "Calibration").
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include "../support/calibration_fixture.hpp"
 
 namespace needlekit {
@@ -41,6 +43,24 @@ TEST(CalibrationRecovery, IntervalsHoldTheMeshErrorWithoutNoise) {
   EXPECT_TRUE(outcome.covered[1]) << "P_c " << outcome.error[1];
   EXPECT_GT(modulus.discretisation_error / modulus.value, 0.5 * std::abs(outcome.error[0]));
   EXPECT_LT(modulus.discretisation_error / modulus.value, 10 * std::abs(outcome.error[0]));
+}
+
+// A stop request (Ctrl-C in the CLI) ends the FE run it finds at its next Newton iteration, and the fit with it:
+// status Stopped, the initial values kept, after one FE run instead of tens, with no exception left to the caller.
+TEST(CalibrationRecovery, AStopRequestEndsTheRunningFeRunAndTheFit) {
+  const test::SyntheticIndentation synthetic = test::synthetic_indentation("calibration_stop", 30e-6, 7);
+  calibration::CalibrationOptions options;
+  std::atomic<int> polls{0};
+  options.stop_requested = [&] { return ++polls > 3; };  // during the first load step of the first FE run
+  int progress_calls = 0;
+  options.progress = [&](const calibration::CalibrationProgress&) { return ++progress_calls > 0; };
+  const test::RecoveryOutcome outcome = test::recover(synthetic, 36e-6, 11, 0.02, options);
+  EXPECT_EQ(outcome.result.status, calibration::CalibrationStatus::Stopped) << outcome.result.reason;
+  EXPECT_NE(outcome.result.reason.find("stopped on request during an FE run"), std::string::npos) << outcome.result.reason;
+  EXPECT_EQ(progress_calls, 0);  // stopped before the solver's first iteration
+  EXPECT_LE(outcome.result.model_runs, 3);  // the initial run; the weight-0 and after-fit runs stop at once
+  ASSERT_EQ(outcome.result.parameters.size(), 2u);
+  EXPECT_DOUBLE_EQ(outcome.result.parameters[0].value, 0.3e6);  // the initial values
 }
 
 }  // namespace

@@ -39,6 +39,10 @@ struct CalibrationProgress {
 struct CalibrationOptions {
   // After every solver iteration (calling thread); returning false stops the fit there (status Stopped).
   std::function<bool(const CalibrationProgress&)> progress;
+  // Polled inside the FE runs, at every Newton iteration (from any thread; must be thread-safe): true stops the
+  // run at once and the fit after it (status Stopped; the best point so far is kept). The CLI's Ctrl-C, which
+  // would otherwise wait for the end of a solver iteration: several FE runs.
+  std::function<bool()> stop_requested;
 };
 
 struct FittedParameter {

@@ -6,6 +6,7 @@
 // every run, and Gmsh, which is not thread-safe, runs only here) and the post-puncture loads of the needle.
 // predict() is const and thread-safe: several runs may go at once.
 #pragma once
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,6 +30,7 @@ struct Prediction {
   int model_runs = 0;                                 // FE runs (0 for design files)
   int elements = 0;                                   // tetrahedra of the FE mesh (0 for design files)
   int warm_started_steps = 0;                         // FE load steps that started from a warm start
+  bool stopped = false;                               // the FE run was stopped on request (not ok)
   // The FE run's displacement field per load step, when asked: the warm start of the finite-difference runs around
   // this point.
   std::shared_ptr<const std::vector<insertion::StepDisplacement>> displacements;
@@ -55,10 +57,11 @@ public:
   std::string case_text(const std::vector<double>& values, bool user_units = false, int significant_digits = 17) const;
 
   // `warm_start`: the displacements of an earlier prediction of this experiment (FE cases: its load steps start
-  // from them); `keep_displacements`: return this run's in Prediction::displacements.
+  // from them); `keep_displacements`: return this run's in Prediction::displacements; `stop_requested`: polled at
+  // every Newton iteration of the FE run, true stops it (Prediction::stopped).
   Prediction predict(const std::vector<double>& values,
                      const std::vector<insertion::StepDisplacement>* warm_start = nullptr,
-                     bool keep_displacements = false) const;
+                     bool keep_displacements = false, const std::function<bool()>& stop_requested = {}) const;
 
   // Weighted relative residuals: for each measured curve sample (F_model(d_i) − F_i)/max(|F_i|, 0.05·max|F|), then
   // (d_model − d)/d and (F_model − F)/F of the puncture point. No model puncture: the model's last sample stands in.
