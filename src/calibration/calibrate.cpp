@@ -375,9 +375,12 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
   };
   const Point initial = evaluator.point(x);
   if (!initial.ok) {
-    result.status = CalibrationStatus::Failed;
-    result.reason = fmt::format("the model fails at the initial values: {}", initial.failure);
-    if (evaluator.stopped()) stopped_in_a_run();
+    if (evaluator.stopped()) {
+      stopped_in_a_run();
+    } else {
+      result.status = CalibrationStatus::Failed;
+      result.reason = fmt::format("the model fails at the initial values: {}", initial.failure);
+    }
     finish(x);
     return result;
   }

@@ -305,13 +305,11 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   check(!m.dofs.free_dofs.empty(), "tissue mesh: every degree of freedom is constrained");
 
   // Linear tetrahedra near incompressibility: the volumetric term on nodal-averaged volume ratios.
-  if (o.order == ElementOrder::Linear && o.law == MaterialLaw::NeoHookean &&
-      o.volumetric != VolumetricFormulation::Element) {
+  if (nodal_average_possible(o)) {
     std::vector<char> treated(mesh.tets.size(), 0);
     bool any = false;
     for (size_t e = 0; e < mesh.tets.size(); ++e) {
-      treated[e] = o.volumetric == VolumetricFormulation::NodalAverage ||
-                   mesh.layers[mesh.tet_layer[e]].poisson_ratio >= kNearlyIncompressible;
+      treated[e] = nodal_average_applies(o, mesh.layers[mesh.tet_layer[e]].poisson_ratio);
       any = any || treated[e];
     }
     if (any) m.nodal = std::make_unique<detail::NodalVolumeAverage>(m.space, treated, o.volumetric_stabilization);

@@ -52,6 +52,16 @@ void check(bool ok, const char* field, T value, const char* expected) {
 }
 }  // namespace
 
+bool nodal_average_possible(const SolverOptions& o) {
+  return o.law == MaterialLaw::NeoHookean && o.order == ElementOrder::Linear &&
+         o.volumetric != VolumetricFormulation::Element;
+}
+
+bool nodal_average_applies(const SolverOptions& o, double poisson_ratio) {
+  return nodal_average_possible(o) &&
+         (o.volumetric == VolumetricFormulation::NodalAverage || poisson_ratio >= kNearlyIncompressible);
+}
+
 void SolverOptions::validate() const {
   check(residual_tolerance > 0 && residual_tolerance < 1, "residual_tolerance", residual_tolerance, "(0, 1)");
   check(displacement_tolerance > 0 && displacement_tolerance < 1, "displacement_tolerance", displacement_tolerance,

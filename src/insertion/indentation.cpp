@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
 
 namespace needlekit::insertion {
@@ -178,6 +179,14 @@ void validate(const IndentationCase& c) {
 double effective_edge_radius(const IndentationCase& c) {
   if (!c.geometry || c.solver.contact != fem::ContactModel::Surface) return 0.0;
   return c.edge_radius.value_or(needle::default_edge_radius(*c.geometry));
+}
+
+bool uses_nodal_average(const IndentationCase& c) {
+  // The mesher's layers: a given mesh's, else the block's (none: the default skin, as layered_block_mesh takes it).
+  const std::vector<mesh::TissueLayer> layers =
+      c.tissue_mesh ? c.tissue_mesh->layers : c.block.layers.empty() ? materials::skin_layers() : c.block.layers;
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const mesh::TissueLayer& l) { return fem::nodal_average_applies(c.solver, l.poisson_ratio); });
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {

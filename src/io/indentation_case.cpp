@@ -1,5 +1,4 @@
 #include "needlekit/io/indentation_case.hpp"
-#include <algorithm>
 
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
@@ -153,8 +152,9 @@ void read_model(const Section& section, fem::SolverOptions& solver) {
 }
 
 // [solver]: Newton tolerances and strategy (fem::SolverOptions; defaults and meanings in quasi_static_solver.hpp).
-// `layers`: the tissue's, to tell whether the nodal-averaged volume applies to any of them.
-void read_solver(const Section& section, fem::SolverOptions& solver, const std::vector<mesh::TissueLayer>& layers) {
+// Into c.solver; c's tissue tells whether the nodal-averaged volume applies to any of its layers.
+void read_solver(const Section& section, insertion::IndentationCase& c) {
+  fem::SolverOptions& solver = c.solver;
   for (const auto& parameter : kSolverTolerances) {  // declared once in indentation_case.hpp
     if (const toml::node* node = section.optional(parameter.key)) {
       if (!node->is_number()) {
@@ -189,16 +189,12 @@ void read_solver(const Section& section, fem::SolverOptions& solver, const std::
     solver.volumetric = choice_of(section, *node, "volumetric", fem::kVolumetricFormulationNames);
   }
   if (const toml::node* node = section.optional("volumetric_stabilization")) {  // not silently ignored either
-    if (solver.law != fem::MaterialLaw::NeoHookean || solver.order != fem::ElementOrder::Linear ||
-        solver.volumetric == fem::VolumetricFormulation::Element) {
+    if (!fem::nodal_average_possible(solver)) {
       section.fail(*node, "volumetric_stabilization",
                    "applies only to the nodal-averaged volume (law = \"neo-hookean\", element = \"linear\", "
                    "volumetric = \"auto\" or \"nodal-average\"); remove it");
     }
-    const bool nearly_incompressible = std::any_of(layers.begin(), layers.end(), [](const mesh::TissueLayer& l) {
-      return l.poisson_ratio >= fem::kNearlyIncompressible;
-    });
-    if (solver.volumetric == fem::VolumetricFormulation::Automatic && !nearly_incompressible) {
+    if (!insertion::uses_nodal_average(c)) {  // volumetric = "auto" and every layer below kNearlyIncompressible
       section.fail(*node, "volumetric_stabilization",
                    fmt::format("applies only to the nodal-averaged volume, which volumetric = \"auto\" gives layers "
                                "with poisson_ratio >= {} and no layer has one; remove it",
@@ -305,8 +301,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric"};
     for (const auto& parameter : kSolverTolerances) keys.push_back(parameter.key);
     for (const auto& parameter : kSolverCounts) keys.push_back(parameter.key);
-    read_solver(top.subsection(*node, "solver", keys), result.solver,
-                result.tissue_mesh ? result.tissue_mesh->layers : result.block.layers);
+    read_solver(top.subsection(*node, "solver", keys), result);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
     result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);

@@ -126,17 +126,9 @@ nlohmann::json fe_models_json(const insertion::IndentationCase& c) {
 std::string fe_models_text(const insertion::IndentationCase& c) {
   const fem::SolverOptions& solver = c.solver;
   const double edge_radius = insertion::effective_edge_radius(c);
-  const std::vector<mesh::TissueLayer>& layers = c.tissue_mesh ? c.tissue_mesh->layers : c.block.layers;
-  const bool nearly_incompressible = std::any_of(layers.begin(), layers.end(), [](const mesh::TissueLayer& l) {
-    return l.poisson_ratio >= fem::kNearlyIncompressible;
-  });
-  const bool nodal_average_possible =
-      solver.law == fem::MaterialLaw::NeoHookean && solver.order == fem::ElementOrder::Linear &&
-      (solver.volumetric == fem::VolumetricFormulation::NodalAverage ||
-       (solver.volumetric == fem::VolumetricFormulation::Automatic && nearly_incompressible));
   return fmt::format("{} law, {} tetrahedra, {} volume{}, {} contact{}, {} boundary", fem::to_string(solver.law),
                      fem::to_string(solver.order), fem::to_string(solver.volumetric),
-                     nodal_average_possible
+                     insertion::uses_nodal_average(c)
                          ? fmt::format(" (nodal average stabilised by {:g} x shear modulus)", solver.volumetric_stabilization)
                          : "",
                      fem::to_string(solver.contact),

@@ -196,6 +196,13 @@ struct SolverOptions {
   void validate() const;
 };
 
+// Whether the nodal-averaged volume can act under these options at all: the neo-Hookean law on linear tetrahedra,
+// volumetric not "element".
+bool nodal_average_possible(const SolverOptions& options);
+// Whether it treats the tetrahedra of a layer with this Poisson's ratio (volumetric = "nodal-average": every
+// layer; "auto": from kNearlyIncompressible on). The solver, the case reader and the models line ask this.
+bool nodal_average_applies(const SolverOptions& options, double poisson_ratio);
+
 // One Newton iteration.
 struct IterationRecord {
   double residual_norm = 0;      // N, free-dof residual before the update

@@ -65,6 +65,9 @@ double tissue_height(const IndentationCase& indentation_case);
 // default.
 double effective_edge_radius(const IndentationCase& indentation_case);
 
+// Whether the FE averages the volume at the nodes in some layer of the case's tissue (fem::nodal_average_applies).
+bool uses_nodal_average(const IndentationCase& indentation_case);
+
 // The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them
 // (with rounded edges, each needle's eroded core and its edge radius).
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& indentation_case);
