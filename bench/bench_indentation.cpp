@@ -2,9 +2,11 @@
 // 160 um / DM, 100 MPa / 0.134 MPa / 0.08 MPa, nu = 0.4) indented by a 230 um flat cylinder, 20 load steps to
 // 200 um, linear tetrahedra, neo-Hookean, the dissertation's tip-node contact. The argument is the target number of
 // tetrahedra in thousands (100, 300, 1000).
-// BM_SkinIndentation meshes at the sizes directly (CHOLMOD, CG on reused factorizations); BM_SkinIndentationSplit
-// meshes at twice the sizes and splits every tet into eight (the two-grid solver; factorizations then counts the
-// coarse operator's). Run one size per process (peak RSS):
+// BM_SkinIndentation meshes at the sizes directly and solves as "auto" does (from 50k tetrahedra the two-grid solver
+// on the block meshed again at twice the sizes; factorizations then counts the coarse operator's);
+// BM_SkinIndentationCholeskyCg is the same with CHOLMOD and CG on reused factorizations; BM_SkinIndentationSplit
+// meshes at twice the sizes and splits every tet into eight (the two-grid solver on the nested coarse level). The
+// label names the linear solver. Run one size per process (peak RSS):
 //   build/bin/needlekit_bench --benchmark_filter='BM_SkinIndentationSplit/300/'
 // Meshing alone is BM_SkinBlockMesh (bench_tissue_mesh.cpp). Counters: tets, dofs, steps_done, mesh_s, setup_s,
 // newton_iterations, factorizations, cg_iterations, assembly_s_per_iteration, solve_s_per_iteration, total_s,
@@ -63,7 +65,8 @@ double process_cpu_seconds() {
 
 void skin_indentation(benchmark::State& state, const mesh::LayeredBlockOptions& block,
                       fem::VolumetricFormulation volumetric = fem::VolumetricFormulation::Automatic,
-                      double depth = 200e-6, int steps = 20) {
+                      double depth = 200e-6, int steps = 20,
+                      fem::LinearSolver linear_solver = fem::LinearSolver::Automatic) {
   insertion::IndentationCase c;
   c.name = "bench";
   const needle::NeedleGeometry cylinder{needle::Shape::Cylinder, 230e-6, 230e-6, 0, 1000e-6};
@@ -76,6 +79,7 @@ void skin_indentation(benchmark::State& state, const mesh::LayeredBlockOptions& 
   c.solver.contact = fem::ContactModel::TipNodes;
   c.solver.order = fem::ElementOrder::Linear;
   c.solver.volumetric = volumetric;
+  c.solver.linear_solver = linear_solver;
   insertion::IndentationResult result;
   const double cpu_start = process_cpu_seconds();
   for (auto _ : state) {
@@ -105,11 +109,16 @@ void skin_indentation(benchmark::State& state, const mesh::LayeredBlockOptions& 
   state.counters["force_N"] = result.steps.empty() ? 0.0 : result.steps.back().force;
   state.counters["peak_rss_GB"] = peak_rss_gigabytes();
   state.counters["cpu_s"] = process_cpu_seconds() - cpu_start;
+  state.SetLabel(std::string(name_of(fem::kLinearSolverNames, result.linear_solver)));
   if (result.status == insertion::IndentationStatus::SolverFailed) state.SkipWithError(result.reason.c_str());
 }
 
 void BM_SkinIndentation(benchmark::State& state) {
   skin_indentation(state, skin_block(static_cast<double>(state.range(0))));
+}
+void BM_SkinIndentationCholeskyCg(benchmark::State& state) {
+  skin_indentation(state, skin_block(static_cast<double>(state.range(0))), fem::VolumetricFormulation::Automatic,
+                   200e-6, 20, fem::LinearSolver::CholeskyCg);
 }
 void BM_SkinIndentationSplit(benchmark::State& state) {
   skin_indentation(state, split_skin_block(static_cast<double>(state.range(0))));
@@ -128,5 +137,6 @@ void BM_PhantomFlatPunch(benchmark::State& state) {
 BENCHMARK(BM_PhantomFlatPunch)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_SkinIndentationSplit)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_SkinIndentation)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_SkinIndentationCholeskyCg)->Arg(100)->Arg(300)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace

@@ -112,7 +112,7 @@ std::string indentation_case_help() {
                youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
   [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
                (one needle per site without [[needles]]), split = true (mesh at twice the sizes and split every tet
-               into eight: the two-grid solver, for large meshes), or file = "tissue.msh" + unit (layers = physical
+               into eight: the two-grid solver's coarse level; without it, large blocks are meshed twice), or file = "tissue.msh" + unit (layers = physical
                groups)
   [loading]    depth = "200 um" (required), steps = 20, continue_after_puncture = false
   [model]      law = {} (default neo-hookean), contact = {} (default surface),

@@ -102,8 +102,8 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
   if (nn == 10) {  // one mid-edge node per edge, numbered in the order of the sorted edge keys
     fs.corners.nodes = n0;
     fs.corners.tets = mesh.tets;
-    fs.corners.node_parents.resize(static_cast<size_t>(n0));
-    for (int a = 0; a < n0; ++a) fs.corners.node_parents[static_cast<size_t>(a)] = {a, a};
+    fs.corners.interpolation.resize(static_cast<size_t>(n0));
+    for (int a = 0; a < n0; ++a) fs.corners.interpolation[static_cast<size_t>(a)] = mesh::NodeInterpolation::at_node(a);
     std::vector<std::pair<int64_t, int>> edge_keys;  // (key, tet*6+k)
     edge_keys.reserve(ne * 6);
     for (size_t e = 0; e < ne; ++e)
@@ -121,7 +121,7 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
         prev = key;
         const int a = static_cast<int>(key / n0), b = static_cast<int>(key % n0);
         fs.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
-        fs.corners.node_parents.push_back({a, b});
+        fs.corners.interpolation.push_back(mesh::NodeInterpolation::edge_midpoint(a, b));
       }
       fs.connectivity[static_cast<size_t>(slot / 6) * 10 + 4 + slot % 6] = id;
     }

@@ -9,7 +9,7 @@
 #include "needlekit/fem/hyperelastic_law.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
-#include "needlekit/mesh/uniform_refinement.hpp"
+#include "needlekit/mesh/coarse_level.hpp"
 
 namespace needlekit::fem::detail {
 

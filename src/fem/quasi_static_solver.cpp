@@ -245,15 +245,18 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   o.validate();
   check(o.linear_solver != LinearSolver::TwoGrid || coarse || o.order == ElementOrder::Quadratic,
         "solver linear_solver = \"two-grid\" needs a coarse level for linear elements: a mesh split from a coarser "
-        "one (mesh::refine_uniformly; [mesh] split = true in a case file)");
+        "one (mesh::refine_uniformly; [mesh] split = true in a case file) or the body meshed again at twice the sizes "
+        "(mesh::interpolating_coarse_level; a case file's block gets one)");
   if (coarse && o.order == ElementOrder::Linear) {
-    check(coarse->node_parents.size() == mesh.nodes.size(),
-          "coarse level: " + str(coarse->node_parents.size()) + " node parents for " + str(mesh.nodes.size()) +
+    check(coarse->interpolation.size() == mesh.nodes.size(),
+          "coarse level: " + str(coarse->interpolation.size()) + " interpolated nodes for " + str(mesh.nodes.size()) +
               " nodes");
-    for (const auto& parents : coarse->node_parents)
-      for (int a : parents)
-        if (a < 0 || a >= coarse->nodes)
+    for (const mesh::NodeInterpolation& parents : coarse->interpolation)
+      for (int k = 0; k < 4; ++k) {
+        const int a = parents.nodes[static_cast<size_t>(k)];
+        if (a < -1 || a >= coarse->nodes || (a == -1 && parents.weights[static_cast<size_t>(k)] != 0))
           throw InvalidInput("coarse level: parent node " + str(a) + " outside [0, " + str(coarse->nodes) + ")");
+      }
   }
   m.arena.initialize(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
 

@@ -64,7 +64,7 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
   });
   const int64_t free_count = static_cast<int64_t>(pattern_.column_pointers.size()) - 1;
   if (solver_ == LinearSolver::TwoGrid) {
-    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_);
+    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_, conn, nn);
   } else if (solver_ == LinearSolver::CholeskyCg && group_pointers) {
     pre_pattern_ = upper_pattern(conn, nn, node_count, free_index);
     pre_values_.assign(pre_pattern_.row_indices.size(), 0.0);

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "needlekit/fem/quasi_static_solver.hpp"
-#include "needlekit/mesh/uniform_refinement.hpp"
+#include "needlekit/mesh/coarse_level.hpp"
 #include "sparse_cholesky.hpp"
 #include "sparse_pattern.hpp"
 #include "two_grid_preconditioner.hpp"

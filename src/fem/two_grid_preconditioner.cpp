@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "sparse_cholesky.hpp"
@@ -9,35 +10,60 @@
 namespace needlekit::fem::detail {
 
 TwoGridPreconditioner::TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index,
-                                             const UpperPattern& fine, int chebyshev_degree)
+                                             const UpperPattern& fine, const std::vector<int>& connectivity,
+                                             int nodes_per_element, int chebyshev_degree)
     : fine_(fine), degree_(chebyshev_degree) {
-  // Coarse free dofs: coarse node a is fine node a, component i is free when the fine dof is.
-  std::vector<int> coarse_free(static_cast<size_t>(3 * coarse.nodes), -1);
+  // A coarse dof is kept when most of its interpolation weight goes to free fine dofs: one on a fixed face or under
+  // a needle's tip nodes gives most of it to constrained fine dofs and is left out (as the fine dof of the same node
+  // is in a nested level), which also keeps A_c regular where a coarse node reaches a single free fine dof.
+  // Numbered in coarse dof order.
+  std::vector<double> free_weight(static_cast<size_t>(3 * coarse.nodes), 0.0), all_weight(free_weight);
+  for (size_t dof = 0; dof < free_index.size(); ++dof) {
+    const mesh::NodeInterpolation& parents = coarse.interpolation[dof / 3];
+    for (size_t k = 0; k < 4; ++k) {
+      if (parents.weights[k] == 0) continue;
+      const size_t coarse_dof = static_cast<size_t>(3 * parents.nodes[k]) + dof % 3;
+      all_weight[coarse_dof] += parents.weights[k];
+      if (free_index[dof] >= 0) free_weight[coarse_dof] += parents.weights[k];
+    }
+  }
+  std::vector<int> coarse_free(free_weight.size(), -1);
   int coarse_count = 0;
   for (size_t dof = 0; dof < coarse_free.size(); ++dof)
-    if (free_index[dof] >= 0) coarse_free[dof] = coarse_count++;
+    if (free_weight[dof] > 0.5 * all_weight[dof]) coarse_free[dof] = coarse_count++;
   const size_t fine_free = fine.column_pointers.size() - 1;
   interpolation_.resize(fine_free);
   for (size_t dof = 0; dof < free_index.size(); ++dof) {
     const int f = free_index[dof];
     if (f < 0) continue;
-    const auto& parents = coarse.node_parents[dof / 3];
-    const int component = static_cast<int>(dof % 3);
+    const mesh::NodeInterpolation& parents = coarse.interpolation[dof / 3];
     Interpolation& row = interpolation_[static_cast<size_t>(f)];
-    if (parents[0] == parents[1]) {
-      row.coarse[0] = coarse_free[static_cast<size_t>(3 * parents[0] + component)];
-      row.weight[0] = 1;
-    } else {
-      for (int k = 0; k < 2; ++k) {  // a constrained parent contributes zero: its column is simply absent
-        row.coarse[k] = coarse_free[static_cast<size_t>(3 * parents[k] + component)];
-        row.weight[k] = 0.5;
+    for (size_t k = 0; k < 4; ++k)
+      if (parents.weights[k] != 0) {
+        row.coarse[k] = coarse_free[static_cast<size_t>(3 * parents.nodes[k]) + dof % 3];
+        row.weight[k] = parents.weights[k];
       }
-    }
   }
-  std::vector<int> connectivity;
-  connectivity.reserve(coarse.tets.size() * 4);
-  for (const auto& t : coarse.tets) connectivity.insert(connectivity.end(), t.begin(), t.end());
-  coarse_pattern_ = upper_pattern(connectivity, 4, coarse.nodes, coarse_free);
+  // A_c = P^T K P couples the coarse nodes that interpolate the nodes of one fine element: one group per element.
+  std::vector<int> group_pointers{0}, group_nodes;
+  const size_t elements = connectivity.size() / static_cast<size_t>(nodes_per_element);
+  group_pointers.reserve(elements + 1);
+  group_nodes.reserve(elements * 6);
+  std::vector<int> group;
+  for (size_t e = 0; e < elements; ++e) {
+    group.clear();
+    for (int a = 0; a < nodes_per_element; ++a) {
+      const mesh::NodeInterpolation& parents =
+          coarse.interpolation[static_cast<size_t>(connectivity[e * static_cast<size_t>(nodes_per_element) + a])];
+      for (size_t k = 0; k < 4; ++k)
+        if (parents.weights[k] != 0) group.push_back(parents.nodes[k]);
+    }
+    std::sort(group.begin(), group.end());
+    group.erase(std::unique(group.begin(), group.end()), group.end());
+    group_nodes.insert(group_nodes.end(), group.begin(), group.end());
+    group_pointers.push_back(static_cast<int>(group_nodes.size()));
+  }
+  coarse_pattern_ = upper_pattern({}, 4, coarse.nodes, coarse_free, &group_pointers, &group_nodes);
   coarse_values_.assign(coarse_pattern_.row_indices.size(), 0.0);
   coarse_cholesky_ = std::make_unique<SparseCholesky>(static_cast<int64_t>(coarse_count),
                                                       coarse_pattern_.column_pointers, coarse_pattern_.row_indices);
@@ -68,8 +94,8 @@ bool TwoGridPreconditioner::update(const std::vector<double>& values, const Mult
         const int64_t r = fine_.row_indices[static_cast<size_t>(k)];
         const Interpolation& pr = interpolation_[static_cast<size_t>(r)];
         const double v = values[static_cast<size_t>(k)];
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) {
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b) {
             const double w = pr.weight[a] * pc.weight[b] * v;
             if (w == 0) continue;
             add(pr.coarse[a], pc.coarse[b], w);
@@ -131,13 +157,13 @@ void TwoGridPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z, 
   std::vector<double> coarse_rhs(static_cast<size_t>(coarse_dofs()), 0.0);
   for (int64_t f = 0; f < n; ++f) {
     const Interpolation& p = interpolation_[static_cast<size_t>(f)];
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 4; ++k)
       if (p.coarse[k] >= 0) coarse_rhs[static_cast<size_t>(p.coarse[k])] += p.weight[k] * residual_[f];
   }
   const std::vector<double> coarse_solution = coarse_cholesky_->solve(coarse_rhs);
   for (int64_t f = 0; f < n; ++f) {
     const Interpolation& p = interpolation_[static_cast<size_t>(f)];
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 4; ++k)
       if (p.coarse[k] >= 0) z[f] += p.weight[k] * coarse_solution[static_cast<size_t>(p.coarse[k])];
   }
   // Post-smoothing.

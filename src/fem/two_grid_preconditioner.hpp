@@ -1,11 +1,14 @@
 // Internal: a two-grid preconditioner for the free-dof stiffness K of a mesh with a coarse level
-// (mesh::CoarseLevel: a split mesh's parent, or the corner nodes of quadratic tetrahedra).
+// (mesh::CoarseLevel: a split mesh's parent, the corner nodes of quadratic tetrahedra, or the body meshed again at
+// twice the sizes).
 //
 //   B r = S r + (I - S K) P A_c^-1 P^T (I - K S) r     (symmetric V(1,1) cycle; Trottenberg et al., Multigrid, §2.4)
 //
-// P interpolates coarse displacements linearly (weight 1 at a coarse node, 1/2 and 1/2 at an edge midpoint), the
-// coarse operator is Galerkin's A_c = P^T K P (exact for the coarse level whatever the material jumps or
-// constraints of the fine one), factorized by CHOLMOD, and the smoother S is a Chebyshev polynomial in D^-1 K
+// P interpolates coarse displacements linearly (the coarse level's weights: 1 at a coarse node, 1/2 and 1/2 at an
+// edge midpoint, barycentric coordinates in a non-nested coarse mesh), the coarse operator is Galerkin's
+// A_c = P^T K P (exact for the coarse level whatever the material jumps or constraints of the fine one, and for
+// non-nested meshes the usual choice: Chan, Smith & Zou 1996, "Overlapping Schwarz methods on unstructured meshes
+// using non-matching coarse grids", Numer Math 73), factorized by CHOLMOD, and the smoother S is a Chebyshev polynomial in D^-1 K
 // (D = diag K) on [lambda_max / 10, 1.1 lambda_max] (Adams, Brezina, Hu, Tuminaro 2003, "Parallel multigrid
 // smoothing: polynomial versus Gauss-Seidel", J Comput Phys 188), threaded through K's product alone.
 //
@@ -19,7 +22,7 @@
 #include <memory>
 #include <vector>
 
-#include "needlekit/mesh/uniform_refinement.hpp"
+#include "needlekit/mesh/coarse_level.hpp"
 #include "sparse_pattern.hpp"
 
 namespace needlekit::fem::detail {
@@ -30,10 +33,12 @@ class TwoGridPreconditioner {
 public:
   using Multiply = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;  // y = K x
 
-  // `fine`: the pattern of K over the fine free dofs; `free_index`: per fine dof its free index or -1. A coarse dof
-  // is free when the fine dof of the same node and component is.
+  // `fine`: the pattern of K over the fine free dofs; `free_index`: per fine dof its free index or -1;
+  // `connectivity`: the fine elements' nodes, nodes_per_element each. A coarse dof is kept when more than half of
+  // its interpolation weight goes to free fine dofs; A_c's pattern couples the coarse nodes interpolated by one fine
+  // element.
   TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index, const UpperPattern& fine,
-                        int chebyshev_degree = 4);
+                        const std::vector<int>& connectivity, int nodes_per_element, int chebyshev_degree = 4);
   ~TwoGridPreconditioner();
   TwoGridPreconditioner(const TwoGridPreconditioner&) = delete;
   TwoGridPreconditioner& operator=(const TwoGridPreconditioner&) = delete;
@@ -56,8 +61,8 @@ private:
   void smooth(const Eigen::VectorXd& r, Eigen::VectorXd& x, const Multiply& multiply);
 
   struct Interpolation {  // one fine free dof: its coarse free dofs (-1: none) and weights
-    std::array<int, 2> coarse{-1, -1};
-    std::array<double, 2> weight{0, 0};
+    std::array<int, 4> coarse{-1, -1, -1, -1};
+    std::array<double, 4> weight{0, 0, 0, 0};
   };
   std::vector<Interpolation> interpolation_;  // per fine free dof
   const UpperPattern& fine_;

@@ -9,6 +9,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/tet_count_estimate.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
 
 namespace needlekit::insertion {
@@ -167,9 +168,16 @@ void validate(const IndentationCase& c) {
     }
   }
   if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
-      (c.tissue_mesh || !c.block.split)) {
-    throw InvalidInput("solver.linear_solver: \"two-grid\" with linear elements needs a split block mesh, expected "
-                       "[mesh] split = true (or quadratic elements, or another linear_solver)");
+      c.tissue_mesh) {
+    throw InvalidInput("solver.linear_solver: \"two-grid\" with linear elements needs a block meshed here (its coarse "
+                       "level is the block meshed at twice the sizes), not a tissue mesh file; expected another "
+                       "linear_solver, or quadratic elements");
+  }
+  if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
+      uses_nodal_average(c)) {
+    throw InvalidInput("solver.linear_solver: \"two-grid\": the nodal-averaged volume of the nearly incompressible "
+                       "layers (poisson_ratio >= 0.45) couples each node's patch, which the two-grid cycle does not "
+                       "hold; expected \"auto\", \"cholesky-cg\" or \"cholesky\", or volumetric = \"element\"");
   }
   if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
   c.solver.validate();
@@ -187,6 +195,16 @@ bool uses_nodal_average(const IndentationCase& c) {
       c.tissue_mesh ? c.tissue_mesh->layers : c.block.layers.empty() ? materials::skin_layers() : c.block.layers;
   return std::any_of(layers.begin(), layers.end(),
                      [&](const mesh::TissueLayer& l) { return fem::nodal_average_applies(c.solver, l.poisson_ratio); });
+}
+
+bool meshes_coarse_level(const IndentationCase& c) {
+  if (c.tissue_mesh || c.solver.order != fem::ElementOrder::Linear || uses_nodal_average(c)) return false;
+  if (c.solver.linear_solver == fem::LinearSolver::TwoGrid) return true;
+  if (c.solver.linear_solver != fem::LinearSolver::Automatic) return false;
+  mesh::LayeredBlockOptions block = c.block;
+  block.insertion_sites.clear();
+  for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
+  return mesh::estimated_tetrahedra(block) >= kTwoGridMinimumTetrahedra;
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
@@ -245,7 +263,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   };
 
   mesh::TetMesh tissue;
-  std::optional<mesh::CoarseLevel> coarse;  // a split block's coarse level (the two-grid solver)
+  std::optional<mesh::CoarseLevel> coarse;  // the block's coarse level, if meshed with one (the two-grid solver)
   if (c.tissue_mesh) {
     tissue = *c.tissue_mesh;
   } else {
@@ -253,6 +271,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     mesh::LayeredBlockOptions block = c.block;
     block.insertion_sites.clear();
     for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
+    block.coarse_level = meshes_coarse_level(c);
     const Clock::time_point mesh_start = Clock::now();
     mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
     tissue = std::move(meshed.mesh);

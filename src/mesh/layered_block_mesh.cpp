@@ -11,6 +11,7 @@
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/mesh/mesh_validation.hpp"
 #include "needlekit/mesh/tet_count_estimate.hpp"
+#include "needlekit/mesh/uniform_refinement.hpp"
 
 namespace needlekit::mesh {
 namespace {
@@ -119,17 +120,18 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
   }
   const auto start = std::chrono::steady_clock::now();
   LayeredBlockResult result;
+  LayeredBlockOptions coarse = options;  // twice the sizes: the split's parent, or the coarse level's own mesh
+  coarse.size_at_site *= 2;
+  coarse.size_far *= 2;
+  coarse.size_gradient *= 2;  // the same grading distances
+  coarse.thin_layer_size_factor *= 2;
   if (options.split) {
-    LayeredBlockOptions coarse = options;
-    coarse.size_at_site *= 2;
-    coarse.size_far *= 2;
-    coarse.size_gradient *= 2;  // the same grading distances
-    coarse.thin_layer_size_factor *= 2;
     UniformRefinement refined = refine_uniformly(gmsh_block(coarse, layers));
     result.mesh = std::move(refined.mesh);
     result.coarse = std::move(refined.coarse);
   } else {
     result.mesh = gmsh_block(options, layers);
+    if (options.coarse_level) result.coarse = interpolating_coarse_level(result.mesh, gmsh_block(coarse, layers));
   }
   result.quality = layer_quality(result.mesh);
   result.mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

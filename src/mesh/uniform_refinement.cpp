@@ -16,9 +16,9 @@ UniformRefinement refine_uniformly(const TetMesh& coarse) {
   fine.nodes = coarse.nodes;
   out.coarse.nodes = nc;
   out.coarse.tets = coarse.tets;
-  auto& parents = out.coarse.node_parents;
+  auto& parents = out.coarse.interpolation;
   parents.resize(static_cast<size_t>(nc));
-  for (int a = 0; a < nc; ++a) parents[static_cast<size_t>(a)] = {a, a};
+  for (int a = 0; a < nc; ++a) parents[static_cast<size_t>(a)] = NodeInterpolation::at_node(a);
 
   // Edge numbering by sorting (key = smaller node * nc + larger node): deterministic, no hash map.
   static constexpr std::array<std::array<int, 2>, 6> kEdges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
@@ -38,7 +38,7 @@ UniformRefinement refine_uniformly(const TetMesh& coarse) {
       previous = key;
       const int a = static_cast<int>(key / nc), b = static_cast<int>(key % nc);
       fine.nodes.push_back(0.5 * (coarse.nodes[a] + coarse.nodes[b]));
-      parents.push_back({a, b});
+      parents.push_back(NodeInterpolation::edge_midpoint(a, b));
     }
     midpoint[static_cast<size_t>(slot)] = static_cast<int>(fine.nodes.size()) - 1;
   }

@@ -10,6 +10,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/mesh/tet_count_estimate.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
 #include "../support/test_text.hpp"
@@ -166,6 +167,31 @@ TEST(IndentationCase, VolumetricStabilization) {
               HasSubstr("key 'solver.volumetric_stabilization': applies only to the nodal-averaged volume"));
   EXPECT_THAT(error_of(with(kCase, "volumetric_stabilization = 1\n")),
               HasSubstr("key 'solver.volumetric_stabilization': applies only to the nodal-averaged volume"));
+}
+
+TEST(IndentationCase, WhichBlocksAreMeshedWithACoarseLevel) {
+  // kCase with linear elements: "auto" meshes a coarse level (and so takes the two-grid solver) from
+  // kTwoGridMinimumTetrahedra estimated tetrahedra on; "two-grid" always; never with a nodal average or a mesh file.
+  const std::string linear = replaced(replaced(kCase, "element = \"quadratic\"", "element = \"linear\""),
+                                      "law = \"svk\"", "law = \"neo-hookean\"");
+  const auto sized = [&](std::string_view size_at_tip) {
+    return replaced(linear, "size_at_tip = \"20 um\"", "size_at_tip = \"" + std::string(size_at_tip) + "\"");
+  };
+  insertion::IndentationCase small = parse(replaced(sized("40 um"), "width = \"3000 um\"\nlength = \"3000 um\"",
+                                                    "width = \"1000 um\"\nlength = \"1000 um\"")),
+                             large = parse(sized("12 um"));
+  EXPECT_LT(mesh::estimated_tetrahedra(small.block), insertion::kTwoGridMinimumTetrahedra);
+  EXPECT_GE(mesh::estimated_tetrahedra(large.block), insertion::kTwoGridMinimumTetrahedra);
+  EXPECT_FALSE(insertion::meshes_coarse_level(small));
+  EXPECT_TRUE(insertion::meshes_coarse_level(large));
+  small.solver.linear_solver = fem::LinearSolver::TwoGrid;
+  EXPECT_TRUE(insertion::meshes_coarse_level(small));
+  large.solver.linear_solver = fem::LinearSolver::CholeskyCg;
+  EXPECT_FALSE(insertion::meshes_coarse_level(large));
+  EXPECT_FALSE(insertion::meshes_coarse_level(parse(replaced(sized("12 um"), "poisson_ratio = 0.4\n[[tissue",
+                                                             "poisson_ratio = 0.49\n[[tissue"))));
+  EXPECT_FALSE(insertion::meshes_coarse_level(parse(replaced(sized("12 um"), "element = \"linear\"",
+                                                             "element = \"quadratic\""))));
 }
 
 TEST(IndentationCase, PresetsHeightsAndArrays) {

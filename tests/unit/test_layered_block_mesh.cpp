@@ -200,7 +200,7 @@ TEST(LayeredBlockMesh, SplitMeshesAtTwiceTheSizeAndKeepsTheCoarseLevel) {
   EXPECT_FALSE(direct.coarse.has_value());
   ASSERT_TRUE(split.coarse.has_value());
   EXPECT_EQ(split.mesh.tets.size(), 8 * split.coarse->tets.size());
-  EXPECT_EQ(split.coarse->node_parents.size(), split.mesh.nodes.size());
+  EXPECT_EQ(split.coarse->interpolation.size(), split.mesh.nodes.size());
   const double ratio = static_cast<double>(split.mesh.tets.size()) / static_cast<double>(direct.mesh.tets.size());
   EXPECT_GT(ratio, 0.4);
   EXPECT_LT(ratio, 2.5);
@@ -216,6 +216,27 @@ TEST(LayeredBlockMesh, SplitMeshesAtTwiceTheSizeAndKeepsTheCoarseLevel) {
     EXPECT_GT(split.quality[i].min_quality, 0.1) << split.quality[i].name;
   }
   EXPECT_TRUE(mesh::tet_mesh_check(split.mesh).valid());
+}
+
+TEST(LayeredBlockMesh, CoarseLevelMeshesTheBlockAgainAtTwiceTheSizes) {
+  // coarse_level without split: the same mesh as without it, plus the block meshed at twice the sizes (about an
+  // eighth of the elements) in which every node of the mesh is interpolated.
+  mesh::LayeredBlockOptions o = small_skin_block();
+  const mesh::LayeredBlockResult direct = mesh::layered_block_mesh(o);
+  o.coarse_level = true;
+  const mesh::LayeredBlockResult with_coarse = mesh::layered_block_mesh(o);
+  EXPECT_EQ(with_coarse.mesh.nodes, direct.mesh.nodes);
+  EXPECT_EQ(with_coarse.mesh.tets, direct.mesh.tets);
+  ASSERT_TRUE(with_coarse.coarse.has_value());
+  const mesh::CoarseLevel& coarse = *with_coarse.coarse;
+  ASSERT_EQ(coarse.interpolation.size(), direct.mesh.nodes.size());
+  const double ratio = static_cast<double>(coarse.tets.size()) / static_cast<double>(direct.mesh.tets.size());
+  EXPECT_GT(ratio, 1.0 / 20);
+  EXPECT_LT(ratio, 1.0 / 3);
+  for (const mesh::NodeInterpolation& p : coarse.interpolation) {
+    EXPECT_NEAR(p.weights[0] + p.weights[1] + p.weights[2] + p.weights[3], 1.0, 1e-12);
+    for (int a : p.nodes) EXPECT_LT(a, coarse.nodes);
+  }
 }
 
 TEST(LayeredBlockMesh, NoFlatSliversInAThinLayerWithAlignedFaces) {

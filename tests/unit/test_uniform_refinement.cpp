@@ -67,16 +67,18 @@ TEST(UniformRefinement, OneMidpointPerEdgeAndCoarseNodesKeepTheirIndex) {
   ASSERT_EQ(r.coarse.nodes, nc);
   ASSERT_EQ(r.coarse.tets, coarse.tets);
   ASSERT_EQ(r.mesh.nodes.size(), coarse.nodes.size() + edges.size());
-  ASSERT_EQ(r.coarse.node_parents.size(), r.mesh.nodes.size());
+  ASSERT_EQ(r.coarse.interpolation.size(), r.mesh.nodes.size());
   std::set<std::pair<int, int>> parents_seen;
   for (size_t n = 0; n < r.mesh.nodes.size(); ++n) {
-    const auto [a, b] = r.coarse.node_parents[n];
+    const NodeInterpolation& p = r.coarse.interpolation[n];
     if (static_cast<int>(n) < nc) {
-      EXPECT_EQ(a, static_cast<int>(n));
-      EXPECT_EQ(b, static_cast<int>(n));
+      EXPECT_EQ(p.nodes, (std::array<int, 4>{static_cast<int>(n), -1, -1, -1}));
+      EXPECT_EQ(p.weights, (std::array<double, 4>{1, 0, 0, 0}));
       EXPECT_EQ(r.mesh.nodes[n], coarse.nodes[n]);
       continue;
     }
+    const int a = p.nodes[0], b = p.nodes[1];
+    EXPECT_EQ(p.weights, (std::array<double, 4>{0.5, 0.5, 0, 0}));
     EXPECT_TRUE(edges.count({std::min(a, b), std::max(a, b)})) << "node " << n << " is not on a coarse edge";
     EXPECT_TRUE(parents_seen.insert({std::min(a, b), std::max(a, b)}).second) << "edge split twice";
     EXPECT_LT((r.mesh.nodes[n] - 0.5 * (coarse.nodes[a] + coarse.nodes[b])).norm(), 1e-15);

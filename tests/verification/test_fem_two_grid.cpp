@@ -1,12 +1,14 @@
 // The two-grid solver (fem::LinearSolver::TwoGrid): the same converged states as a direct solve, on a split mesh
-// (linear tetrahedra, coarse level = the mesh it was split from) and for quadratic tetrahedra (coarse level = their
-// corner nodes), and CG iterations that do not grow when the mesh is refined (the point of a multigrid method: the
-// cost of a solve stays proportional to the mesh).
+// (linear tetrahedra, coarse level = the mesh it was split from), on a mesh with an independent coarser mesh of the
+// same block (mesh::interpolating_coarse_level) and for quadratic tetrahedra (coarse level = their corner nodes),
+// and CG iterations that do not grow when the mesh is refined (the point of a multigrid method: the cost of a solve
+// stays proportional to the mesh).
 #include <gtest/gtest.h>
 
 #include "fem_test_support.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/mesh/coarse_level.hpp"
 #include "needlekit/mesh/uniform_refinement.hpp"
 
 using namespace needlekit;
@@ -60,6 +62,45 @@ TEST(TwoGrid, SameAnswerAsTheDirectSolveOnASplitMesh) {
   EXPECT_NEAR(a.last.strain_energy / b.last.strain_energy, 1.0, 1e-5);
   EXPECT_GT(a.linear_iterations, 0);
   EXPECT_LT(a.factorizations, a.newton_iterations);  // the coarse operator is reused across solves
+}
+
+TEST(TwoGrid, SameAnswerAsTheDirectSolveWithANonNestedCoarseMesh) {
+  // The quarter block with 4 core cells under the punch, its coarse level the same block with 2: no fine node needs
+  // to be a coarse one.
+  const mesh::TetMesh fine = quarter_punch_block(kA, 10 * kA, 4, kE, 0.4);
+  const mesh::CoarseLevel coarse = mesh::interpolating_coarse_level(fine, quarter_punch_block(kA, 10 * kA, 2, kE, 0.4));
+  SolverOptions direct, two_grid;
+  direct.law = two_grid.law = MaterialLaw::NeoHookean;
+  direct.linear_solver = LinearSolver::Cholesky;
+  const IndentRun a = punch(fine, &coarse, two_grid, 0.3 * kA, 6);
+  const IndentRun b = punch(fine, nullptr, direct, 0.3 * kA, 6);
+  ASSERT_TRUE(a.last.converged && b.last.converged) << a.last.reason << b.last.reason;
+  EXPECT_EQ(a.solver, LinearSolver::TwoGrid);
+  EXPECT_NEAR(a.last.indenter_force[0] / b.last.indenter_force[0], 1.0, 1e-5);
+  EXPECT_NEAR(a.last.strain_energy / b.last.strain_energy, 1.0, 1e-5);
+  // A coarse space that misses the fine one's smooth modes would need hundreds of iterations per solve.
+  RecordProperty("iterations_per_solve", std::to_string(static_cast<double>(a.linear_iterations) / a.newton_iterations));
+  EXPECT_LT(static_cast<double>(a.linear_iterations) / a.newton_iterations, 25.0);
+}
+
+TEST(TwoGrid, NonNestedIterationsDoNotGrowUnderRefinement) {
+  // Fine meshes of 4 and 8 core cells, each on the independent mesh of half as many: the unknowns grow about
+  // eightfold, the CG iterations per Newton solve stay put.
+  SolverOptions o;
+  o.law = MaterialLaw::NeoHookean;
+  o.two_grid_refresh_iterations = 1000;
+  std::array<double, 2> per_solve{};
+  for (int level = 0; level < 2; ++level) {
+    const int core = 4 << level;
+    const mesh::TetMesh fine = quarter_punch_block(kA, 10 * kA, core, kE, 0.4);
+    const mesh::CoarseLevel coarse =
+        mesh::interpolating_coarse_level(fine, quarter_punch_block(kA, 10 * kA, core / 2, kE, 0.4));
+    const IndentRun run = punch(fine, &coarse, o, 0.05 * kA, 2);
+    ASSERT_TRUE(run.last.converged) << run.last.reason;
+    per_solve[static_cast<size_t>(level)] = static_cast<double>(run.linear_iterations) / run.newton_iterations;
+  }
+  RecordProperty("iterations_per_solve", std::to_string(per_solve[0]) + " -> " + std::to_string(per_solve[1]));
+  EXPECT_LT(per_solve[1], 1.5 * per_solve[0]) << per_solve[0] << " -> " << per_solve[1] << " iterations per solve";
 }
 
 TEST(TwoGrid, QuadraticTetrahedraUseTheirCornersAsTheCoarseLevel) {

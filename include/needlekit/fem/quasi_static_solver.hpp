@@ -36,7 +36,7 @@
 #include "needlekit/fem/hyperelastic_law.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
-#include "needlekit/mesh/uniform_refinement.hpp"
+#include "needlekit/mesh/coarse_level.hpp"
 
 namespace needlekit::fem {
 
@@ -46,8 +46,9 @@ enum class ElementOrder {
 };
 enum class ContactModel { TipNodes, Surface };
 enum class LinearSolver {
-  Automatic,   // TwoGrid for quadratic elements, and for linear ones on a split mesh (given a coarse level); else
-               // CholeskyCg
+  Automatic,   // TwoGrid for quadratic elements, and for linear ones given a coarse level (a split mesh's parent, or
+               // the body meshed again at twice the sizes: insertion::run_indentation meshes one for large blocks)
+               // unless the nodal average applies; else CholeskyCg
   Cholesky,    // a fresh CHOLMOD factorization per Newton iteration
   CholeskyCg,  // conjugate gradients preconditioned by the last factorization, while cheaper than a new one
   TwoGrid,     // conjugate gradients preconditioned by a two-grid cycle (Chebyshev smoothing, CHOLMOD on the coarse
@@ -85,7 +86,9 @@ inline constexpr EnumTable<ContactModel, 2> kContactModelNames{{
     {ContactModel::TipNodes, "tip-nodes", "the dissertation's rule: nodes under a flat tip follow it in z"},
 }};
 inline constexpr EnumTable<LinearSolver, 4> kLinearSolverNames{{
-    {LinearSolver::Automatic, "auto", "two-grid for quadratic elements or a split mesh, else cholesky-cg"},
+    {LinearSolver::Automatic, "auto",
+     "two-grid for quadratic elements, a split mesh or a large meshed block without the nodal average, else "
+     "cholesky-cg"},
     {LinearSolver::TwoGrid, "two-grid", "CG with a two-grid preconditioner: memory and time linear in the mesh"},
     {LinearSolver::CholeskyCg, "cholesky-cg", "CG preconditioned by the last CHOLMOD factorization"},
     {LinearSolver::Cholesky, "cholesky", "a fresh CHOLMOD factorization per Newton iteration"},
@@ -263,8 +266,8 @@ class QuasiStaticSolver {
 public:
   // Throws InvalidInput for an invalid mesh (empty, inverted or degenerate tetrahedra, a layer index out of range,
   // E <= 0, nu outside (-1, 0.5)), an indenter whose surface is empty or starts inside the tissue (below z = 0 by
-  // more than the tolerance), or invalid options (naming the field). `coarse`: the mesh `mesh` was split from
-  // (mesh::refine_uniformly), for the two-grid solver; only read here.
+  // more than the tolerance), or invalid options (naming the field). `coarse`: a coarse level of `mesh` for the
+  // two-grid solver (mesh::refine_uniformly, mesh::interpolating_coarse_level); only read here.
   QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options = {},
                     const mesh::CoarseLevel* coarse = nullptr);
   ~QuasiStaticSolver();

@@ -68,6 +68,16 @@ double effective_edge_radius(const IndentationCase& indentation_case);
 // Whether the FE averages the volume at the nodes in some layer of the case's tissue (fem::nodal_average_applies).
 bool uses_nodal_average(const IndentationCase& indentation_case);
 
+// A block meshed for a run whose solver is "auto" gets a coarse level, and with it the two-grid solver, from this
+// estimated tetrahedron count on (mesh::estimated_tetrahedra), unless it has linear elements that take the nodal
+// average: below it the Cholesky-CG solver is as fast (BENCHMARKS.md, "Two-grid on a directly meshed block").
+inline constexpr double kTwoGridMinimumTetrahedra = 50'000;
+
+// Whether the block of the case is meshed with a coarse level (mesh::LayeredBlockOptions::coarse_level): the solver
+// asks for "two-grid", or "auto" on a block of kTwoGridMinimumTetrahedra or more, with linear elements and no
+// nodal average (whose patch coupling the two-grid cycle does not hold). False for a case with its own tissue mesh.
+bool meshes_coarse_level(const IndentationCase& indentation_case);
+
 // The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them
 // (with rounded edges, each needle's eroded core and its edge radius).
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& indentation_case);

@@ -10,7 +10,7 @@
 
 #include "needlekit/core/limits.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
-#include "needlekit/mesh/uniform_refinement.hpp"
+#include "needlekit/mesh/coarse_level.hpp"
 
 namespace needlekit::mesh {
 
@@ -35,6 +35,9 @@ struct LayeredBlockOptions {
   bool split = false;                   // mesh at twice the sizes (and size gradient), then split every tet into
                                         // eight (refine_uniformly): about the same elements, and the coarse level
                                         // that lets the FE solver use its two-grid solver (fast on large meshes)
+  bool coarse_level = false;            // also return a coarse level for the FE solver's two-grid solver: with
+                                        // split the mesh it was split from; else the block meshed again at twice the
+                                        // sizes, with this mesh's nodes interpolated in it (interpolating_coarse_level)
   double max_tetrahedra = limits::kMaxTetrahedra;  // > 0: a block whose estimated tetrahedron count
                                         // (estimated_tetrahedra, tet_count_estimate.hpp) exceeds this is refused
                                         // before meshing; the case file's [mesh] max_tetrahedra
@@ -51,7 +54,7 @@ struct LayerQuality {
 struct LayeredBlockResult {
   TetMesh mesh;                     // layer assignment by the geometric volume (physical group) of each element
   std::vector<LayerQuality> quality;  // one per layer
-  std::optional<CoarseLevel> coarse;  // with split: the mesh `mesh` was split from
+  std::optional<CoarseLevel> coarse;  // with split or coarse_level: see LayeredBlockOptions::coarse_level
   double mesh_seconds = 0;
 };
 
