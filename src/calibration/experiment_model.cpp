@@ -191,6 +191,7 @@ Prediction ExperimentModel::predict(const std::vector<double>& values,
   prediction.elements = fe.elements;
   prediction.status = fmt::format("FE ({}): {}: {}", io::fe_models_text(c), insertion::to_string(fe.status),
                                   fe.reason);
+  prediction.reason = fe.reason;
   if (fe.steps.empty()) {
     prediction.failure = fmt::format("{}: the FE converged no load step ({})", experiment_.name, fe.reason);
     return prediction;

@@ -126,8 +126,7 @@ TEST_F(IndentCli, Section_6_2_ExamplesRunInQuickMode) {
 namespace {
 
 // The benchmark's case file (split mesh, two-grid solver) in a quick mode: coarse sizes, two 10 um steps. The split
-// run agrees with the same case meshed directly at the same sizes (and solved on its own coarse mesh) to within the
-// discretisation difference.
+// run agrees with the same case meshed directly at the same sizes to within the discretisation difference.
 TEST_F(IndentCli, SplitSkinExampleUsesTheTwoGridSolver) {
   const std::string quick = " --json --size-at-tip '40 um' --size-far '600 um' --steps 2 --depth '20 um'";
   const CliRun split = run("indent " + kExamples + "indent_skin_300k.toml" + quick);
@@ -141,7 +140,7 @@ TEST_F(IndentCli, SplitSkinExampleUsesTheTwoGridSolver) {
   const CliRun direct = run("indent direct.toml" + quick);
   ASSERT_EQ(direct.exit_code, 0) << direct.err;
   const nlohmann::json reference = nlohmann::json::parse(direct.out);
-  EXPECT_EQ(reference["linear_solver"], "two-grid");  // meshed directly, large enough for "auto" to mesh a coarse level
+  EXPECT_EQ(reference["linear_solver"], "cholesky-cg");  // meshed directly: below kTwoGridMinimumTetrahedra
   EXPECT_NEAR(json["force_N"][1].get<double>() / reference["force_N"][1].get<double>(), 1.0, 0.1);
 }
 

@@ -26,6 +26,7 @@ struct Prediction {
   insertion::ForceDepthCurve curve;                   // design files: empty
   std::optional<insertion::PuncturePoint> puncture;  // design files: depth = deformation d, force = F(A)
   std::string status;                                 // the run's own status and reason, for reports
+  std::string reason;                                 // FE runs: why the run ended (IndentationResult::reason)
   std::vector<std::string> notes;                     // e.g. a puncture-force law used outside its range
   int model_runs = 0;                                 // FE runs (0 for design files)
   int elements = 0;                                   // tetrahedra of the FE mesh (0 for design files)
