@@ -27,6 +27,14 @@ double lowest_tip_height(const IndentationCase& indentation_case) {
   return lowest;
 }
 
+// The case's block with one insertion site per needle, as run_indentation meshes it.
+mesh::LayeredBlockOptions block_to_mesh(const IndentationCase& c) {
+  mesh::LayeredBlockOptions block = c.block;
+  block.insertion_sites.clear();
+  for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
+  return block;
+}
+
 std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
 
 IndentationStep step_of(const fem::StepResult& solved, double depth) {
@@ -201,10 +209,7 @@ bool meshes_coarse_level(const IndentationCase& c) {
   if (c.tissue_mesh || c.solver.order != fem::ElementOrder::Linear || uses_nodal_average(c)) return false;
   if (c.solver.linear_solver == fem::LinearSolver::TwoGrid) return true;
   if (c.solver.linear_solver != fem::LinearSolver::Automatic) return false;
-  mesh::LayeredBlockOptions block = c.block;
-  block.insertion_sites.clear();
-  for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
-  return mesh::estimated_tetrahedra(block) >= kTwoGridMinimumTetrahedra;
+  return mesh::estimated_tetrahedra(block_to_mesh(c)) >= kTwoGridMinimumTetrahedra;
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
@@ -268,9 +273,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     tissue = *c.tissue_mesh;
   } else {
     report("mesh", 0.0);
-    mesh::LayeredBlockOptions block = c.block;
-    block.insertion_sites.clear();
-    for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
+    mesh::LayeredBlockOptions block = block_to_mesh(c);
     block.coarse_level = meshes_coarse_level(c);
     const Clock::time_point mesh_start = Clock::now();
     mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
