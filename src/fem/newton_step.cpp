@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "needlekit/fem/line_search.hpp"
 #include "quasi_static_solver_impl.hpp"
 
 namespace needlekit::fem {
@@ -123,31 +124,23 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     if (it == 1) first_energy_norm = rec.energy_norm;
     double alpha = 1;
     if (opt.line_search && slope < 0) {
-      const double pi0 = ev.potential();
-      const auto sufficient = [&](const Eval& e, double a) {
-        return e.valid && e.potential() <= pi0 + 1e-4 * a * slope + 1e-10 * std::abs(pi0);
-      };
-      Eigen::VectorXd trial = u;
-      add_free(trial, du, 1.0);
-      t0 = Clock::now();
-      const Eval full = evaluate(trial, disp, true, true);  // the next iteration's assembly if accepted
-      carried_assembly_seconds = seconds_since(t0);
-      assembled = sufficient(full, 1.0);
-      if (assembled) ev = full;
-      for (int ls = 1; !assembled; ++ls) {
-        alpha *= 0.5;
+      // The full step's evaluation assembles the tangent too: it is the next iteration's assembly when accepted.
+      Eigen::VectorXd trial;
+      const auto potential_at = [&](double a) {
         trial = u;
-        add_free(trial, du, alpha);
-        const Eval et = evaluate(trial, disp, false, false);
-        if (sufficient(et, alpha)) break;
-        if (ls >= 12) {
-          // No sufficient decrease (a kink of the contact energy or round-off): take the full Newton step and let
-          // the convergence test and the iteration limit decide.
-          alpha = 1;
-          rec.line_search_failed = true;
-          break;
-        }
-      }
+        add_free(trial, du, a);
+        const auto t1 = Clock::now();
+        const Eval e = evaluate(trial, disp, a >= 1, a == 1);
+        if (a == 1) carried_assembly_seconds = seconds_since(t1);
+        LineSearchPoint point{e.valid, e.potential(), 0.0};
+        if (a >= 1 && e.valid) point.slope = free_residual().dot(du);
+        if (a == 1) ev = e;
+        return point;
+      };
+      const LineSearchResult search = line_search(ev.potential(), slope, potential_at);
+      alpha = search.step;
+      assembled = alpha == 1 && search.last_evaluation_at_step && !search.failed;
+      rec.line_search_failed = search.failed;
     }
     rec.step_length = alpha;
     add_free(u, du, alpha);
