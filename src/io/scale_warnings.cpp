@@ -88,6 +88,12 @@ std::vector<std::string> indentation_scale_warnings(const insertion::Indentation
                                    "in the needle's length or the tissue's thickness?",
                                    units::readable_length(needle.z()), units::readable_length(height)));
   }
+  if (c.solver.contact == fem::ContactModel::Surface && c.depth > needle.z()) {
+    warnings.push_back(fmt::format("loading.depth = {} is deeper than the needle is long ({}): under surface contact "
+                                   "its back end then enters the tissue and pushes it back; make the needle longer or "
+                                   "the depth shorter",
+                                   units::readable_length(c.depth), units::readable_length(needle.z())));
+  }
   return warnings;
 }
 

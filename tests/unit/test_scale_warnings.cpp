@@ -99,6 +99,22 @@ TEST(ScaleWarnings, ANeedleLongerThanTheBlockIsHighOrWiderThanTheBlock) {
                                                 HasSubstr("needle.mesh_unit"))));
 }
 
+// Deeper than the needle is long: under surface contact the needle's back end would enter the tissue (the §6.2 sharp
+// bevel driven to its full 1000 um length stopped 4 um short with a negative force); the tip-node rule uses the tip
+// face alone, so no warning there.
+TEST(ScaleWarnings, AnIndentationDeeperThanTheNeedleIsLongUnderSurfaceContact) {
+  const std::string needle = "shape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"80 um\"\n";
+  insertion::IndentationCase c = punch_case(needle);
+  c.solver.contact = fem::ContactModel::Surface;
+  EXPECT_THAT(io::indentation_scale_warnings(c),
+              ElementsAre(HasSubstr("loading.depth = 100 um is deeper than the needle is long (80 um)")));
+  c.depth = 80e-6;
+  EXPECT_THAT(io::indentation_scale_warnings(c), IsEmpty());
+  c.depth = 100e-6;
+  c.solver.contact = fem::ContactModel::TipNodes;
+  EXPECT_THAT(io::indentation_scale_warnings(c), IsEmpty());
+}
+
 // An 800 um depth into a 500 um block cannot be simulated: refused, naming the key and the block's height.
 TEST(ScaleWarnings, ADepthThroughTheBlockIsRefused) {
   EXPECT_THAT(
