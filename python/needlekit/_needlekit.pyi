@@ -3395,7 +3395,7 @@ class SolverOptions:
     def max_cutbacks(self, value: Any) -> None: ...
     @property
     def max_iterations(self) -> int:
-        """>= 1"""
+        """>= 0 (0: 25, or 60 with surface contact)"""
     @max_iterations.setter
     def max_iterations(self, value: Any) -> None: ...
     @property

@@ -87,7 +87,7 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("residual_tolerance", &SolverOptions::residual_tolerance, "(0, 1)")
       .def_readwrite("displacement_tolerance", &SolverOptions::displacement_tolerance, "(0, 1)")
       .def_readwrite("energy_tolerance", &SolverOptions::energy_tolerance, "(0, 1)")
-      .def_readwrite("max_iterations", &SolverOptions::max_iterations, ">= 1")
+      .def_readwrite("max_iterations", &SolverOptions::max_iterations, ">= 0 (0: 25, or 60 with surface contact)")
       .def_readwrite("max_cutbacks", &SolverOptions::max_cutbacks, ">= 0")
       .def_readwrite("linear_solver", &SolverOptions::linear_solver)
       .def_readwrite("penalty_factor", &SolverOptions::penalty_factor, "> 0")

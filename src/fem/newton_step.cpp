@@ -67,7 +67,8 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
   size_t active_set = contact ? contact->active_set_fingerprint() : 0;
   int last_set_change = 0;
   Eval ev;
-  for (int it = 1; it <= opt.max_iterations + 1; ++it) {
+  const int max_iterations = newton_iteration_limit(opt);
+  for (int it = 1; it <= max_iterations + 1; ++it) {
     IterationRecord rec;
     auto t0 = Clock::now();
     if (!assembled) ev = evaluate(u, disp, true, true);
@@ -96,17 +97,15 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     const bool disp_ok = last_du <= opt.displacement_tolerance * std::max(unorm, 1e-300);
     const bool energy_ok = it > 1 && last_en <= opt.energy_tolerance * first_energy_norm;
     if (rec.residual_norm <= tiny * 1e-6 || (res_ok && (disp_ok || energy_ok))) return true;
-    if (it > opt.max_iterations) {
-      // The limit is the user's ([solver] max_iterations): surface contact at a needle's rim can need more than the
-      // default (the §6.2 cylinder on the 40 um mesh: 344 um with 25, 830 um with 60; docs/indentation.md).
+    if (it > max_iterations) {
       const std::string residual = "(residual " + std::to_string(rec.residual_norm / ref) +
                                    " of the force scale; [solver] max_iterations sets the limit)";
       if (contact && last_set_change > it - 3)
-        failure = {StepStatus::ContactCycling, "Newton did not converge in " + std::to_string(opt.max_iterations) +
+        failure = {StepStatus::ContactCycling, "Newton did not converge in " + std::to_string(max_iterations) +
                                                    " iterations while the contact nodes kept changing " + residual};
       else
         failure = {StepStatus::IterationLimit,
-                   "Newton did not converge in " + std::to_string(opt.max_iterations) + " iterations " + residual};
+                   "Newton did not converge in " + std::to_string(max_iterations) + " iterations " + residual};
       return false;
     }
     Eigen::VectorXd du;

@@ -52,6 +52,11 @@ void check(bool ok, const char* field, T value, const char* expected) {
 }
 }  // namespace
 
+int newton_iteration_limit(const SolverOptions& o) {
+  if (o.max_iterations > 0) return o.max_iterations;
+  return o.contact == ContactModel::Surface ? kSurfaceContactNewtonIterations : kNewtonIterations;
+}
+
 bool nodal_average_possible(const SolverOptions& o) {
   return o.law == MaterialLaw::NeoHookean && o.order == ElementOrder::Linear &&
          o.volumetric != VolumetricFormulation::Element;
@@ -67,7 +72,7 @@ void SolverOptions::validate() const {
   check(displacement_tolerance > 0 && displacement_tolerance < 1, "displacement_tolerance", displacement_tolerance,
         "(0, 1)");
   check(energy_tolerance > 0 && energy_tolerance < 1, "energy_tolerance", energy_tolerance, "(0, 1)");
-  check(max_iterations >= 1, "max_iterations", max_iterations, ">= 1");
+  check(max_iterations >= 0, "max_iterations", max_iterations, ">= 0");
   check(max_cutbacks >= 0, "max_cutbacks", max_cutbacks, ">= 0");
   check(penalty_factor > 0, "penalty_factor", penalty_factor, "> 0");
   check(penetration_tolerance > 0 && penetration_tolerance < 1, "penetration_tolerance", penetration_tolerance,

@@ -50,13 +50,23 @@ TEST(FemInputs, NeedleStartingInsideTheTissueIsRejected) {
   expect_invalid([&] { QuasiStaticSolver(small_block(), {punch(-50e-6)}); }, "starts inside the tissue");
 }
 
+// max_iterations = 0 takes the contact model's default; a value given is used as given.
+TEST(FemInputs, NewtonIterationLimitDependsOnTheContactModelUnlessGiven) {
+  SolverOptions o;
+  EXPECT_EQ(newton_iteration_limit(o), kNewtonIterations);
+  o.contact = ContactModel::Surface;
+  EXPECT_EQ(newton_iteration_limit(o), kSurfaceContactNewtonIterations);
+  o.max_iterations = 25;
+  EXPECT_EQ(newton_iteration_limit(o), 25);
+}
+
 TEST(FemInputs, TipNodeRuleNeedsAVerticalNeedleAndOptionsAreChecked) {
   Indenter slanted = punch();
   slanted.direction = {0.3, 0, -1};
   expect_invalid([&] { QuasiStaticSolver(small_block(), {slanted}); }, "direction (0, 0, -1)");
   SolverOptions o;
-  o.max_iterations = 0;
-  expect_invalid([&] { QuasiStaticSolver(small_block(), {punch()}, o); }, "max_iterations = 0");
+  o.max_iterations = -1;
+  expect_invalid([&] { QuasiStaticSolver(small_block(), {punch()}, o); }, "max_iterations = -1");
   expect_invalid([&] { QuasiStaticSolver(small_block(), {}); }, "no needle");
   expect_invalid([&] { material_law_from_string("hooke"); }, "law: unknown value 'hooke', expected one of: \"neo-hookean\" | \"svk\"");
   EXPECT_EQ(contact_model_from_string("surface"), ContactModel::Surface);

@@ -135,8 +135,8 @@ TEST(IndentationCase, SolverSection) {
   EXPECT_EQ(parse(with_solver("volumetric = \"element\"\n")).solver.volumetric, fem::VolumetricFormulation::Element);
   EXPECT_THAT(error_of(with_solver("predictor = \"cubic\"\n")),
               HasSubstr("key 'solver.predictor': unknown value 'cubic', expected one of: \"secant\" | \"linearised\""));
-  EXPECT_THAT(error_of(with_solver("max_iterations = 0\n")),
-              HasSubstr("key 'solver.max_iterations': 0 is out of range"));
+  EXPECT_THAT(error_of(with_solver("max_iterations = -1\n")),
+              HasSubstr("key 'solver.max_iterations': -1 is out of range"));
   EXPECT_EQ(parse(with_solver("linear_solver = \"two-grid\"\n")).solver.linear_solver, fem::LinearSolver::TwoGrid);
   EXPECT_EQ(parse(with_solver("linear_solver = \"auto\"\n")).solver.linear_solver, fem::LinearSolver::Automatic);
   EXPECT_THAT(error_of(with_solver("linear_solver = \"lu\"\n")),

@@ -160,7 +160,8 @@ struct SolverOptions {
   double residual_tolerance = 1e-6;      // (0, 1): ||R_free|| <= tol * max(||f_reaction||, ||f_int||, tiny)
   double displacement_tolerance = 1e-5;  // (0, 1): ||du|| <= tol * ||u||
   double energy_tolerance = 1e-8;        // (0, 1): |du . R| <= tol * |du_1 . R_1| (first iteration of the step)
-  int max_iterations = 25;               // Newton iterations per (sub)step, >= 1
+  int max_iterations = 0;                // Newton iterations per (sub)step, >= 0; 0: newton_iteration_limit's
+                                         // default for the contact model
   bool line_search = true;               // backtracking (Armijo) on the potential energy, with a tangent shift
                                          // when the factorization is not positive definite
   int max_cutbacks = 8;                  // halvings of a failed step before giving up, >= 0
@@ -195,9 +196,16 @@ struct SolverOptions {
   int threads = 0;                       // TBB threads for assembly, 0 = default
   std::function<void(const SolverProgress&)> progress;  // optional
 
-  // Throws InvalidInput naming the first field outside its range ("solver max_iterations = 0: expected >= 1").
+  // Throws InvalidInput naming the first field outside its range ("solver max_cutbacks = -1: expected >= 0").
   void validate() const;
 };
+
+// Newton iterations per (sub)step when SolverOptions::max_iterations is 0: kNewtonIterations, and
+// kSurfaceContactNewtonIterations under surface contact, whose contact set changes while tissue wraps a needle's rim
+// (the §6.2 cylinder on a 40 um mesh: 596.9 um reached with 25, 831 um with 60, docs/indentation.md).
+inline constexpr int kNewtonIterations = 25;
+inline constexpr int kSurfaceContactNewtonIterations = 60;
+int newton_iteration_limit(const SolverOptions& options);
 
 // Whether the nodal-averaged volume can act under these options at all: the neo-Hookean law on linear tetrahedra,
 // volumetric not "element".

@@ -21,7 +21,7 @@
 //              (fem::kBoundaryConditionNames, default "sides-and-bottom-fixed")
 //   [solver]   optional Newton settings (fem::SolverOptions): residual_tolerance (default 1e-6),
 //              displacement_tolerance (1e-5), energy_tolerance (1e-8), penetration_tolerance (1e-3), all in (0, 1);
-//              max_iterations (25), max_cutbacks (8); predictor (kPredictorNames below, default "secant");
+//              max_iterations (0: 25, or 60 with surface contact), max_cutbacks (8); predictor (kPredictorNames below, default "secant");
 //              linear_solver (fem::kLinearSolverNames, default "auto"; "two-grid" with linear elements needs [mesh]
 //              split = true); penalty_factor (100, surface contact); volumetric_stabilization (1, the
 //              nodal-averaged volume of linear tetrahedra at poisson_ratio >= 0.45); threads (0 = all cores)
@@ -55,9 +55,12 @@ inline constexpr Parameter<fem::SolverOptions, double> kSolverTolerances[] = {
     {"volumetric_stabilization", &fem::SolverOptions::volumetric_stabilization, 0, kNoLimit, Bound::Closed,
      Bound::Open, "nodal-averaged volume: the bulk modulus each tetrahedron keeps, in multiples of its shear modulus"},
 };
+// The help of max_iterations below spells out fem::newton_iteration_limit's defaults.
+static_assert(fem::kNewtonIterations == 25 && fem::kSurfaceContactNewtonIterations == 60,
+              "update the help text of [solver] max_iterations (and the Python docstring of SolverOptions)");
 inline constexpr Parameter<fem::SolverOptions, int> kSolverCounts[] = {
-    {"max_iterations", &fem::SolverOptions::max_iterations, 1, kNoLimit, Bound::Closed, Bound::Closed,
-     "Newton iterations per (sub)step"},
+    {"max_iterations", &fem::SolverOptions::max_iterations, 0, kNoLimit, Bound::Closed, Bound::Closed,
+     "Newton iterations per (sub)step (0: 25, or 60 with surface contact)"},
     {"max_cutbacks", &fem::SolverOptions::max_cutbacks, 0, kNoLimit, Bound::Closed, Bound::Closed,
      "halvings of a load step that did not converge"},
     {"threads", &fem::SolverOptions::threads, 0, kNoLimit, Bound::Closed, Bound::Closed,
