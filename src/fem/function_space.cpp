@@ -24,31 +24,6 @@ void check(bool ok, const std::string& message) {
   if (!ok) throw InvalidInput(message);
 }
 
-// Greedy colouring: each element takes the first colour none of its nodes has yet (at most 256).
-std::vector<std::vector<int>> element_colors(const std::vector<int>& connectivity, int nodes_per_element,
-                                             int node_count) {
-  const size_t ne = connectivity.size() / static_cast<size_t>(nodes_per_element);
-  std::vector<std::array<uint64_t, 4>> used(static_cast<size_t>(node_count), {0, 0, 0, 0});
-  std::vector<int> color(ne);
-  int ncolor = 0;
-  for (size_t e = 0; e < ne; ++e) {
-    std::array<uint64_t, 4> mask{0, 0, 0, 0};
-    for (int a = 0; a < nodes_per_element; ++a)
-      for (int w = 0; w < 4; ++w) mask[w] |= used[connectivity[e * nodes_per_element + a]][w];
-    int c = -1;
-    for (int w = 0; w < 4 && c < 0; ++w)
-      if (~mask[w]) c = 64 * w + __builtin_ctzll(~mask[w]);
-    if (c < 0) c = 255;  // cannot happen for valid tetrahedral meshes (< 256 elements per node pair set)
-    color[e] = c;
-    ncolor = std::max(ncolor, c + 1);
-    for (int a = 0; a < nodes_per_element; ++a)
-      used[connectivity[e * nodes_per_element + a]][c / 64] |= uint64_t{1} << (c % 64);
-  }
-  std::vector<std::vector<int>> colors(static_cast<size_t>(ncolor));
-  for (size_t e = 0; e < ne; ++e) colors[static_cast<size_t>(color[e])].push_back(static_cast<int>(e));
-  return colors;
-}
-
 }  // namespace
 
 void validate_tissue_mesh(const mesh::TetMesh& mesh) {
@@ -155,7 +130,7 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
   }
   fs.mean_youngs_modulus = e_sum / vol_sum;
   fs.mean_element_size = std::cbrt(6 * std::sqrt(2.0) * vol_sum / ne);
-  fs.colors = element_colors(fs.connectivity, nn, nnode);
+  fs.colouring = element_colouring(fs.connectivity, nn, fs.nodes);
   return fs;
 }
 

@@ -1,11 +1,12 @@
 // Internal: the solver's function space on a tetrahedral tissue mesh — the nodes (the mesh's, plus one mid-edge node
 // per edge for quadratic tetrahedra), the element connectivity, the shape-function gradients and quadrature weights
 // at every quadrature point (computed once in the reference configuration: total-Lagrangian), the Lamé constants per
-// element and an element colouring for lock-free threaded assembly.
+// element and an element colouring for lock-free threaded assembly (element_colouring.hpp).
 #pragma once
 #include <Eigen/Core>
 #include <vector>
 
+#include "element_colouring.hpp"
 #include "needlekit/fem/hyperelastic_law.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
@@ -23,7 +24,7 @@ struct FunctionSpace {
   std::vector<double> weights;              // points per element: quadrature weight * det(J0), m^3
   std::vector<double> volumes;              // per element, reference volume, m^3
   std::vector<LameConstants> lame;          // per element
-  std::vector<std::vector<int>> colors;     // element colouring: no two elements of a colour share a node
+  ElementColouring colouring;               // blocks of elements for threaded assembly (element_colouring.hpp)
   std::vector<double> node_youngs_modulus;  // per node, the stiffest adjacent layer's E, Pa
   mesh::CoarseLevel corners;                // quadratic: the corner nodes as the two-grid solver's coarse level
   Eigen::Vector3d box_min, box_max;         // m, bounding box of the mesh

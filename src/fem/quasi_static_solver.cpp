@@ -23,8 +23,9 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
                                                                     bool want_tangent, const Eigen::VectorXd* dup,
                                                                     Eigen::VectorXd* kdup) {
   // Energy summed per block of a colour and then over the blocks in order (not per thread): the same sum whatever the
-  // number of threads. Forces and tangent are deterministic anyway: within a colour no two elements share a node.
-  constexpr size_t kBlock = 64;
+  // number of threads. Forces and tangent are deterministic anyway: within a colour no two blocks share a node, and
+  // a block's elements are taken in order (element_colouring.hpp).
+  const detail::ElementColouring& colouring = space.colouring;
   std::vector<double> block_energy;
   double strain_energy = 0;
   // The lowest-numbered inverted element (an atomic minimum: the same whatever the threads); none: the state is valid.
@@ -39,15 +40,17 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   if (want_force) fint.setZero(ndof);
   if (want_tangent) system->zero();
   std::vector<double>& values = system->values();
-  for (const auto& color : space.colors) {
-    block_energy.assign((color.size() + kBlock - 1) / kBlock, 0.0);
+  for (size_t colour = 0; colour < colouring.colours(); ++colour) {
+    const size_t first_block = colouring.colour_begin[colour];
+    block_energy.assign(colouring.colour_begin[colour + 1] - first_block, 0.0);
     arena.execute([&] {
       tbb::parallel_for(size_t{0}, block_energy.size(), [&](size_t block) {
         Eigen::Matrix<double, 3, N> ue, fe;
         Eigen::Matrix<double, 3 * N, 3 * N> ke;
         double& en = block_energy[block];
-        for (size_t k = block * kBlock; k < std::min(color.size(), (block + 1) * kBlock); ++k) {
-          const int e = color[k];
+        for (size_t k = colouring.block_begin[first_block + block]; k < colouring.block_begin[first_block + block + 1];
+             ++k) {
+          const int e = colouring.elements[k];
           const int* c = &conn[static_cast<size_t>(e) * N];
           for (int a = 0; a < N; ++a) ue.col(a) = uu.segment<3>(3 * c[a]);
           const auto* g =
@@ -145,20 +148,23 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
 
 void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
   std::vector<double>& pre = system->preconditioner_values();
-  for (const auto& color : space.colors)  // within a colour no two elements share a node, nor an entry
+  const detail::ElementColouring& colouring = space.colouring;
+  for (size_t colour = 0; colour < colouring.colours(); ++colour)  // within a colour no two blocks share an entry
     arena.execute([&] {
-      tbb::parallel_for(size_t{0}, color.size(), [&](size_t k) {
-        const int e = color[k];
-        if (!nodal->treated(e)) return;
-        const double scale = nodal->element_bulk_curvature(e) * space.volumes[static_cast<size_t>(e)];
-        if (scale == 0) return;
-        const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
-        const int32_t* slot = system->element_slots(static_cast<size_t>(e));
-        for (int col = 0; col < 12; ++col)
-          for (int row = 0; row < 12; ++row)
-            if (slot[col * 12 + row] >= 0)
-              pre[static_cast<size_t>(system->preconditioner_slot(slot[col * 12 + row]))] +=
-                  scale * jh(row % 3, row / 3) * jh(col % 3, col / 3);
+      tbb::parallel_for(colouring.colour_begin[colour], colouring.colour_begin[colour + 1], [&](size_t block) {
+        for (size_t k = colouring.block_begin[block]; k < colouring.block_begin[block + 1]; ++k) {
+          const int e = colouring.elements[k];
+          if (!nodal->treated(e)) continue;
+          const double scale = nodal->element_bulk_curvature(e) * space.volumes[static_cast<size_t>(e)];
+          if (scale == 0) continue;
+          const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
+          const int32_t* slot = system->element_slots(static_cast<size_t>(e));
+          for (int col = 0; col < 12; ++col)
+            for (int row = 0; row < 12; ++row)
+              if (slot[col * 12 + row] >= 0)
+                pre[static_cast<size_t>(system->preconditioner_slot(slot[col * 12 + row]))] +=
+                    scale * jh(row % 3, row / 3) * jh(col % 3, col / 3);
+        }
       });
     });
 }

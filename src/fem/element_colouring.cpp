@@ -1,0 +1,88 @@
+#include "element_colouring.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace needlekit::fem::detail {
+namespace {
+
+// The 21 bits of v spread to every third bit (the Morton code's interleaving; Morton 1966). Written here: a few
+// shifts and masks, where a library would add a dependency for one function.
+uint64_t spread_bits(uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffull;
+  v = (v | v << 16) & 0x1f0000ff0000ffull;
+  v = (v | v << 8) & 0x100f00f00f00f00full;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+}  // namespace
+
+ElementColouring element_colouring(const std::vector<int>& connectivity, int nodes_per_element,
+                                   const std::vector<Eigen::Vector3d>& nodes, int block) {
+  const size_t nn = static_cast<size_t>(nodes_per_element);
+  const size_t ne = connectivity.size() / nn;
+  // Morton order of the centroids (of the first four nodes: the corners), in the mesh's bounding box.
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), high = -low;
+  for (const Eigen::Vector3d& p : nodes) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  const Eigen::Vector3d scale = ((1 << 21) - 1) / (high - low).cwiseMax(1e-300).array();
+  std::vector<uint64_t> code(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (size_t a = 0; a < 4; ++a) centroid += nodes[static_cast<size_t>(connectivity[e * nn + a])];
+    const Eigen::Vector3d cell = ((centroid / 4 - low).array() * scale.array()).round();
+    code[e] = spread_bits(static_cast<uint64_t>(cell.x())) | spread_bits(static_cast<uint64_t>(cell.y())) << 1 |
+              spread_bits(static_cast<uint64_t>(cell.z())) << 2;
+  }
+  std::vector<int> order(ne);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return code[a] < code[b]; });
+
+  // Greedy block colouring: each block takes the first colour none of its nodes has yet (at most 256).
+  const size_t blocks = (ne + static_cast<size_t>(block) - 1) / static_cast<size_t>(block);
+  std::vector<std::array<uint64_t, 4>> used(nodes.size(), {0, 0, 0, 0});
+  std::vector<int> colour(blocks);
+  int colours = 0;
+  for (size_t b = 0; b < blocks; ++b) {
+    const size_t first = b * static_cast<size_t>(block), last = std::min(ne, first + static_cast<size_t>(block));
+    std::array<uint64_t, 4> mask{0, 0, 0, 0};
+    for (size_t k = first; k < last; ++k)
+      for (size_t a = 0; a < nn; ++a)
+        for (int w = 0; w < 4; ++w) mask[w] |= used[static_cast<size_t>(connectivity[order[k] * nn + a])][w];
+    int c = -1;
+    for (int w = 0; w < 4 && c < 0; ++w)
+      if (~mask[w]) c = 64 * w + __builtin_ctzll(~mask[w]);
+    // 256 colours are far more than blocks of a tetrahedral mesh need (a block meets a few dozen others); never
+    // share a colour between blocks with a common node (threads would add into the same entries).
+    if (c < 0) throw std::logic_error("element colouring: a block meets more than 255 others");
+    colour[b] = c;
+    colours = std::max(colours, c + 1);
+    for (size_t k = first; k < last; ++k)
+      for (size_t a = 0; a < nn; ++a)
+        used[static_cast<size_t>(connectivity[order[k] * nn + a])][c / 64] |= uint64_t{1} << (c % 64);
+  }
+
+  ElementColouring result;
+  result.elements.reserve(ne);
+  result.block_begin.reserve(blocks + 1);
+  result.colour_begin.assign(1, 0);
+  for (int c = 0; c < colours; ++c) {
+    for (size_t b = 0; b < blocks; ++b) {
+      if (colour[b] != c) continue;
+      result.block_begin.push_back(result.elements.size());
+      const size_t first = b * static_cast<size_t>(block), last = std::min(ne, first + static_cast<size_t>(block));
+      for (size_t k = first; k < last; ++k) result.elements.push_back(order[k]);
+    }
+    result.colour_begin.push_back(result.block_begin.size());
+  }
+  result.block_begin.push_back(result.elements.size());
+  return result;
+}
+
+}  // namespace needlekit::fem::detail
