@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 
 namespace needlekit::fem::detail {
@@ -12,22 +13,35 @@ namespace needlekit::fem::detail {
 namespace {
 // The triangular solves are memory-bound: with OpenBLAS's threads they spin and run several times slower on a busy
 // machine (measured 3.5x on 2 shared cores). Run them single-threaded when the BLAS is OpenBLAS (looked up at run
-// time, so any BLAS links) and restore the thread count afterwards.
-struct SingleThreadedBlas {
-  using Set = void (*)(int);
-  using Get = int (*)();
-  Set set = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  Get get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  int previous = 0;
+// time, so any BLAS links) and restore the thread count afterwards. The count is process-wide and solvers can run at
+// once (the calibration's FE runs side by side): the first solve to enter saves it, the last to leave restores it
+// (each saving and restoring for itself let one save the other's "one" and leave the process at one thread).
+class SingleThreadedBlas {
+public:
   SingleThreadedBlas() {
-    if (set && get) {
-      previous = get();
-      set(1);
+    if (!set_ || !get_) return;
+    const std::lock_guard lock(mutex_);
+    if (active_++ == 0) {
+      saved_ = get_();
+      set_(1);
     }
   }
   ~SingleThreadedBlas() {
-    if (set && get && previous > 0) set(previous);
+    if (!set_ || !get_) return;
+    const std::lock_guard lock(mutex_);
+    if (--active_ == 0 && saved_ > 0) set_(saved_);
   }
+  SingleThreadedBlas(const SingleThreadedBlas&) = delete;
+  SingleThreadedBlas& operator=(const SingleThreadedBlas&) = delete;
+
+private:
+  using Set = void (*)(int);
+  using Get = int (*)();
+  static inline const Set set_ = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  static inline const Get get_ = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  static inline std::mutex mutex_;
+  static inline int active_ = 0;  // solves in progress
+  static inline int saved_ = 0;   // the count before the first of them
 };
 }  // namespace
 
