@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 namespace needlekit::fem::detail {
 namespace {
@@ -46,11 +47,16 @@ ElementColouring element_colouring(const std::vector<int>& connectivity, int nod
 
   // Greedy block colouring: each block takes the first colour none of its nodes has yet (at most 256).
   const size_t blocks = (ne + static_cast<size_t>(block) - 1) / static_cast<size_t>(block);
+  // The positions in `order` of block b's elements.
+  const auto block_range = [&](size_t b) {
+    const size_t first = b * static_cast<size_t>(block);
+    return std::pair{first, std::min(ne, first + static_cast<size_t>(block))};
+  };
   std::vector<std::array<uint64_t, 4>> used(nodes.size(), {0, 0, 0, 0});
   std::vector<int> colour(blocks);
   int colours = 0;
   for (size_t b = 0; b < blocks; ++b) {
-    const size_t first = b * static_cast<size_t>(block), last = std::min(ne, first + static_cast<size_t>(block));
+    const auto [first, last] = block_range(b);
     std::array<uint64_t, 4> mask{0, 0, 0, 0};
     for (size_t k = first; k < last; ++k)
       for (size_t a = 0; a < nn; ++a)
@@ -76,8 +82,9 @@ ElementColouring element_colouring(const std::vector<int>& connectivity, int nod
     for (size_t b = 0; b < blocks; ++b) {
       if (colour[b] != c) continue;
       result.block_begin.push_back(result.elements.size());
-      const size_t first = b * static_cast<size_t>(block), last = std::min(ne, first + static_cast<size_t>(block));
-      for (size_t k = first; k < last; ++k) result.elements.push_back(order[k]);
+      const auto [first, last] = block_range(b);
+      result.elements.insert(result.elements.end(), order.begin() + static_cast<std::ptrdiff_t>(first),
+                             order.begin() + static_cast<std::ptrdiff_t>(last));
     }
     result.colour_begin.push_back(result.block_begin.size());
   }

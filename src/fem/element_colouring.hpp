@@ -7,6 +7,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace needlekit::fem::detail {
@@ -16,6 +17,10 @@ struct ElementColouring {
   std::vector<size_t> block_begin;    // per block, its first position in `elements`; one more entry: the end
   std::vector<size_t> colour_begin;   // per colour, its first block; one more entry: the number of blocks
   size_t colours() const { return colour_begin.size() - 1; }
+  // The elements of block b, in the order a thread assembles them.
+  std::span<const int> block(size_t b) const {
+    return std::span<const int>(elements).subspan(block_begin[b], block_begin[b + 1] - block_begin[b]);
+  }
 };
 
 // Elements per block: enough to reuse the nodes of a small patch, few enough that a colour has many blocks.

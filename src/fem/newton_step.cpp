@@ -138,7 +138,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
       };
       const LineSearchResult search = line_search(ev.potential(), slope, potential_at);
       alpha = search.step;
-      assembled = alpha == 1 && search.last_evaluation_at_step && !search.failed;
+      assembled = alpha == 1 && search.last_evaluation_at_step;  // the full step, accepted without expansion
       rec.line_search_failed = search.failed;
     }
     rec.step_length = alpha;

@@ -48,9 +48,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
         Eigen::Matrix<double, 3, N> ue, fe;
         Eigen::Matrix<double, 3 * N, 3 * N> ke;
         double& en = block_energy[block];
-        for (size_t k = colouring.block_begin[first_block + block]; k < colouring.block_begin[first_block + block + 1];
-             ++k) {
-          const int e = colouring.elements[k];
+        for (const int e : colouring.block(first_block + block)) {
           const int* c = &conn[static_cast<size_t>(e) * N];
           for (int a = 0; a < N; ++a) ue.col(a) = uu.segment<3>(3 * c[a]);
           const auto* g =
@@ -152,8 +150,7 @@ void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
   for (size_t colour = 0; colour < colouring.colours(); ++colour)  // within a colour no two blocks share an entry
     arena.execute([&] {
       tbb::parallel_for(colouring.colour_begin[colour], colouring.colour_begin[colour + 1], [&](size_t block) {
-        for (size_t k = colouring.block_begin[block]; k < colouring.block_begin[block + 1]; ++k) {
-          const int e = colouring.elements[k];
+        for (const int e : colouring.block(block)) {
           if (!nodal->treated(e)) continue;
           const double scale = nodal->element_bulk_curvature(e) * space.volumes[static_cast<size_t>(e)];
           if (scale == 0) continue;
