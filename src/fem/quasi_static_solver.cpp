@@ -91,8 +91,8 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
           if (!want_tangent) continue;
           const int32_t* slot = system->element_slots(static_cast<size_t>(e));
           for (int col = 0; col < 3 * N; ++col)
-            for (int row = 0; row < 3 * N; ++row)
-              if (slot[col * 3 * N + row] >= 0) values[static_cast<size_t>(slot[col * 3 * N + row])] += ke(row, col);
+            for (int row = 0; row <= col; ++row, ++slot)
+              if (*slot >= 0) values[static_cast<size_t>(*slot)] += ke(row, col);
           if (!kdup) continue;
           // Coupling to the prescribed tip dofs: the linear predictor's right-hand side K_fp du_p.
           for (int a = 0; a < N; ++a)
@@ -157,9 +157,9 @@ void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
           const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
           const int32_t* slot = system->element_slots(static_cast<size_t>(e));
           for (int col = 0; col < 12; ++col)
-            for (int row = 0; row < 12; ++row)
-              if (slot[col * 12 + row] >= 0)
-                pre[static_cast<size_t>(system->preconditioner_slot(slot[col * 12 + row]))] +=
+            for (int row = 0; row <= col; ++row, ++slot)
+              if (*slot >= 0)
+                pre[static_cast<size_t>(system->preconditioner_slot(*slot))] +=
                     scale * jh(row % 3, row / 3) * jh(col % 3, col / 3);
         }
       });

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 
@@ -46,20 +47,21 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
                        " entries, more than this solver indexes");
   const int k = 3 * nn;
   const size_t ne = conn.size() / static_cast<size_t>(nn);
-  slots_per_element_ = static_cast<size_t>(k * k);
+  slots_per_element_ = static_cast<size_t>(upper_slots(k));
   value_slot_.assign(ne * slots_per_element_, -1);
   arena_.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 1024), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t e = range.begin(); e < range.end(); ++e)
+      for (size_t e = range.begin(); e < range.end(); ++e) {
+        int32_t* slot = &value_slot_[e * slots_per_element_];
         for (int col = 0; col < k; ++col) {
           const int cb = free_index[3 * conn[e * nn + col / 3] + col % 3];
-          if (cb < 0) continue;
-          for (int row = 0; row < k; ++row) {
+          for (int row = 0; row <= col; ++row, ++slot) {
             const int ra = free_index[3 * conn[e * nn + row / 3] + row % 3];
-            if (ra < 0 || ra > cb) continue;
-            value_slot_[e * k * k + col * k + row] = static_cast<int32_t>(entry_position(pattern_, ra, cb));
+            if (ra < 0 || cb < 0) continue;
+            *slot = static_cast<int32_t>(entry_position(pattern_, std::min(ra, cb), std::max(ra, cb)));
           }
         }
+      }
     });
   });
   const int64_t free_count = static_cast<int64_t>(pattern_.column_pointers.size()) - 1;
@@ -97,19 +99,23 @@ void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const int64_t nc = static_cast<int64_t>(pattern.column_pointers.size()) - 1;
   const int parts = kProductParts;
   partial_.resize(static_cast<size_t>(parts));
+  // Part q takes the columns [column_begin[q], column_begin[q + 1]), equal shares of the stored entries (columns
+  // grow longer towards the end), and writes only rows up to its last column (the stored triangle is upper): its
+  // partial sums are zeroed and added only up to there.
+  std::array<int64_t, kProductParts + 1> column_begin{};
+  for (int q = 1; q < parts; ++q) {
+    const int64_t target = pattern.column_pointers.back() * q / parts;
+    const auto first = std::lower_bound(pattern.column_pointers.begin(), pattern.column_pointers.end(), target);
+    column_begin[static_cast<size_t>(q)] = std::min<int64_t>(nc, first - pattern.column_pointers.begin());
+  }
+  column_begin[static_cast<size_t>(parts)] = nc;
+  y.resize(x.size());
   arena_.execute([&] {
     tbb::parallel_for(0, parts, [&](int part) {
+      const int64_t c0 = column_begin[static_cast<size_t>(part)], c1 = column_begin[static_cast<size_t>(part) + 1];
       Eigen::VectorXd& yp = partial_[static_cast<size_t>(part)];
-      yp.setZero(x.size());
-      // Equal shares of the stored entries, not of the columns (columns grow longer towards the end).
-      const auto begin_column = [&](int q) {
-        const int64_t target = pattern.column_pointers.back() * q / parts;
-        return static_cast<int64_t>(std::lower_bound(pattern.column_pointers.begin(), pattern.column_pointers.end(),
-                                                     target) -
-                                    pattern.column_pointers.begin());
-      };
-      const int64_t c0 = std::min(begin_column(part), nc),
-                    c1 = part + 1 == parts ? nc : std::min(begin_column(part + 1), nc);
+      yp.resize(x.size());
+      yp.head(c1).setZero();
       for (int64_t c = c0; c < c1; ++c) {
         const double xc = x[c];
         const int64_t diagonal = pattern.column_pointers[c + 1] - 1;  // every column ends with its diagonal
@@ -123,9 +129,15 @@ void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
         yp[c] += acc;
       }
     });
+    // y = the partial sums in part order (over the rows each wrote), threaded over row ranges.
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, nc, 4096), [&](const tbb::blocked_range<int64_t>& rows) {
+      y.segment(rows.begin(), rows.size()).setZero();
+      for (int q = 0; q < parts; ++q) {
+        const int64_t count = std::min(rows.end(), column_begin[static_cast<size_t>(q) + 1]) - rows.begin();
+        if (count > 0) y.segment(rows.begin(), count) += partial_[static_cast<size_t>(q)].segment(rows.begin(), count);
+      }
+    });
   });
-  y = partial_[0];
-  for (size_t p = 1; p < partial_.size(); ++p) y += partial_[p];
 }
 
 // CG iterations worth trying before a factorization is cheaper, within [1, max_reuse_iterations].
