@@ -57,6 +57,8 @@ struct QuasiStaticSolver::Impl {
   std::vector<double> contact_pressure;
   Eigen::VectorXd last_increment;  // u change of the last converged substep (for the secant predictor)
   double last_step = 0;            // m, its needle displacement change
+  Eigen::VectorXd earlier_increment;  // the substep's before it (the quadratic predictor), empty if none
+  double earlier_step = 0;            // m
 
   // ---- assembly (quasi_static_solver.cpp) ----
   struct Eval {

@@ -166,10 +166,10 @@ struct SolverOptions {
                                          // when the factorization is not positive definite
   int max_cutbacks = 8;                  // halvings of a failed step before giving up, >= 0
   bool linear_predictor = true;          // first iterate = linearised elastic solution (§3.4); false: previous u
-  bool extrapolate_predictor = true;     // once a step has converged, later steps start from the converged state
-                                         // plus the last step's increment scaled to the new step (secant
-                                         // predictor) instead of the linearised solve: one linear solve less per
-                                         // step; the first step always follows linear_predictor
+  bool extrapolate_predictor = true;     // once a step has converged, later steps start from the converged states
+                                         // extrapolated to the new step (linearly from two, quadratically from
+                                         // three) instead of the linearised solve: one linear solve less per step;
+                                         // the first step always follows linear_predictor
 
   // Surface contact (ContactModel::Surface).
   double penalty_factor = 100.0;         // > 0: penalty stiffness per area = factor * E / h of the adjacent elements

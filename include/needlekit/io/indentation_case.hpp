@@ -69,7 +69,7 @@ inline constexpr Parameter<fem::SolverOptions, int> kSolverCounts[] = {
 
 // [solver] predictor: fem::SolverOptions::extrapolate_predictor.
 inline constexpr EnumTable<bool, 2> kPredictorNames{{
-    {true, "secant", "later steps start from the last converged state plus the last increment (default)"},
+    {true, "secant", "later steps start from the converged states extrapolated (quadratically from the third step; default)"},
     {false, "linearised", "§3.4's linearised solve before every step"},
 }};
 
