@@ -4,7 +4,6 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
-#include <array>
 #include <limits>
 #include <string>
 
@@ -28,9 +27,6 @@ constexpr int kTwoGridMaxIterations = 200;
 // spectrum in about [μ/(λ+μ), 1] (P's element bulk term bounds the nodal one from above, tangent_system.hpp): about
 // 50 at ν = 0.49 and 500 at ν = 0.499, i.e. some 20-70 iterations at the Newton forcing terms.
 constexpr int kSplitMaxIterations = 400;
-// Column ranges of the symmetric product: enough for the cores of a workstation; each costs one vector of partial
-// sums per product.
-constexpr int kProductParts = 8;
 
 }  // namespace
 
@@ -41,10 +37,10 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
     : options_(options), arena_(arena), solver_(solver) {
   pattern_ = upper_pattern(conn, nn, node_count, free_index, group_pointers, group_nodes);
   values_.assign(pattern_.row_indices.size(), 0.0);
-  rows32_.assign(pattern_.row_indices.begin(), pattern_.row_indices.end());
   if (values_.size() >= static_cast<size_t>(std::numeric_limits<int32_t>::max()))
     throw InvalidInput("tissue mesh: the stiffness matrix has " + std::to_string(values_.size()) +
                        " entries, more than this solver indexes");
+  product_ = std::make_unique<SymmetricProduct>(pattern_, arena_);
   const int k = 3 * nn;
   const size_t ne = conn.size() / static_cast<size_t>(nn);
   slots_per_element_ = static_cast<size_t>(upper_slots(k));
@@ -90,55 +86,7 @@ void TangentSystem::capture_preconditioner() {
     if (full_to_pre_[k] >= 0) pre_values_[static_cast<size_t>(full_to_pre_[k])] = values_[k];
 }
 
-// Threaded over column ranges; each range scatters its transposed part into its own vector (the symmetric product
-// writes rows above the range), summed at the end in a fixed order. The number of ranges is fixed (kProductParts),
-// not the number of threads, so that the product, and with it every solve, is bitwise the same whatever the number
-// of threads.
-void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  const UpperPattern& pattern = pattern_;
-  const int64_t nc = static_cast<int64_t>(pattern.column_pointers.size()) - 1;
-  const int parts = kProductParts;
-  partial_.resize(static_cast<size_t>(parts));
-  // Part q takes the columns [column_begin[q], column_begin[q + 1]), equal shares of the stored entries (columns
-  // grow longer towards the end), and writes only rows up to its last column (the stored triangle is upper): its
-  // partial sums are zeroed and added only up to there.
-  std::array<int64_t, kProductParts + 1> column_begin{};
-  for (int q = 1; q < parts; ++q) {
-    const int64_t target = pattern.column_pointers.back() * q / parts;
-    const auto first = std::lower_bound(pattern.column_pointers.begin(), pattern.column_pointers.end(), target);
-    column_begin[static_cast<size_t>(q)] = std::min<int64_t>(nc, first - pattern.column_pointers.begin());
-  }
-  column_begin[static_cast<size_t>(parts)] = nc;
-  y.resize(x.size());
-  arena_.execute([&] {
-    tbb::parallel_for(0, parts, [&](int part) {
-      const int64_t c0 = column_begin[static_cast<size_t>(part)], c1 = column_begin[static_cast<size_t>(part) + 1];
-      Eigen::VectorXd& yp = partial_[static_cast<size_t>(part)];
-      yp.resize(x.size());
-      yp.head(c1).setZero();
-      for (int64_t c = c0; c < c1; ++c) {
-        const double xc = x[c];
-        const int64_t diagonal = pattern.column_pointers[c + 1] - 1;  // every column ends with its diagonal
-        double acc = values_[static_cast<size_t>(diagonal)] * xc;
-        for (int64_t k = pattern.column_pointers[c]; k < diagonal; ++k) {
-          const int32_t r = rows32_[static_cast<size_t>(k)];
-          const double v = values_[static_cast<size_t>(k)];
-          acc += v * x[r];
-          yp[r] += v * xc;
-        }
-        yp[c] += acc;
-      }
-    });
-    // y = the partial sums in part order (over the rows each wrote), threaded over row ranges.
-    tbb::parallel_for(tbb::blocked_range<int64_t>(0, nc, 4096), [&](const tbb::blocked_range<int64_t>& rows) {
-      y.segment(rows.begin(), rows.size()).setZero();
-      for (int q = 0; q < parts; ++q) {
-        const int64_t count = std::min(rows.end(), column_begin[static_cast<size_t>(q) + 1]) - rows.begin();
-        if (count > 0) y.segment(rows.begin(), count) += partial_[static_cast<size_t>(q)].segment(rows.begin(), count);
-      }
-    });
-  });
-}
+void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) { product_->multiply(values_, x, y); }
 
 // CG iterations worth trying before a factorization is cheaper, within [1, max_reuse_iterations].
 int TangentSystem::cg_budget() const {
@@ -169,7 +117,13 @@ void TangentSystem::recycled_start(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
   kw.resize(static_cast<size_t>(m));
   Eigen::MatrixXd g(m, m);
   Eigen::VectorXd wb(m);
-  for (int i = 0; i < m; ++i) multiply(recycled_[static_cast<size_t>(i)], kw[static_cast<size_t>(i)]);
+  std::vector<const Eigen::VectorXd*> ws(static_cast<size_t>(m));
+  std::vector<Eigen::VectorXd*> kws(static_cast<size_t>(m));
+  for (size_t i = 0; i < ws.size(); ++i) {
+    ws[i] = &recycled_[i];
+    kws[i] = &kw[i];
+  }
+  product_->multiply(values_, ws, kws);  // one pass over K per kMaxBlock vectors
   for (int i = 0; i < m; ++i) {
     wb[i] = recycled_[static_cast<size_t>(i)].dot(rhs);
     for (int j = 0; j < m; ++j) g(i, j) = recycled_[static_cast<size_t>(i)].dot(kw[static_cast<size_t>(j)]);

@@ -1,5 +1,5 @@
 // Internal: the free-dof tangent stiffness K of the quasi-static solver and the solution of K du = rhs — its
-// symmetric sparse product (upper-triangular CSC, threaded), preconditioned conjugate gradients with Krylov
+// symmetric sparse product (symmetric_product.hpp), preconditioned conjugate gradients with Krylov
 // recycling, and the choice between a fresh CHOLMOD factorization, CG on the last one (Cholesky-CG) and CG with the
 // two-grid cycle.
 //
@@ -21,6 +21,7 @@
 #include "needlekit/mesh/coarse_level.hpp"
 #include "sparse_cholesky.hpp"
 #include "sparse_pattern.hpp"
+#include "symmetric_product.hpp"
 #include "two_grid_preconditioner.hpp"
 
 namespace needlekit::fem::detail {
@@ -88,8 +89,8 @@ private:
   tbb::task_arena& arena_;
   LinearSolver solver_;
   UpperPattern pattern_;
-  std::vector<int32_t> rows32_;  // pattern_.row_indices as 32-bit: the product's memory traffic is a quarter less
   std::vector<double> values_;
+  std::unique_ptr<SymmetricProduct> product_;  // on pattern_ (a pointer: pattern_ is set in the constructor's body)
   size_t slots_per_element_ = 0;
   std::vector<int32_t> value_slot_;
   std::unique_ptr<SparseCholesky> cholesky_;         // Cholesky, CholeskyCg (of P with the split preconditioner)
@@ -99,7 +100,6 @@ private:
   std::vector<int32_t> full_to_pre_;
   int fresh_cg_iterations_ = 0;  // of the last solve on a fresh factor of P
   std::unique_ptr<TwoGridPreconditioner> two_grid_;  // TwoGrid
-  std::vector<Eigen::VectorXd> partial_;  // multiply's per-range products, kept between calls (CG's hot path)
   bool have_factor_ = false;
   int last_cg_iterations_ = 0;  // of the last CG solve
   // Krylov recycling: unit vectors of the last solutions (newest last) and K times each (recomputed per solve).
