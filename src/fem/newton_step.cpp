@@ -60,7 +60,9 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
   double first_energy_norm = 0, last_du = std::numeric_limits<double>::infinity(), last_en = last_du;
   // Forces and tangent at u: assembled here for the first iteration, afterwards by the line search's full-step
   // trial when that step is accepted (the usual case), so an accepted full step costs one assembly, not two.
-  bool assembled = false;
+  // The full-step trial leaves the tangent out when it expects Newton to stop there (tangent_ready false): the
+  // tangent is then assembled only if the test fails after all.
+  bool assembled = false, tangent_ready = false;
   double carried_assembly_seconds = 0, previous_residual = 0;
   // Surface contact: the iteration at which the set of nodes in contact last changed (contact cycling when Newton
   // fails while it keeps changing).
@@ -73,6 +75,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     auto t0 = Clock::now();
     if (!assembled) ev = evaluate(u, disp, true, true);
     rec.assembly_seconds = assembled ? carried_assembly_seconds : seconds_since(t0);
+    if (!assembled) tangent_ready = true;
     assembled = false;
     if (!ev.valid) {
       failure = inverted(ev);
@@ -96,7 +99,10 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     const bool res_ok = rec.residual_norm <= opt.residual_tolerance * ref;
     const bool disp_ok = last_du <= opt.displacement_tolerance * std::max(unorm, 1e-300);
     const bool energy_ok = it > 1 && last_en <= opt.energy_tolerance * first_energy_norm;
-    if (rec.residual_norm <= tiny * 1e-6 || (res_ok && (disp_ok || energy_ok))) return true;
+    if (rec.residual_norm <= tiny * 1e-6 || (res_ok && (disp_ok || energy_ok))) {
+      converged_strain_energy = ev.strain_energy;
+      return true;
+    }
     if (it > max_iterations) {
       const std::string residual = "(residual " + std::to_string(rec.residual_norm / ref) +
                                    " of the force scale; [solver] max_iterations sets the limit)";
@@ -107,6 +113,12 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
         failure = {StepStatus::IterationLimit,
                    "Newton did not converge in " + std::to_string(max_iterations) + " iterations " + residual};
       return false;
+    }
+    if (!tangent_ready) {  // the last trial expected to stop here and left the tangent out
+      const auto t1 = Clock::now();
+      ev = evaluate(u, disp, true, true);
+      rec.assembly_seconds += seconds_since(t1);
+      tangent_ready = true;
     }
     Eigen::VectorXd du;
     // Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no
@@ -124,12 +136,18 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     double alpha = 1;
     if (opt.line_search && slope < 0) {
       // The full step's evaluation assembles the tangent too: it is the next iteration's assembly when accepted.
+      // Unless Newton is expected to stop there: the full step passes the displacement (or energy) test, and CG left
+      // at most half the residual target (Newton's own remainder is of higher order). Then the tangent would not be
+      // used; in most load steps this saves the tangent of the last trial.
+      const bool expect_last = eta * rec.residual_norm <= 0.5 * opt.residual_tolerance * ref &&
+                               (rec.increment_norm <= opt.displacement_tolerance * unorm ||
+                                (it > 1 && rec.energy_norm <= opt.energy_tolerance * first_energy_norm));
       Eigen::VectorXd trial;
       const auto potential_at = [&](double a) {
         trial = u;
         add_free(trial, du, a);
         const auto t1 = Clock::now();
-        const Eval e = evaluate(trial, disp, a >= 1, a == 1);
+        const Eval e = evaluate(trial, disp, a >= 1, a == 1 && !expect_last);
         if (a == 1) carried_assembly_seconds = seconds_since(t1);
         LineSearchPoint point{e.valid, e.potential(), 0.0};
         if (a >= 1 && e.valid) point.slope = free_residual().dot(du);
@@ -139,6 +157,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
       const LineSearchResult search = line_search(ev.potential(), slope, potential_at);
       alpha = search.step;
       assembled = alpha == 1 && search.last_evaluation_at_step;  // the full step, accepted without expansion
+      tangent_ready = !expect_last;
       rec.line_search_failed = search.failed;
     }
     rec.step_length = alpha;
@@ -228,7 +247,7 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
   }
   double step = target - m.d;
   int streak = 0;
-  bool ok = true;
+  bool ok = true, stepped = false;
   while (ok && m.d != target) {
     const double next = std::abs(target - m.d) <= std::abs(step) * (1 + 1e-12) ? target : m.d + step;
     const Eigen::VectorXd u_saved = m.u;
@@ -253,6 +272,7 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
         m.external_work += 0.5 * (m.last_force[k] + probe.indenter_force[k]) * (next - previous);  // trapezoid
       m.last_force = probe.indenter_force;
       res.substeps++;
+      stepped = true;
       if (++streak >= 2 && std::abs(step) < std::abs(target - m.d)) step *= 2, streak = 0;  // recover after cut-back
       if (std::abs(step) > std::abs(target - m.d) && m.d != target) step = target - m.d;
       continue;
@@ -274,13 +294,16 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
     res.cutbacks++;
     step *= 0.5;
   }
-  // Re-evaluate the converged state for the outputs.
-  const auto ev = m.evaluate(m.u, m.d, true, false);
+  // The outputs' forces are those of the last evaluation. After a converged substep under tip-node contact that was
+  // Newton's at the converged state; otherwise (a failed or no substep, or surface contact, whose update_ahead moves
+  // the contact frame after Newton) the state is evaluated again.
+  const bool evaluated = ok && stepped && !m.contact;
+  const double strain_energy = evaluated ? m.converged_strain_energy : m.evaluate(m.u, m.d, true, false).strain_energy;
   m.measure(res);
   res.converged = ok;
   if (ok) res.status = StepStatus::Converged;
   res.indenter_displacement = m.d;
-  res.strain_energy = ev.strain_energy;
+  res.strain_energy = strain_energy;
   res.external_work = m.external_work;
   for (int n = 0; n < static_cast<int>(m.u_nodes.size()); ++n) m.u_nodes[n] = m.u.segment<3>(3 * n);
   res.total_seconds = Impl::seconds_since(t0);
