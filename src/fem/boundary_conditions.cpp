@@ -220,19 +220,20 @@ std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, co
   return nodes;
 }
 
-DofMap dof_map(const std::vector<char>& fixed, const std::vector<std::vector<int>>& tip_nodes_per_needle) {
+DofMap dof_map(const std::vector<char>& fixed, const std::vector<std::vector<int>>& tip_nodes_per_needle,
+               const std::vector<int>& node_order) {
   DofMap map;
-  const int ndof = static_cast<int>(fixed.size());
   map.tip_dof.assign(fixed.size(), 0);
   for (const auto& nodes : tip_nodes_per_needle)
     for (int a : nodes)
       if (!fixed[3 * a + 2]) map.tip_dof[3 * a + 2] = 1;
   map.free_index.assign(fixed.size(), -1);
-  for (int dof = 0; dof < ndof; ++dof)
-    if (!fixed[dof] && !map.tip_dof[dof]) {
-      map.free_index[dof] = static_cast<int>(map.free_dofs.size());
-      map.free_dofs.push_back(dof);
-    }
+  for (int node : node_order)
+    for (int dof = 3 * node; dof < 3 * node + 3; ++dof)
+      if (!fixed[dof] && !map.tip_dof[dof]) {
+        map.free_index[dof] = static_cast<int>(map.free_dofs.size());
+        map.free_dofs.push_back(dof);
+      }
   return map;
 }
 

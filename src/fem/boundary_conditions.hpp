@@ -34,12 +34,15 @@ std::vector<char> fixed_dofs(const FunctionSpace& space, BoundaryCondition condi
 std::vector<int> tip_nodes(const TopSurface& top, const FunctionSpace& space, const geometry::TriangleMesh& needle,
                            double tolerance);
 
-// Free degrees of freedom: neither fixed nor prescribed by a needle tip.
+// Free degrees of freedom: neither fixed nor prescribed by a needle tip, numbered node by node in `node_order`
+// (every node once; the solver's is the Morton order of the nodes, morton_order.hpp: neighbouring nodes get nearby
+// rows of the tangent).
 struct DofMap {
   std::vector<int> free_index;  // per dof: index among the free dofs, or -1
-  std::vector<int> free_dofs;   // ascending
+  std::vector<int> free_dofs;   // per free index its dof (the inverse of free_index)
   std::vector<char> tip_dof;    // per dof: 1 when a needle tip prescribes it (z of a free tip node)
 };
-DofMap dof_map(const std::vector<char>& fixed, const std::vector<std::vector<int>>& tip_nodes_per_needle);
+DofMap dof_map(const std::vector<char>& fixed, const std::vector<std::vector<int>>& tip_nodes_per_needle,
+               const std::vector<int>& node_order);
 
 }  // namespace needlekit::fem::detail

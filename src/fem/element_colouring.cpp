@@ -4,26 +4,12 @@
 #include <array>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 
+#include "morton_order.hpp"
+
 namespace needlekit::fem::detail {
-namespace {
-
-// The 21 bits of v spread to every third bit (the Morton code's interleaving; Morton 1966). Written here: a few
-// shifts and masks, where a library would add a dependency for one function.
-uint64_t spread_bits(uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffull;
-  v = (v | v << 16) & 0x1f0000ff0000ffull;
-  v = (v | v << 8) & 0x100f00f00f00f00full;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-  v = (v | v << 2) & 0x1249249249249249ull;
-  return v;
-}
-
-}  // namespace
 
 ElementColouring element_colouring(const std::vector<int>& connectivity, int nodes_per_element,
                                    const std::vector<Eigen::Vector3d>& nodes, int block) {
@@ -32,18 +18,12 @@ ElementColouring element_colouring(const std::vector<int>& connectivity, int nod
   // Morton order of the centroids (of the first four nodes: the corners), in the mesh's bounding box.
   Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), high = -low;
   for (const Eigen::Vector3d& p : nodes) low = low.cwiseMin(p), high = high.cwiseMax(p);
-  const Eigen::Vector3d scale = ((1 << 21) - 1) / (high - low).cwiseMax(1e-300).array();
-  std::vector<uint64_t> code(ne);
+  std::vector<Eigen::Vector3d> centroids(ne, Eigen::Vector3d::Zero());
   for (size_t e = 0; e < ne; ++e) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (size_t a = 0; a < 4; ++a) centroid += nodes[static_cast<size_t>(connectivity[e * nn + a])];
-    const Eigen::Vector3d cell = ((centroid / 4 - low).array() * scale.array()).round();
-    code[e] = spread_bits(static_cast<uint64_t>(cell.x())) | spread_bits(static_cast<uint64_t>(cell.y())) << 1 |
-              spread_bits(static_cast<uint64_t>(cell.z())) << 2;
+    for (size_t a = 0; a < 4; ++a) centroids[e] += nodes[static_cast<size_t>(connectivity[e * nn + a])];
+    centroids[e] /= 4;
   }
-  std::vector<int> order(ne);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return code[a] < code[b]; });
+  const std::vector<int> order = morton_order(centroids, low, high);
 
   // Greedy block colouring: each block takes the first colour none of its nodes has yet (at most 256).
   const size_t blocks = (ne + static_cast<size_t>(block) - 1) / static_cast<size_t>(block);

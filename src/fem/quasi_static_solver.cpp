@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "needlekit/core/errors.hpp"
+#include "morton_order.hpp"
 #include "quasi_static_solver_impl.hpp"
 #include "tet_kernel.hpp"
 
@@ -307,7 +308,10 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   // Degrees of freedom: boundary conditions (§3.4: sides and bottom fixed, top free) and tip nodes.
   std::vector<std::vector<int>> tips;
   for (const auto& nd : m.needles) tips.push_back(nd.tip_nodes);
-  m.dofs = detail::dof_map(detail::fixed_dofs(m.space, o.boundary, tol), tips);
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), high = -low;
+  for (const Eigen::Vector3d& p : m.space.nodes) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  m.dofs = detail::dof_map(detail::fixed_dofs(m.space, o.boundary, tol), tips,
+                           detail::morton_order(m.space.nodes, low, high));
   check(!m.dofs.free_dofs.empty(), "tissue mesh: every degree of freedom is constrained");
 
   // Linear tetrahedra near incompressibility: the volumetric term on nodal-averaged volume ratios.
@@ -368,15 +372,21 @@ QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vec
   const Impl::Eval ev = m.evaluate(uu, indenter_displacement, true, true);
   out.valid = ev.valid;
   out.energy = ev.potential();
-  out.gradient = m.free_residual();
+  // The solver numbers the free dofs in its own order; the outputs take them in ascending dof order.
+  const Eigen::VectorXd gradient = m.free_residual();
+  const Eigen::Index n = static_cast<Eigen::Index>(m.dofs.free_dofs.size());
+  std::vector<Eigen::Index> ascending(static_cast<size_t>(n));  // per free index: its position in the outputs
+  for (int dof = 0, position = 0; dof < m.ndof; ++dof)
+    if (m.dofs.free_index[dof] >= 0) ascending[static_cast<size_t>(m.dofs.free_index[dof])] = position++;
+  out.gradient.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) out.gradient[ascending[static_cast<size_t>(k)]] = gradient[k];
   const auto& pattern = m.system->pattern();
   const auto& values = m.system->values();
-  const Eigen::Index n = static_cast<Eigen::Index>(m.dofs.free_dofs.size());
   out.tangent = Eigen::MatrixXd::Zero(n, n);
   for (Eigen::Index c = 0; c < n; ++c)
     for (int64_t k = pattern.column_pointers[c]; k < pattern.column_pointers[c + 1]; ++k) {
-      const Eigen::Index r = pattern.row_indices[k];
-      out.tangent(r, c) = out.tangent(c, r) = values[static_cast<size_t>(k)];
+      const Eigen::Index r = ascending[static_cast<size_t>(pattern.row_indices[k])], col = ascending[static_cast<size_t>(c)];
+      out.tangent(r, col) = out.tangent(col, r) = values[static_cast<size_t>(k)];
     }
   return out;
 }

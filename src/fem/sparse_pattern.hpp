@@ -13,7 +13,8 @@ struct UpperPattern {
 };
 
 // `connectivity`: nodes_per_element node indices per element; `free_index`: per dof (3 * node + component) its
-// index among the free dofs, or -1. Two free dofs couple when their nodes share an element.
+// index among the free dofs, or -1, numbered node by node (a node's free dofs consecutive, by component; the nodes in
+// any order, dof_map). Two free dofs couple when their nodes share an element.
 // `group_pointers`/`group_nodes` (optional, CSR): further groups of nodes that couple all their free dofs (the node
 // patches of the nodal-averaged tetrahedron).
 UpperPattern upper_pattern(const std::vector<int>& connectivity, int nodes_per_element, int node_count,

@@ -316,8 +316,8 @@ public:
   struct Linearization {
     bool valid = true;            // false: an element or a nodal volume inverted
     double energy = 0;            // J
-    Eigen::VectorXd gradient;     // N, per free dof
-    Eigen::MatrixXd tangent;      // N/m, free x free, symmetric
+    Eigen::VectorXd gradient;     // N, per free dof, in ascending dof (3 * node + component) order
+    Eigen::MatrixXd tangent;      // N/m, free x free (the gradient's order), symmetric
   };
   Linearization linearization(const std::vector<Eigen::Vector3d>& u, double indenter_displacement);
 
