@@ -383,11 +383,13 @@ QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vec
   const auto& pattern = m.system->pattern();
   const auto& values = m.system->values();
   out.tangent = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index c = 0; c < n; ++c)
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const Eigen::Index col = ascending[static_cast<size_t>(c)];
     for (int64_t k = pattern.column_pointers[c]; k < pattern.column_pointers[c + 1]; ++k) {
-      const Eigen::Index r = ascending[static_cast<size_t>(pattern.row_indices[k])], col = ascending[static_cast<size_t>(c)];
+      const Eigen::Index r = ascending[static_cast<size_t>(pattern.row_indices[k])];
       out.tangent(r, col) = out.tangent(col, r) = values[static_cast<size_t>(k)];
     }
+  }
   return out;
 }
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->dofs.free_dofs.size()); }
