@@ -73,9 +73,11 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
   for (int it = 1; it <= max_iterations + 1; ++it) {
     IterationRecord rec;
     auto t0 = Clock::now();
-    if (!assembled) ev = evaluate(u, disp, true, true);
+    if (!assembled) {
+      ev = evaluate(u, disp, true, true);
+      tangent_ready = true;
+    }
     rec.assembly_seconds = assembled ? carried_assembly_seconds : seconds_since(t0);
-    if (!assembled) tangent_ready = true;
     assembled = false;
     if (!ev.valid) {
       failure = inverted(ev);

@@ -308,10 +308,8 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   // Degrees of freedom: boundary conditions (§3.4: sides and bottom fixed, top free) and tip nodes.
   std::vector<std::vector<int>> tips;
   for (const auto& nd : m.needles) tips.push_back(nd.tip_nodes);
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), high = -low;
-  for (const Eigen::Vector3d& p : m.space.nodes) low = low.cwiseMin(p), high = high.cwiseMax(p);
   m.dofs = detail::dof_map(detail::fixed_dofs(m.space, o.boundary, tol), tips,
-                           detail::morton_order(m.space.nodes, low, high));
+                           detail::morton_order(m.space.nodes, m.space.box_min, m.space.box_max));
   check(!m.dofs.free_dofs.empty(), "tissue mesh: every degree of freedom is constrained");
 
   // Linear tetrahedra near incompressibility: the volumetric term on nodal-averaged volume ratios.

@@ -12,23 +12,15 @@
 
 #include "../../src/fem/boundary_conditions.hpp"
 #include "../../src/fem/sparse_pattern.hpp"
-#include "needlekit/mesh/structured_block_mesh.hpp"
+#include "../support/bottom_fixed_block.hpp"
 
 using namespace needlekit;
 
 TEST(UpperPattern, HoldsEveryCouplingOnceInAnyNodeOrder) {
-  mesh::StructuredBlockOptions o;
-  o.width = o.length = 1e-3, o.height = 0.5e-3;
-  o.nx = o.ny = 4, o.nz = 3;
-  const mesh::TetMesh m = mesh::structured_block_mesh(o);
+  test::BottomFixedBlock block = test::bottom_fixed_block(4, 4, 3);
+  const mesh::TetMesh& m = block.mesh;
   const int nodes = static_cast<int>(m.nodes.size());
-  std::vector<int> connectivity;
-  for (const auto& t : m.tets) connectivity.insert(connectivity.end(), t.begin(), t.end());
-  double bottom = 0;
-  for (const auto& x : m.nodes) bottom = std::min(bottom, x.z());
-  std::vector<char> fixed(3 * m.nodes.size(), 0);
-  for (size_t n = 0; n < m.nodes.size(); ++n)
-    if (m.nodes[n].z() < bottom + 1e-9) fixed[3 * n] = fixed[3 * n + 1] = fixed[3 * n + 2] = 1;
+  std::vector<char>& fixed = block.fixed;
   fixed[3 * 5 + 1] = 1;  // a node with some of its dofs free
 
   std::vector<int> identity(static_cast<size_t>(nodes)), shuffled;
@@ -47,7 +39,7 @@ TEST(UpperPattern, HoldsEveryCouplingOnceInAnyNodeOrder) {
               const int c = dofs.free_index[static_cast<size_t>(3 * b + j)];
               if (r >= 0 && c >= 0 && r <= c) expected.emplace(r, c);
             }
-    const fem::detail::UpperPattern p = fem::detail::upper_pattern(connectivity, 4, nodes, dofs.free_index);
+    const fem::detail::UpperPattern p = fem::detail::upper_pattern(block.connectivity, 4, nodes, dofs.free_index);
     ASSERT_EQ(p.column_pointers.size(), dofs.free_dofs.size() + 1);
     std::set<std::pair<int64_t, int64_t>> stored;
     for (size_t c = 0; c + 1 < p.column_pointers.size(); ++c)

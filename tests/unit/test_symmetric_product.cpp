@@ -5,13 +5,14 @@
 #include <tbb/task_arena.h>
 
 #include <Eigen/Sparse>
-#include <algorithm>
+#include <numeric>
 #include <random>
 #include <vector>
 
+#include "../../src/fem/boundary_conditions.hpp"
 #include "../../src/fem/sparse_pattern.hpp"
 #include "../../src/fem/symmetric_product.hpp"
-#include "needlekit/mesh/structured_block_mesh.hpp"
+#include "../support/bottom_fixed_block.hpp"
 
 using namespace needlekit;
 using needlekit::fem::detail::SymmetricProduct;
@@ -27,21 +28,14 @@ struct Problem {
 
 // The pattern of linear tetrahedra on a small block, the bottom face's nodes prescribed, random entries.
 Problem random_tangent() {
-  mesh::StructuredBlockOptions o;
-  o.width = o.length = 1e-3, o.height = 0.5e-3;
-  o.nx = o.ny = 6, o.nz = 4;
-  const mesh::TetMesh m = mesh::structured_block_mesh(o);
-  std::vector<int> connectivity;
-  for (const auto& t : m.tets) connectivity.insert(connectivity.end(), t.begin(), t.end());
-  double bottom = 0;
-  for (const auto& x : m.nodes) bottom = std::min(bottom, x.z());
-  std::vector<int> free_index(3 * m.nodes.size(), -1);
-  int free = 0;
-  for (size_t n = 0; n < m.nodes.size(); ++n)
-    if (m.nodes[n].z() > bottom + 1e-9)
-      for (int c = 0; c < 3; ++c) free_index[3 * n + static_cast<size_t>(c)] = free++;
+  const test::BottomFixedBlock b = test::bottom_fixed_block(6, 6, 4);
+  const int nodes = static_cast<int>(b.mesh.nodes.size());
+  std::vector<int> identity(static_cast<size_t>(nodes));
+  std::iota(identity.begin(), identity.end(), 0);
+  const fem::detail::DofMap dofs = fem::detail::dof_map(b.fixed, {}, identity);
+  const int free = static_cast<int>(dofs.free_dofs.size());
   Problem p;
-  p.pattern = fem::detail::upper_pattern(connectivity, 4, static_cast<int>(m.nodes.size()), free_index);
+  p.pattern = fem::detail::upper_pattern(b.connectivity, 4, nodes, dofs.free_index);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
   p.values.resize(p.pattern.row_indices.size());
@@ -57,7 +51,7 @@ Problem random_tangent() {
   p.full.resize(free, free);
   p.full.setFromTriplets(entries.begin(), entries.end());
   EXPECT_GT(free, 300) << "too few free dofs for the product's eight column ranges to matter";
-  EXPECT_LT(free, static_cast<int>(3 * m.nodes.size())) << "no prescribed dofs";
+  EXPECT_LT(free, 3 * nodes) << "no prescribed dofs";
   return p;
 }
 
