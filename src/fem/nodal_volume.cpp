@@ -44,6 +44,7 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
   element_jh_.assign(ne, Eigen::Matrix<double, 3, 4>::Zero());
   node_volume_.assign(nnode, 0.0);
   node_lambda_.assign(nnode, 0.0);
+  node_compliance_.assign(nnode, 0.0);
   std::vector<int> count(nnode + 1, 0);
   for (size_t e = 0; e < ne; ++e) {
     if (!treated_[e]) continue;
@@ -53,6 +54,7 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
       count[static_cast<size_t>(n) + 1]++;
       node_volume_[n] += space.volumes[e] / 4;
       node_lambda_[n] += (space.lame[e].lambda - element_lambda(space.lame[e])) * space.volumes[e] / 4;
+      node_compliance_[n] += space.volumes[e] / 4 / (element_lambda(space.lame[e]) + 2 * space.lame[e].mu / 3);
     }
   }
   for (size_t n = 0; n < nnode; ++n) {
@@ -80,6 +82,14 @@ NodalVolumeAverage::NodalVolumeAverage(FunctionSpace& space, const std::vector<c
   }
   node_curvature_.assign(nnode, 0.0);
   patch_gradient_.assign(patch_nodes_.size(), Eigen::Vector3d::Zero());
+  patch_transpose_.resize(patch_nodes_.size());
+  for (size_t a = 0; a < nnode; ++a)  // b is in a's patch exactly when a is in b's (they share an element)
+    for (int k = patch_pointers_[a]; k < patch_pointers_[a + 1]; ++k) {
+      const size_t b = static_cast<size_t>(patch_nodes_[static_cast<size_t>(k)]);
+      const int* first = &patch_nodes_[0] + patch_pointers_[b];
+      patch_transpose_[static_cast<size_t>(k)] =
+          patch_pointers_[b] + patch_position(first, &patch_nodes_[0] + patch_pointers_[b + 1], static_cast<int>(a));
+    }
 }
 
 double NodalVolumeAverage::element_lambda(const LameConstants& lame) const {
@@ -209,6 +219,65 @@ void NodalVolumeAverage::add_patch_tangent(const std::vector<int>& free_index, c
       }
     });
   });
+}
+
+double NodalVolumeAverage::inverse_schur_diagonal(size_t node) const {
+  const double d = std::max(0.0, node_curvature_[node]);
+  return d / (1 + d * node_compliance_[node]);
+}
+
+void NodalVolumeAverage::gradient_transpose_product(const std::vector<int>& free_index, const Eigen::VectorXd& x,
+                                                    Eigen::VectorXd& q, tbb::task_arena& arena) const {
+  const size_t nnode = node_volume_.size();
+  q.resize(static_cast<Eigen::Index>(nnode));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nnode, 512), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t a = r.begin(); a < r.end(); ++a) {
+        double s = 0;
+        for (int k = patch_pointers_[a]; k < patch_pointers_[a + 1]; ++k)
+          for (int i = 0; i < 3; ++i) {
+            const int row = free_index[3 * static_cast<size_t>(patch_nodes_[static_cast<size_t>(k)]) + i];
+            if (row >= 0) s += patch_gradient_[static_cast<size_t>(k)][i] * x[row];
+          }
+        q[static_cast<Eigen::Index>(a)] = s;
+      }
+    });
+  });
+}
+
+void NodalVolumeAverage::add_gradient_product(const std::vector<int>& free_index, const Eigen::VectorXd& q,
+                                              Eigen::VectorXd& y, tbb::task_arena& arena) const {
+  const size_t nnode = node_volume_.size();
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nnode, 512), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t b = r.begin(); b < r.end(); ++b) {  // y at node b: Σ over the nodes a of its patch of q_a g_a(b)
+        Eigen::Vector3d s = Eigen::Vector3d::Zero();
+        for (int k = patch_pointers_[b]; k < patch_pointers_[b + 1]; ++k)
+          s += q[patch_nodes_[static_cast<size_t>(k)]] *
+               patch_gradient_[static_cast<size_t>(patch_transpose_[static_cast<size_t>(k)])];
+        for (int i = 0; i < 3; ++i) {
+          const int row = free_index[3 * b + i];
+          if (row >= 0) y[row] += s[i];
+        }
+      }
+    });
+  });
+}
+
+void NodalVolumeAverage::add_patch_tangent(const std::vector<int>& free_index,
+                                           const std::vector<Eigen::Index>& position, Eigen::MatrixXd& dense) const {
+  for (size_t a = 0; a + 1 < patch_pointers_.size(); ++a)
+    for (int k = patch_pointers_[a]; k < patch_pointers_[a + 1]; ++k)
+      for (int l = patch_pointers_[a]; l < patch_pointers_[a + 1]; ++l)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const int row = free_index[static_cast<size_t>(3 * patch_nodes_[static_cast<size_t>(k)] + i)];
+            const int column = free_index[static_cast<size_t>(3 * patch_nodes_[static_cast<size_t>(l)] + j)];
+            if (row < 0 || column < 0) continue;
+            dense(position[static_cast<size_t>(row)], position[static_cast<size_t>(column)]) +=
+                node_curvature_[a] * patch_gradient_[static_cast<size_t>(k)][i] *
+                patch_gradient_[static_cast<size_t>(l)][j];
+          }
 }
 
 void NodalVolumeAverage::add_prescribed_coupling(const std::vector<int>& free_index, const Eigen::VectorXd& dup,

@@ -64,6 +64,28 @@ public:
   void add_prescribed_coupling(const std::vector<int>& free_index, const Eigen::VectorXd& dup,
                                Eigen::VectorXd& kdup) const;
 
+  // The patch term as the product G D G^T of the nodal volume gradients G = [g_a] (free dofs x nodes) and
+  // D = diag(max(U_a'', 0) / V_a), for the two-grid preconditioner of the nodal-averaged tangent
+  // (nodal_volume_preconditioner.hpp). `x`, `y`: free-dof vectors (free_index numbering); `q`: one value per node.
+  // q = G^T x (the nodal volume changes), and y += G q: each output entry written by one task (deterministic).
+  void gradient_transpose_product(const std::vector<int>& free_index, const Eigen::VectorXd& x, Eigen::VectorXd& q,
+                                  tbb::task_arena& arena) const;
+  void add_gradient_product(const std::vector<int>& free_index, const Eigen::VectorXd& q, Eigen::VectorXd& y,
+                            tbb::task_arena& arena) const;
+  // D_a = U_a''(J̄_a) / V_a (Pa/m^3) at the last update.
+  double node_curvature(size_t node) const { return node_curvature_[node]; }
+  // The patch term into a dense matrix whose row and column of free dof f is position[f] (QuasiStaticSolver::
+  // linearization when K does not store it).
+  void add_patch_tangent(const std::vector<int>& free_index, const std::vector<Eigen::Index>& position,
+                         Eigen::MatrixXd& dense) const;
+  // Per node, 1 / (1 / D_a + C_a) with C_a = Σ_{e∋a} V_e / (4 κ_e), κ_e = λ_s + 2μ/3 (Pa/m^3; 0 where D_a = 0):
+  // the inverse of a diagonal Schur complement S = D^-1 + G^T A^-1 G that bounds it from above when A holds the
+  // element part (μ and λ_s): with δv = G^T v the nodal volume changes and δJ_e the element's,
+  // (q^T G^T v)^2 = (Σ_e V_e q̄_e δJ_e)^2 <= Σ_e κ_e V_e δJ_e^2 · Σ_e V_e q̄_e^2 / κ_e (Cauchy-Schwarz), the first
+  // factor <= v^T A v ((tr ε)^2 <= 3 ε:ε puts 2μ/3 (tr ε)^2 under the deviatoric energy), the second
+  // <= Σ_a q_a^2 C_a (q̄_e^2 <= the mean of q_a^2).
+  double inverse_schur_diagonal(size_t node) const;
+
   // Node patches as groups for the sparse pattern: patch_pointers (nodes + 1) into patch_nodes (sorted).
   const std::vector<int>& patch_pointers() const { return patch_pointers_; }
   const std::vector<int>& patch_nodes() const { return patch_nodes_; }
@@ -76,6 +98,8 @@ private:
   std::vector<int> node_element_pointers_, node_elements_;  // node -> treated elements containing it
   std::vector<int> patch_pointers_, patch_nodes_;           // node -> nodes of its patch (itself included)
   std::vector<double> node_volume_, node_lambda_;           // V_a (m^3), λ_a (Pa)
+  std::vector<double> node_compliance_;                     // C_a = Σ_{e∋a} V_e / (4 κ_e), m^3/Pa
+  std::vector<int> patch_transpose_;                        // per patch entry (a, b): the entry (b, a) of b's patch
   std::vector<double> element_j_, element_pressure_;
   std::vector<Eigen::Matrix<double, 3, 4>> element_jh_;
   std::vector<double> node_curvature_;                      // U_a''(J̄_a) / V_a, Pa/m^3

@@ -139,7 +139,8 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
       system->capture_preconditioner();
       add_bulk_preconditioner();
     }
-    nodal->add_patch_tangent(dofs.free_index, system->pattern(), system->values(), arena);
+    if (system->stores_patch_term())
+      nodal->add_patch_tangent(dofs.free_index, system->pattern(), system->values(), arena);
     if (kdup) nodal->add_prescribed_coupling(dofs.free_index, *dup, *kdup);
   }
   return ev;
@@ -324,15 +325,10 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   }
   LinearSolver solver = o.linear_solver;
   if (solver == LinearSolver::Automatic)
-    solver = (coarse && !m.nodal) || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
-  check(!(m.nodal && solver == LinearSolver::TwoGrid),
-        "solver linear_solver = \"two-grid\": the nodal-averaged volume of the nearly incompressible layers (poisson_ratio "
-        ">= 0.45) couples each node's patch, which the two-grid solver's coarse level does not; expected "
-        "linear_solver = \"auto\", \"cholesky-cg\" or \"cholesky\", or volumetric = \"element\"");
+    solver = coarse || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
   m.system = std::make_unique<detail::TangentSystem>(
       m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index, solver,
-      m.space.nodes_per_element == 10 ? &m.space.corners : coarse, m.opt, m.arena,
-      m.nodal ? &m.nodal->patch_pointers() : nullptr, m.nodal ? &m.nodal->patch_nodes() : nullptr);
+      m.space.nodes_per_element == 10 ? &m.space.corners : coarse, m.opt, m.arena, m.nodal.get());
 
   m.u = Eigen::VectorXd::Zero(m.ndof);
   m.fint = Eigen::VectorXd::Zero(m.ndof);
@@ -388,6 +384,7 @@ QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vec
       out.tangent(r, col) = out.tangent(col, r) = values[static_cast<size_t>(k)];
     }
   }
+  if (m.nodal && !m.system->stores_patch_term()) m.nodal->add_patch_tangent(m.dofs.free_index, ascending, out.tangent);
   return out;
 }
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->dofs.free_dofs.size()); }

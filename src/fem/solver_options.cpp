@@ -92,10 +92,6 @@ void SolverOptions::validate() const {
     if (order != ElementOrder::Linear)
       throw InvalidInput("solver volumetric = \"nodal-average\" is for linear tetrahedra: expected element = "
                          "\"linear\" (quadratic tetrahedra integrate the volume per element)");
-    if (linear_solver == LinearSolver::TwoGrid)
-      throw InvalidInput("solver volumetric = \"nodal-average\" couples each node's patch, which the two-grid "
-                         "solver's coarse level does not: expected linear_solver = \"cholesky-cg\", \"cholesky\" "
-                         "or \"auto\"");
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 
@@ -27,15 +28,21 @@ constexpr int kTwoGridMaxIterations = 200;
 // spectrum in about [μ/(λ+μ), 1] (P's element bulk term bounds the nodal one from above, tangent_system.hpp): about
 // 50 at ν = 0.49 and 500 at ν = 0.499, i.e. some 20-70 iterations at the Newton forcing terms.
 constexpr int kSplitMaxIterations = 400;
+// Fractions by which the diagonal is raised when K is not positive definite (TangentSystem::shifted_cg_solve).
+constexpr std::array<double, 4> kShifts{1e-4, 1e-2, 1e-1, 1.0};
 
 }  // namespace
 
 TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_count, const std::vector<int>& free_index,
                              LinearSolver solver, const mesh::CoarseLevel* coarse, const SolverOptions& options,
-                             tbb::task_arena& arena, const std::vector<int>* group_pointers,
-                             const std::vector<int>* group_nodes)
-    : options_(options), arena_(arena), solver_(solver) {
-  pattern_ = upper_pattern(conn, nn, node_count, free_index, group_pointers, group_nodes);
+                             tbb::task_arena& arena, const NodalVolumeAverage* nodal)
+    : options_(options), arena_(arena), solver_(solver), free_index_(free_index) {
+  // The nodal average's patch term G D G^T: assembled into K (two-ring pattern) for the Cholesky solvers, applied
+  // as a product for the two-grid one (K holds the one-ring element part A).
+  if (nodal && solver_ == LinearSolver::TwoGrid) patch_term_ = nodal;
+  const bool two_ring = nodal && !patch_term_;
+  pattern_ = upper_pattern(conn, nn, node_count, free_index, two_ring ? &nodal->patch_pointers() : nullptr,
+                           two_ring ? &nodal->patch_nodes() : nullptr);
   values_.assign(pattern_.row_indices.size(), 0.0);
   if (values_.size() >= static_cast<size_t>(std::numeric_limits<int32_t>::max()))
     throw InvalidInput("tissue mesh: the stiffness matrix has " + std::to_string(values_.size()) +
@@ -61,9 +68,7 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
     });
   });
   const int64_t free_count = static_cast<int64_t>(pattern_.column_pointers.size()) - 1;
-  if (solver_ == LinearSolver::TwoGrid) {
-    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_, conn, nn);
-  } else if (solver_ == LinearSolver::CholeskyCg && group_pointers) {
+  if (two_ring && solver_ == LinearSolver::CholeskyCg) {
     pre_pattern_ = upper_pattern(conn, nn, node_count, free_index);
     pre_values_.assign(pre_pattern_.row_indices.size(), 0.0);
     full_to_pre_.assign(values_.size(), -1);
@@ -75,10 +80,15 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
         full_to_pre_[static_cast<size_t>(k)] = static_cast<int32_t>(q);
       }
     }
-    cholesky_ = std::make_unique<SparseCholesky>(free_count, pre_pattern_.column_pointers, pre_pattern_.row_indices);
-  } else {
-    cholesky_ = std::make_unique<SparseCholesky>(free_count, pattern_.column_pointers, pattern_.row_indices);
   }
+  if (patch_term_)
+    nodal_two_grid_ = std::make_unique<NodalVolumePreconditioner>(*coarse, free_index, pattern_, conn, *nodal, arena_);
+  else if (solver_ == LinearSolver::TwoGrid)
+    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_, conn, nn);
+  else if (splits_preconditioner())
+    cholesky_ = std::make_unique<SparseCholesky>(free_count, pre_pattern_.column_pointers, pre_pattern_.row_indices);
+  else
+    cholesky_ = std::make_unique<SparseCholesky>(free_count, pattern_.column_pointers, pattern_.row_indices);
 }
 
 void TangentSystem::capture_preconditioner() {
@@ -86,7 +96,17 @@ void TangentSystem::capture_preconditioner() {
     if (full_to_pre_[k] >= 0) pre_values_[static_cast<size_t>(full_to_pre_[k])] = values_[k];
 }
 
-void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) { product_->multiply(values_, x, y); }
+void TangentSystem::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  product_->multiply(values_, x, y);
+  if (patch_term_) add_patch_product(x, y);
+}
+
+void TangentSystem::add_patch_product(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  patch_term_->gradient_transpose_product(free_index_, x, patch_values_, arena_);
+  for (Eigen::Index a = 0; a < patch_values_.size(); ++a)
+    patch_values_[a] *= patch_term_->node_curvature(static_cast<size_t>(a));
+  patch_term_->add_gradient_product(free_index_, patch_values_, y, arena_);
+}
 
 // CG iterations worth trying before a factorization is cheaper, within [1, max_reuse_iterations].
 int TangentSystem::cg_budget() const {
@@ -124,6 +144,8 @@ void TangentSystem::recycled_start(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
     kws[i] = &kw[i];
   }
   product_->multiply(values_, ws, kws);  // one pass over K per kMaxBlock vectors
+  if (patch_term_)
+    for (int i = 0; i < m; ++i) add_patch_product(recycled_[static_cast<size_t>(i)], kw[static_cast<size_t>(i)]);
   for (int i = 0; i < m; ++i) {
     wb[i] = recycled_[static_cast<size_t>(i)].dot(rhs);
     for (int j = 0; j < m; ++j) g(i, j) = recycled_[static_cast<size_t>(i)].dot(kw[static_cast<size_t>(j)]);
@@ -192,21 +214,24 @@ bool TangentSystem::factorize_or_shift(SparseCholesky& cholesky, const std::vect
   return false;
 }
 
-// CG after it failed on a fresh preconditioner (K not positive definite): K's diagonal is raised by growing fractions,
-// as for a failed factorization (a shifted Newton step is still a descent direction), `refresh(beta)` rebuilds the
-// preconditioner for the shifted K, and CG is tried again. K's values are restored afterwards, and the preconditioner,
-// built for a shifted K, is marked stale.
+// CG after it failed on a fresh preconditioner (K not positive definite): K's diagonal is raised by growing fractions
+// kShifts[first], kShifts[first + 1], ..., as for a failed factorization (a shifted Newton step is still a descent
+// direction), `refresh(beta)` rebuilds the preconditioner for the shifted K, and CG is tried again. K's values are
+// restored afterwards, and the preconditioner, built for a shifted K, is marked stale. The shift that worked is kept
+// in shift_hint_ (-1 when none did).
 template <class Refresh, class Preconditioner>
 bool TangentSystem::shifted_cg_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
                                      double tolerance, int budget, int& iterations, Refresh&& refresh,
-                                     Preconditioner&& precondition) {
+                                     Preconditioner&& precondition, int first) {
   const std::vector<double> unshifted = values_;
   bool ok = false;
-  for (double beta : {1e-4, 1e-2, 1e-1, 1.0}) {
+  shift_hint_ = -1;
+  for (int shift = first; shift < static_cast<int>(kShifts.size()) && !ok; ++shift) {
+    const double beta = kShifts[static_cast<size_t>(shift)];
     shift_diagonal(pattern_, unshifted, beta, values_);
     ok = (have_factor_ = refresh(beta)) && cg_solve(rhs, du, iterations, tolerance, budget, precondition);
     rec.linear_iterations += iterations;
-    if (ok) break;
+    if (ok) shift_hint_ = shift;
   }
   values_ = unshifted;  // the products of later solves use the tangent itself
   have_factor_ = false;
@@ -286,34 +311,67 @@ bool TangentSystem::cholesky_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
   return du.allFinite();
 }
 
-// CG with the two-grid cycle. The coarse operator (and the smoother's spectral bound) is renewed when missing, when
-// the last solve needed more than two_grid_refresh_iterations, or when CG fails on the stale one. If CG still fails
-// (K not positive definite: SVK under strong compression), the tangent's diagonal is raised by growing fractions, as
-// for a failed factorization: a shifted Newton step is still a descent direction.
+// CG with the two-grid cycle: on K itself, or with a nodal average the Woodbury form of nodal_volume_preconditioner.hpp
+// whose cycle runs on the stored element part.
 bool TangentSystem::two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
                                    double forcing) {
+  if (nodal_two_grid_)
+    return cycle_solve(
+        rhs, du, rec, forcing,
+        [&](bool renew) {
+          if (renew) return nodal_two_grid_->update(values_);
+          nodal_two_grid_->refresh_smoother(values_);
+          return true;
+        },
+        [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { nodal_two_grid_->apply(r, z); });
   const auto multiply_k = [this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { multiply(x, y); };
-  const auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { two_grid_->apply(r, z, multiply_k); };
+  return cycle_solve(
+      rhs, du, rec, forcing,
+      [&](bool renew) {
+        if (renew) return two_grid_->update(values_, multiply_k);
+        two_grid_->set_smoother_diagonal(values_);  // K changed since the last solve; update() sets it itself
+        return true;
+      },
+      [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { two_grid_->apply(r, z, multiply_k); });
+}
+
+// The coarse operator (and the smoother's spectral bound), `prepare(true)`, is renewed when missing, when the last
+// solve needed more than two_grid_refresh_iterations, or when CG fails on a stale one; `prepare(false)` only follows
+// the smoother's diagonal. If CG still fails (K not positive definite: SVK under strong compression, the §6.2 sharp
+// bevel under its tip), the tangent's diagonal is raised by growing fractions, as for a failed factorization (a
+// shifted Newton step is still a descent direction), on the same coarse operator: its factorization costs more than
+// the extra CG iterations of a coarse level without the shift. After a solve that needed a shift, K is likely still
+// indefinite: the next one starts one shift lower instead of from the unshifted K (on the sharp bevel the tangent
+// needs the largest shift for several Newton iterations in a row: 11 coarse factorizations in its first three load
+// steps became 2).
+template <class Prepare, class Preconditioner>
+bool TangentSystem::cycle_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing,
+                                Prepare&& prepare, Preconditioner&& precondition) {
   const double tol = std::max(forcing, options_.linear_tolerance);
   int its = 0;
   rec.linear_iterations = 0;
-  const bool stale = have_factor_ && last_cg_iterations_ <= options_.two_grid_refresh_iterations;
-  if (stale) {
-    two_grid_->set_smoother_diagonal(values_);  // K changed since the last solve; update() sets it itself
-    if (cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition)) {
-      rec.linear_iterations = last_cg_iterations_ = its;
-      remember(du);
-      return true;
+  bool ok = false;
+  const bool fresh_enough = have_factor_ && last_cg_iterations_ <= options_.two_grid_refresh_iterations;
+  if (shift_hint_ <= 0) {
+    if (fresh_enough && prepare(false)) {
+      if (cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition)) {
+        rec.linear_iterations = last_cg_iterations_ = its;
+        remember(du);
+        return true;
+      }
+      rec.linear_iterations = its;
     }
-    rec.linear_iterations = its;
+    rec.factorized = true;
+    ok = (have_factor_ = prepare(true)) && cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
+    rec.linear_iterations += its;
   }
-  rec.factorized = true;
-  bool ok = (have_factor_ = two_grid_->update(values_, multiply_k)) &&
-            cg_solve(rhs, du, its, tol, kTwoGridMaxIterations, precondition);
-  rec.linear_iterations += its;
   if (!ok) {
-    const auto update_coarse = [&](double) { return two_grid_->update(values_, multiply_k); };
-    ok = shifted_cg_solve(rhs, du, rec, tol, kTwoGridMaxIterations, its, update_coarse, precondition);
+    bool coarse_ready = have_factor_ && (rec.factorized || fresh_enough);
+    rec.factorized = true;
+    const auto refresh = [&](double) { return coarse_ready ? prepare(false) : (coarse_ready = prepare(true)); };
+    ok = shifted_cg_solve(rhs, du, rec, tol, kTwoGridMaxIterations, its, refresh, precondition,
+                          std::max(shift_hint_ - 1, 0));
+    have_factor_ = coarse_ready;  // a coarse operator of a shifted K still serves the next (shifted) solve
   }
   last_cg_iterations_ = its;
   if (ok) remember(du);
@@ -321,9 +379,11 @@ bool TangentSystem::two_grid_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& 
 }
 
 double TangentSystem::factor_nonzeros() const {
+  if (nodal_two_grid_) return nodal_two_grid_->coarse_factor_nonzeros();
   return two_grid_ ? two_grid_->coarse_factor_nonzeros() : cholesky_->factor_nonzeros();
 }
 double TangentSystem::factor_flops() const {
+  if (nodal_two_grid_) return nodal_two_grid_->coarse_factor_flops();
   return two_grid_ ? two_grid_->coarse_factor_flops() : cholesky_->factor_flops();
 }
 

@@ -65,6 +65,18 @@ private:
     std::array<double, 4> weight{0, 0, 0, 0};
   };
   std::vector<Interpolation> interpolation_;  // per fine free dof
+  struct Restriction {  // one fine free dof that a coarse dof interpolates, with its weight
+    int32_t fine;
+    double weight;
+  };
+  std::vector<int32_t> restriction_pointers_;  // per coarse free dof (+1) into restriction_
+  std::vector<Restriction> restriction_;
+  struct Neighbour {  // a fine free dof coupled to another and the index of their stored entry in K
+    int32_t dof;
+    int32_t entry;
+  };
+  std::vector<int64_t> neighbour_pointers_;  // per fine free dof (+1) into neighbours_: K's column and row
+  std::vector<Neighbour> neighbours_;
   const UpperPattern& fine_;
   UpperPattern coarse_pattern_;
   std::vector<double> coarse_values_;

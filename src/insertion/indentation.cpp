@@ -181,12 +181,6 @@ void validate(const IndentationCase& c) {
                        "level is the block meshed at twice the sizes), not a tissue mesh file; expected another "
                        "linear_solver, or quadratic elements");
   }
-  if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
-      uses_nodal_average(c)) {
-    throw InvalidInput("solver.linear_solver: \"two-grid\": the nodal-averaged volume of the nearly incompressible "
-                       "layers (poisson_ratio >= 0.45) couples each node's patch, which the two-grid cycle does not "
-                       "hold; expected \"auto\", \"cholesky-cg\" or \"cholesky\", or volumetric = \"element\"");
-  }
   if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
   c.solver.validate();
   validate(c.puncture);
@@ -206,10 +200,11 @@ bool uses_nodal_average(const IndentationCase& c) {
 }
 
 bool meshes_coarse_level(const IndentationCase& c) {
-  if (c.tissue_mesh || c.solver.order != fem::ElementOrder::Linear || uses_nodal_average(c)) return false;
+  if (c.tissue_mesh || c.solver.order != fem::ElementOrder::Linear) return false;
   if (c.solver.linear_solver == fem::LinearSolver::TwoGrid) return true;
   if (c.solver.linear_solver != fem::LinearSolver::Automatic) return false;
-  return mesh::estimated_tetrahedra(block_to_mesh(c)) >= kTwoGridMinimumTetrahedra;
+  return mesh::estimated_tetrahedra(block_to_mesh(c)) >=
+         (uses_nodal_average(c) ? kNodalAverageTwoGridMinimumTetrahedra : kTwoGridMinimumTetrahedra);
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {

@@ -171,7 +171,7 @@ TEST(IndentationCase, VolumetricStabilization) {
 
 TEST(IndentationCase, WhichBlocksAreMeshedWithACoarseLevel) {
   // kCase with linear elements: "auto" meshes a coarse level (and so takes the two-grid solver) from
-  // kTwoGridMinimumTetrahedra estimated tetrahedra on; "two-grid" always; never with a nodal average or a mesh file.
+  // kTwoGridMinimumTetrahedra estimated tetrahedra on; "two-grid" always; never with a mesh file.
   const std::string linear = replaced(replaced(kCase, "element = \"quadratic\"", "element = \"linear\""),
                                       "law = \"svk\"", "law = \"neo-hookean\"");
   const auto sized = [&](std::string_view size_at_tip) {
@@ -188,8 +188,20 @@ TEST(IndentationCase, WhichBlocksAreMeshedWithACoarseLevel) {
   EXPECT_TRUE(insertion::meshes_coarse_level(small));
   large.solver.linear_solver = fem::LinearSolver::CholeskyCg;
   EXPECT_FALSE(insertion::meshes_coarse_level(large));
-  EXPECT_FALSE(insertion::meshes_coarse_level(parse(replaced(sized("12 um"), "poisson_ratio = 0.4\n[[tissue",
-                                                             "poisson_ratio = 0.49\n[[tissue"))));
+  // A nodal average (ν >= 0.45) takes the two-grid solver from kNodalAverageTwoGridMinimumTetrahedra on.
+  const auto nearly_incompressible = [&](const std::string& text) {
+    return parse(replaced(text, "poisson_ratio = 0.4\n[[tissue", "poisson_ratio = 0.49\n[[tissue"));
+  };
+  const insertion::IndentationCase medium = nearly_incompressible(sized("80 um")),
+                                   coarse = nearly_incompressible(
+                                       replaced(sized("40 um"), "width = \"3000 um\"\nlength = \"3000 um\"",
+                                                "width = \"1000 um\"\nlength = \"1000 um\""));
+  EXPECT_TRUE(uses_nodal_average(medium) && uses_nodal_average(coarse));
+  EXPECT_GE(mesh::estimated_tetrahedra(medium.block), insertion::kNodalAverageTwoGridMinimumTetrahedra);
+  EXPECT_LT(mesh::estimated_tetrahedra(medium.block), insertion::kTwoGridMinimumTetrahedra);
+  EXPECT_LT(mesh::estimated_tetrahedra(coarse.block), insertion::kNodalAverageTwoGridMinimumTetrahedra);
+  EXPECT_TRUE(insertion::meshes_coarse_level(medium));
+  EXPECT_FALSE(insertion::meshes_coarse_level(coarse));
   EXPECT_FALSE(insertion::meshes_coarse_level(parse(replaced(sized("12 um"), "element = \"linear\"",
                                                              "element = \"quadratic\""))));
 }

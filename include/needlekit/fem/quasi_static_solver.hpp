@@ -87,8 +87,7 @@ inline constexpr EnumTable<ContactModel, 2> kContactModelNames{{
 }};
 inline constexpr EnumTable<LinearSolver, 4> kLinearSolverNames{{
     {LinearSolver::Automatic, "auto",
-     "two-grid for quadratic elements, a split mesh or a large meshed block without the nodal average, else "
-     "cholesky-cg"},
+     "two-grid for quadratic elements, a split mesh or a large meshed block, else cholesky-cg"},
     {LinearSolver::TwoGrid, "two-grid", "CG with a two-grid preconditioner: memory and time linear in the mesh"},
     {LinearSolver::CholeskyCg, "cholesky-cg", "CG preconditioned by the last CHOLMOD factorization"},
     {LinearSolver::Cholesky, "cholesky", "a fresh CHOLMOD factorization per Newton iteration"},

@@ -74,10 +74,15 @@ bool uses_nodal_average(const IndentationCase& indentation_case);
 // estimate of 80k (105k tetrahedra) both solvers take the same time, at 96k (117k) the two-grid one is 1.28x
 // faster, at 389k (351k) 1.67x, in 0.43x the memory.
 inline constexpr double kTwoGridMinimumTetrahedra = 90'000;
+// The same for a block whose linear tetrahedra take the nodal average (fem::nodal_average_applies): there the
+// alternative is CG on the one-ring preconditioner's Cholesky factor, which grows faster than the two-grid cycle's
+// cost. Measured on the §6.2 insertions (BENCHMARKS.md, "FE speed, ninth session"): the cylinder's 33k tetrahedra
+// 22.1 s with the two-grid solver against 30.6 s, the blunt bevel's 55k 25.1 s against 54 s.
+inline constexpr double kNodalAverageTwoGridMinimumTetrahedra = 25'000;
 
 // Whether the block of the case is meshed with a coarse level (mesh::LayeredBlockOptions::coarse_level): the solver
-// asks for "two-grid", or "auto" on a block of kTwoGridMinimumTetrahedra or more, with linear elements and no
-// nodal average (whose patch coupling the two-grid cycle does not hold). False for a case with its own tissue mesh.
+// asks for "two-grid", or "auto" on a block of kTwoGridMinimumTetrahedra (kNodalAverageTwoGridMinimumTetrahedra
+// with a nodal average) or more, with linear elements. False for a case with its own tissue mesh.
 bool meshes_coarse_level(const IndentationCase& indentation_case);
 
 // The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them
