@@ -10,10 +10,11 @@
 // elasticity of about ν = 0.25, where the cycle works), and the Schur complement ≈ its diagonal upper bound Ŝ of
 // NodalVolumeAverage::inverse_schur_diagonal:
 //     M^-1 r = B r - B G Ŝ^-1 G^T B r
-// (the block-triangular factorization of the u-p system's inverse; Benzi, Golub & Liesen 2005, "Numerical solution of
-// saddle point problems", Acta Numerica 14, §10.1). M^-1 is symmetric, and positive definite when Ŝ bounds
-// G^T B G from above, which the bound on G^T A^-1 G gives for a cycle with B <= A^-1. Two cycles per application; no
-// fine factorization (the split preconditioner's one-ring factor of the §6.2 sharp bevel has 1.9e8 entries).
+// (the block-triangular factorization of the u-p system's inverse; Benzi, Golub & Liesen 2005, "Numerical solution
+// of saddle point problems", Acta Numerica 14, 1-137, on block preconditioners). M^-1 is symmetric, and positive
+// definite when Ŝ bounds G^T B G from above, which the bound on G^T A^-1 G gives for a cycle with B <= A^-1. Two
+// cycles per application; no fine factorization (the split preconditioner's one-ring factor of the §6.2 sharp bevel
+// has 1.9e8 entries).
 #pragma once
 #include <tbb/task_arena.h>
 

@@ -57,7 +57,7 @@ public:
   bool solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double forcing);
 
   // Split preconditioner (see above): P's values on the one-ring pattern. capture_preconditioner() sets them to the
-  // one-ring entries of values() as assembled so far; with Cholesky-CG the bulk term is then added through
+  // one-ring entries of values() as assembled so far; the bulk term is then added through
   // preconditioner_slot(), which maps an element slot of values() to P's entry.
   bool splits_preconditioner() const { return !full_to_pre_.empty(); }
   // Whether K's stored values hold the nodal average's patch term (assembled by NodalVolumeAverage::
