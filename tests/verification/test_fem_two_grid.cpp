@@ -173,6 +173,23 @@ TEST(TwoGrid, NodalAverageIterationsDoNotGrowWithTheMesh) {
   EXPECT_LT(fine_499, 1.2 * std::sqrt(10.0) * fine_49) << "ν = 0.49: " << fine_49 << ", 0.499: " << fine_499;
 }
 
+TEST(TwoGrid, NodalAverageSameForcesWithOneAndTwoThreads) {
+  // The patch products write each node's and each dof's entry from one task, the Galerkin product each coarse
+  // column from one task: bitwise the same run whatever the number of threads.
+  const mesh::TetMesh fine = quarter_punch_block(kA, 10 * kA, 4, kE, 0.49);
+  const mesh::CoarseLevel coarse = mesh::interpolating_coarse_level(fine, quarter_punch_block(kA, 10 * kA, 2, kE, 0.49));
+  SolverOptions one, two;
+  one.law = two.law = MaterialLaw::NeoHookean;
+  one.threads = 1;
+  two.threads = 2;
+  const IndentRun a = punch(fine, &coarse, one, 0.2 * kA, 4), b = punch(fine, &coarse, two, 0.2 * kA, 4);
+  ASSERT_TRUE(a.last.converged && b.last.converged) << a.last.reason << b.last.reason;
+  EXPECT_EQ(a.solver, LinearSolver::TwoGrid);
+  EXPECT_EQ(a.last.indenter_force[0], b.last.indenter_force[0]);
+  EXPECT_EQ(a.last.strain_energy, b.last.strain_energy);
+  EXPECT_EQ(a.linear_iterations, b.linear_iterations);
+}
+
 TEST(TwoGrid, NeedsACoarseLevelForLinearElements) {
   const auto mesh = quarter_punch_block(kA, 10 * kA, 2, kE, 0.4);
   SolverOptions o;
