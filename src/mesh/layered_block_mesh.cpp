@@ -36,6 +36,9 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
                                    "size_far >= size_at_site",
                                    o.size_far * 1e6, o.size_at_site * 1e6));
   }
+  if (!std::isfinite(o.coarse_size_factor) || o.coarse_size_factor <= 1) {
+    throw InvalidInput(fmt::format("layered block: coarse_size_factor = {}; expected a value > 1", o.coarse_size_factor));
+  }
   if (!std::isfinite(o.thin_layer_size_factor) || o.thin_layer_size_factor < 0) {
     throw InvalidInput(fmt::format("layered block: thin_layer_size_factor = {}; expected a value >= 0 (0 = no cap)",
                                    o.thin_layer_size_factor));
@@ -120,11 +123,13 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
   }
   const auto start = std::chrono::steady_clock::now();
   LayeredBlockResult result;
-  LayeredBlockOptions coarse = options;  // twice the sizes: the split's parent, or the coarse level's own mesh
-  coarse.size_at_site *= 2;
-  coarse.size_far *= 2;
-  coarse.size_gradient *= 2;  // the same grading distances
-  coarse.thin_layer_size_factor *= 2;
+  // The split's parent at twice the sizes, or the coarse level's own mesh at coarse_size_factor times them.
+  LayeredBlockOptions coarse = options;
+  const double factor = options.split ? 2.0 : options.coarse_size_factor;
+  coarse.size_at_site *= factor;
+  coarse.size_far *= factor;
+  coarse.size_gradient *= factor;  // the same grading distances
+  coarse.thin_layer_size_factor *= factor;
   if (options.split) {
     UniformRefinement refined = refine_uniformly(gmsh_block(coarse, layers));
     result.mesh = std::move(refined.mesh);

@@ -239,6 +239,24 @@ TEST(LayeredBlockMesh, CoarseLevelMeshesTheBlockAgainAtTwiceTheSizes) {
   }
 }
 
+TEST(LayeredBlockMesh, CoarseSizeFactorSetsTheCoarseLevelsSizes) {
+  // Three times the sizes instead of two: about (2/3)^3 of the coarse elements; a factor <= 1 is bad input.
+  mesh::LayeredBlockOptions o = small_skin_block();
+  o.coarse_level = true;
+  const mesh::LayeredBlockResult twice = mesh::layered_block_mesh(o);
+  o.coarse_size_factor = 3;
+  const mesh::LayeredBlockResult thrice = mesh::layered_block_mesh(o);
+  EXPECT_EQ(thrice.mesh.tets, twice.mesh.tets);
+  ASSERT_TRUE(twice.coarse && thrice.coarse);
+  const double ratio =
+      static_cast<double>(thrice.coarse->tets.size()) / static_cast<double>(twice.coarse->tets.size());
+  EXPECT_GT(ratio, 0.5 * 8.0 / 27.0);
+  EXPECT_LT(ratio, 2.0 * 8.0 / 27.0);
+  o.coarse_size_factor = 1;
+  EXPECT_THAT([&] { mesh::layered_block_mesh(o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("coarse_size_factor = 1; expected a value > 1")));
+}
+
 TEST(LayeredBlockMesh, NoFlatSliversInAThinLayerWithAlignedFaces) {
   // The default block with a 40 um tip size: the 20 um stratum corneum is one element thick. When its top and bottom
   // faces carried the same triangulation, half of the (then HXT, not reproducible) runs had a zero-volume tet

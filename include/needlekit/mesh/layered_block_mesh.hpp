@@ -36,8 +36,11 @@ struct LayeredBlockOptions {
                                         // eight (refine_uniformly): about the same elements, and the coarse level
                                         // that lets the FE solver use its two-grid solver (fast on large meshes)
   bool coarse_level = false;            // also return a coarse level for the FE solver's two-grid solver: with
-                                        // split the mesh it was split from; else the block meshed again at twice the
-                                        // sizes, with this mesh's nodes interpolated in it (interpolating_coarse_level)
+                                        // split the mesh it was split from; else the block meshed again at
+                                        // coarse_size_factor times the sizes, with this mesh's nodes interpolated in
+                                        // it (interpolating_coarse_level)
+  double coarse_size_factor = 2.0;      // 1, > 1: the coarse level's sizes (and size gradient) over this mesh's,
+                                        // coarse_level without split only (a split's parent is at twice the sizes)
   double max_tetrahedra = limits::kMaxTetrahedra;  // > 0: a block whose estimated tetrahedron count
                                         // (estimated_tetrahedra, tet_count_estimate.hpp) exceeds this is refused
                                         // before meshing; the case file's [mesh] max_tetrahedra
