@@ -4,12 +4,12 @@ namespace needlekit::fem::detail {
 
 NodalVolumePreconditioner::NodalVolumePreconditioner(const mesh::CoarseLevel& coarse,
                                                      const std::vector<int>& free_index, const UpperPattern& one_ring,
-                                                     const std::vector<int>& connectivity,
+                                                     SymmetricProduct& product, const std::vector<int>& connectivity,
                                                      const NodalVolumeAverage& nodal, tbb::task_arena& arena)
     : free_index_(free_index),
       nodal_(nodal),
       arena_(arena),
-      product_(one_ring, arena),
+      product_(product),
       two_grid_(coarse, free_index, one_ring, connectivity, 4),
       multiply_a_([this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { product_.multiply(*a_values_, x, y); }) {}
 

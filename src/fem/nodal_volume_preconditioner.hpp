@@ -31,12 +31,13 @@ namespace needlekit::fem::detail {
 
 class NodalVolumePreconditioner {
 public:
-  // `one_ring`: A's pattern over the free dofs; `free_index`: per dof its free index or -1; `connectivity`: the
-  // linear elements' nodes (4 each); `nodal`: the volume average whose G and D the tangent holds. All must outlive
-  // this object.
+  // `one_ring`: A's pattern over the free dofs and `product` the tangent system's product on it (shared: one set of
+  // partial sums); `free_index`: per dof its free index or -1; `connectivity`: the linear elements' nodes (4 each);
+  // `nodal`: the volume average whose G and D the tangent holds. All must outlive this object.
   NodalVolumePreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index,
-                            const UpperPattern& one_ring, const std::vector<int>& connectivity,
-                            const NodalVolumeAverage& nodal, tbb::task_arena& arena);
+                            const UpperPattern& one_ring, SymmetricProduct& product,
+                            const std::vector<int>& connectivity, const NodalVolumeAverage& nodal,
+                            tbb::task_arena& arena);
 
   // A's values on the one-ring pattern (kept by reference until the next update): rebuilds the coarse operator and
   // the smoother's bound. False if the coarse operator is not positive definite.
@@ -53,7 +54,7 @@ private:
   const std::vector<int>& free_index_;
   const NodalVolumeAverage& nodal_;
   tbb::task_arena& arena_;
-  SymmetricProduct product_;
+  SymmetricProduct& product_;
   TwoGridPreconditioner two_grid_;
   const std::vector<double>* a_values_ = nullptr;
   TwoGridPreconditioner::Multiply multiply_a_;

@@ -82,7 +82,8 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
     }
   }
   if (patch_term_)
-    nodal_two_grid_ = std::make_unique<NodalVolumePreconditioner>(*coarse, free_index, pattern_, conn, *nodal, arena_);
+    nodal_two_grid_ =
+        std::make_unique<NodalVolumePreconditioner>(*coarse, free_index, pattern_, *product_, conn, *nodal, arena_);
   else if (solver_ == LinearSolver::TwoGrid)
     two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_, conn, nn);
   else if (splits_preconditioner())
