@@ -6,11 +6,6 @@
 
 namespace needlekit::fem {
 
-namespace {
-constexpr int voigt_i[6] = {0, 1, 2, 0, 1, 2};
-constexpr int voigt_j[6] = {0, 1, 2, 1, 2, 0};
-}  // namespace
-
 LameConstants lame_constants(double youngs_modulus, double poisson_ratio) {
   // Eqs 3.4/3.5 with the notes' prefactor E/((1+ν)(1-2ν)): diagonal (1-ν)·pre = λ + 2μ, off-diagonal ν·pre = λ,
   // shear (0.5-ν)·pre = μ.
@@ -36,11 +31,10 @@ StressResponse stress_response(MaterialLaw law, const LameConstants& lame, const
     const double tr = e.trace();
     r.second_piola_kirchhoff = lambda * tr * Eigen::Matrix3d::Identity() + 2 * mu * e;
     r.energy_density = 0.5 * lambda * tr * tr + mu * e.squaredNorm();
-    if (with_tangent) {
-      r.tangent.setZero();
-      r.tangent.topLeftCorner<3, 3>().setConstant(lambda);
-      for (int a = 0; a < 3; ++a) r.tangent(a, a) += 2 * mu;
-      for (int a = 3; a < 6; ++a) r.tangent(a, a) = mu;
+    if (with_tangent) {  // dS/dE = λ I⊗I + 2μ 𝕀
+      r.tangent_lambda = lambda;
+      r.tangent_mu = mu;
+      r.tangent_metric.setIdentity();
     }
     return r;
   }
@@ -51,7 +45,6 @@ StressResponse stress_response(MaterialLaw law, const LameConstants& lame, const
     r.valid = false;
     r.energy_density = std::numeric_limits<double>::infinity();
     r.second_piola_kirchhoff.setZero();
-    r.tangent.setZero();
     return r;
   }
   const Eigen::Matrix3d c = f.transpose() * f;
@@ -60,12 +53,9 @@ StressResponse stress_response(MaterialLaw law, const LameConstants& lame, const
   r.second_piola_kirchhoff = mu * (Eigen::Matrix3d::Identity() - ci) + lambda * lnj * ci;
   r.energy_density = 0.5 * mu * (c.trace() - 3) - mu * lnj + 0.5 * lambda * lnj * lnj;
   if (with_tangent) {
-    const double m = mu - lambda * lnj;
-    for (int a = 0; a < 6; ++a)
-      for (int b = 0; b < 6; ++b) {
-        const int i = voigt_i[a], jj = voigt_j[a], k = voigt_i[b], l = voigt_j[b];
-        r.tangent(a, b) = lambda * ci(i, jj) * ci(k, l) + m * (ci(i, k) * ci(jj, l) + ci(i, l) * ci(jj, k));
-      }
+    r.tangent_lambda = lambda;
+    r.tangent_mu = mu - lambda * lnj;
+    r.tangent_metric = ci;
   }
   return r;
 }

@@ -32,9 +32,12 @@ LameConstants lame_constants(double youngs_modulus, double poisson_ratio);
 struct StressResponse {
   double energy_density = 0;   // W, J/m^3 of reference volume
   Eigen::Matrix3d second_piola_kirchhoff;  // S = dW/dE, Pa
-  // dS/dE in Voigt form (order xx, yy, zz, xy, yz, zx; tensor shear components, i.e. C_ijkl with the
-  // symmetric-E convention: S_v = C * [E11 E22 E33 2E12 2E23 2E31]).
-  Eigen::Matrix<double, 6, 6> tangent;
+  // dS/dE in the form both laws' tangents take, C_IJKL = λ' A_IJ A_KL + μ' (A_IK A_JL + A_IL A_JK) (SVK: A = I,
+  // λ' = λ, μ' = μ; neo-Hookean: A = C^-1, λ' = λ, μ' = μ - λ ln J). The element kernel contracts it with the shape
+  // gradients in closed form (tet_kernel.hpp) instead of through a 6 x 6 Voigt matrix.
+  double tangent_lambda = 0;                                 // λ', Pa
+  double tangent_mu = 0;                                     // μ', Pa
+  Eigen::Matrix3d tangent_metric = Eigen::Matrix3d::Zero();  // A, dimensionless
   bool valid = true;           // false when J = det F <= 0 (inverted; neo-Hookean: energy infinite, SVK: values
                                // still computed but the state is not physical)
 };
