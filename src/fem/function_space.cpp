@@ -131,6 +131,17 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
   fs.mean_youngs_modulus = e_sum / vol_sum;
   fs.mean_element_size = std::cbrt(6 * std::sqrt(2.0) * vol_sum / ne);
   fs.colouring = element_colouring(fs.connectivity, nn, fs.nodes);
+  const auto append = [](auto& to, const auto& from, size_t e, size_t per_element) {
+    to.insert(to.end(), from.begin() + static_cast<std::ptrdiff_t>(e * per_element),
+              from.begin() + static_cast<std::ptrdiff_t>((e + 1) * per_element));
+  };
+  const size_t gradients_per_element = static_cast<size_t>(fs.points * 3 * nn);
+  for (const int element : fs.colouring.elements) {
+    const size_t e = static_cast<size_t>(element);
+    append(fs.assembly.connectivity, fs.connectivity, e, static_cast<size_t>(nn));
+    append(fs.assembly.gradients, fs.gradients, e, gradients_per_element);
+    append(fs.assembly.weights, fs.weights, e, static_cast<size_t>(fs.points));
+  }
   return fs;
 }
 

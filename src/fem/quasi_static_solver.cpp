@@ -36,7 +36,6 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
     }
   };
   const int nq = space.points;
-  const auto& conn = space.connectivity;
   const auto& free_index = dofs.free_index;
   if (want_force) fint.setZero(ndof);
   if (want_tangent) system->zero();
@@ -49,12 +48,14 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
         Eigen::Matrix<double, 3, N> ue, fe;
         Eigen::Matrix<double, 3 * N, 3 * N> ke;
         double& en = block_energy[block];
+        size_t position = colouring.block_begin[first_block + block];  // in the assembly order
         for (const int e : colouring.block(first_block + block)) {
-          const int* c = &conn[static_cast<size_t>(e) * N];
+          const size_t at = position++;
+          const int* c = &space.assembly.connectivity[at * N];
           for (int a = 0; a < N; ++a) ue.col(a) = uu.segment<3>(3 * c[a]);
           const auto* g =
-              reinterpret_cast<const detail::Grad<N>*>(&space.gradients[static_cast<size_t>(e) * nq * 3 * N]);
-          const double* w = &space.weights[static_cast<size_t>(e) * nq];
+              reinterpret_cast<const detail::Grad<N>*>(&space.assembly.gradients[at * static_cast<size_t>(nq * 3 * N)]);
+          const double* w = &space.assembly.weights[at * static_cast<size_t>(nq)];
           if (!want_force) {  // energy only
             for (int q = 0; q < nq; ++q) {
               const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g[q].transpose();
@@ -90,7 +91,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
           en += we;
           for (int a = 0; a < N; ++a) fint.segment<3>(3 * c[a]) += fe.col(a);
           if (!want_tangent) continue;
-          const int32_t* slot = system->element_slots(static_cast<size_t>(e));
+          const int32_t* slot = system->element_slots(at);
           for (int col = 0; col < 3 * N; ++col)
             for (int row = 0; row <= col; ++row, ++slot)
               if (*slot >= 0) values[static_cast<size_t>(*slot)] += ke(row, col);
@@ -152,12 +153,14 @@ void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
   for (size_t colour = 0; colour < colouring.colours(); ++colour)  // within a colour no two blocks share an entry
     arena.execute([&] {
       tbb::parallel_for(colouring.colour_begin[colour], colouring.colour_begin[colour + 1], [&](size_t block) {
+        size_t position = colouring.block_begin[block];  // in the assembly order
         for (const int e : colouring.block(block)) {
+          const size_t at = position++;
           if (!nodal->treated(e)) continue;
           const double scale = nodal->element_bulk_curvature(e) * space.volumes[static_cast<size_t>(e)];
           if (scale == 0) continue;
           const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
-          const int32_t* slot = system->element_slots(static_cast<size_t>(e));
+          const int32_t* slot = system->element_slots(at);
           for (int col = 0; col < 12; ++col)
             for (int row = 0; row <= col; ++row, ++slot)
               if (*slot >= 0)
@@ -327,7 +330,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   if (solver == LinearSolver::Automatic)
     solver = coarse || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
   m.system = std::make_unique<detail::TangentSystem>(
-      m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index, solver,
+      m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index, m.space.colouring.elements, solver,
       m.space.nodes_per_element == 10 ? &m.space.corners : coarse, m.opt, m.arena, m.nodal.get());
 
   m.u = Eigen::VectorXd::Zero(m.ndof);

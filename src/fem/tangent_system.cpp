@@ -34,8 +34,9 @@ constexpr std::array<double, 4> kShifts{1e-4, 1e-2, 1e-1, 1.0};
 }  // namespace
 
 TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_count, const std::vector<int>& free_index,
-                             LinearSolver solver, const mesh::CoarseLevel* coarse, const SolverOptions& options,
-                             tbb::task_arena& arena, const NodalVolumeAverage* nodal)
+                             const std::vector<int>& assembly_order, LinearSolver solver,
+                             const mesh::CoarseLevel* coarse, const SolverOptions& options, tbb::task_arena& arena,
+                             const NodalVolumeAverage* nodal)
     : options_(options), arena_(arena), solver_(solver), free_index_(free_index) {
   // The nodal average's patch term G D G^T: assembled into K (two-ring pattern) for the Cholesky solvers, applied
   // as a product for the two-grid one (K holds the one-ring element part A).
@@ -54,8 +55,9 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
   value_slot_.assign(ne * slots_per_element_, -1);
   arena_.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 1024), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t e = range.begin(); e < range.end(); ++e) {
-        int32_t* slot = &value_slot_[e * slots_per_element_];
+      for (size_t position = range.begin(); position < range.end(); ++position) {
+        const size_t e = static_cast<size_t>(assembly_order[position]);
+        int32_t* slot = &value_slot_[position * slots_per_element_];
         for (int col = 0; col < k; ++col) {
           const int cb = free_index[3 * conn[e * nn + col / 3] + col % 3];
           for (int row = 0; row <= col; ++row, ++slot) {

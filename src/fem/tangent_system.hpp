@@ -35,9 +35,12 @@ public:
   // `connectivity`: nodes_per_element node indices per element; `free_index`: per dof its free index or -1;
   // `solver`: resolved (not Automatic); `coarse`: the two-grid solver's coarse level (TwoGrid only).
   // `nodal`: the nodal volume average of linear elements, whose node patches couple (upper_pattern), or null.
+  // `assembly_order`: every element once, in the order the assembly visits them (ElementColouring::elements); the
+  // slot table is stored in that order, so the assembly reads it front to back.
   TangentSystem(const std::vector<int>& connectivity, int nodes_per_element, int node_count,
-                const std::vector<int>& free_index, LinearSolver solver, const mesh::CoarseLevel* coarse,
-                const SolverOptions& options, tbb::task_arena& arena, const NodalVolumeAverage* nodal = nullptr);
+                const std::vector<int>& free_index, const std::vector<int>& assembly_order, LinearSolver solver,
+                const mesh::CoarseLevel* coarse, const SolverOptions& options, tbb::task_arena& arena,
+                const NodalVolumeAverage* nodal = nullptr);
 
   // The stored upper-triangle entries; assembly adds into them (zero() first).
   std::vector<double>& values() { return values_; }
@@ -48,7 +51,8 @@ public:
   // prescribed. Assembly adds without searching or branching on the global order, and reads half the slots a full
   // (3N)^2 table would.
   static constexpr int upper_slots(int element_dofs) { return element_dofs * (element_dofs + 1) / 2; }
-  const int32_t* element_slots(size_t element) const { return &value_slot_[element * slots_per_element_]; }
+  // The slots of the element at `position` of the assembly order.
+  const int32_t* element_slots(size_t position) const { return &value_slot_[position * slots_per_element_]; }
 
   // y = K x (with the two-grid solver and a nodal average: the stored element part plus G D G^T x).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y);
