@@ -65,7 +65,8 @@ bool tet_kernel(const Grad<N>* gradients, const double* weights, int points, Mat
     // Material part (Eq 3.6 with the current B) in closed form. With δE = sym(F^T ∇δu), K_ab,ij =
     // F_iI ∇N_a,J C_IJKL F_jK ∇N_b,L, and C = λ' A⊗A + μ' (A_IK A_JL + A_IL A_JK) (hyperelastic_law.hpp) gives,
     // with p_a = F A ∇N_a: K_ab = λ' p_a p_b^T + μ' (p_b p_a^T + (∇N_a · A ∇N_b) F A F^T). The geometric
-    // (initial-stress) part adds (∇N_a · S ∇N_b) I. A third of the work of B^T C B through a 6 x 3N Voigt B.
+    // (initial-stress) part adds (∇N_a · S ∇N_b) I. Against B^T C B through a 6 x 3N Voigt B: 1.8x (linear) and
+    // 2.3x (quadratic) faster (BM_ElementTangent).
     const Eigen::Matrix3d fa = f * r.tangent_metric;
     const Eigen::Matrix<double, 3, N> p = fa * g;
     const Eigen::Matrix3d faf = (w * r.tangent_mu) * (fa * f.transpose());
