@@ -270,7 +270,6 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     report("mesh", 0.0);
     mesh::LayeredBlockOptions block = block_to_mesh(c);
     block.coarse_level = meshes_coarse_level(c);
-    if (uses_nodal_average(c)) block.coarse_size_factor = kNodalAverageCoarseSizeFactor;
     const Clock::time_point mesh_start = Clock::now();
     mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
     tissue = std::move(meshed.mesh);

@@ -240,12 +240,13 @@ TEST(LayeredBlockMesh, CoarseLevelMeshesTheBlockAgainAtTwiceTheSizes) {
 }
 
 TEST(LayeredBlockMesh, CoarseSizeFactorSetsTheCoarseLevelsSizes) {
-  // Three times the sizes instead of two: about (2/3)^3 of the coarse elements; a factor <= 1 is bad input.
+  // Three times the sizes (the default) instead of two: about (2/3)^3 of the coarse elements; a factor <= 1 is bad
+  // input.
   mesh::LayeredBlockOptions o = small_skin_block();
   o.coarse_level = true;
-  const mesh::LayeredBlockResult twice = mesh::layered_block_mesh(o);
-  o.coarse_size_factor = 3;
   const mesh::LayeredBlockResult thrice = mesh::layered_block_mesh(o);
+  o.coarse_size_factor = 2;
+  const mesh::LayeredBlockResult twice = mesh::layered_block_mesh(o);
   EXPECT_EQ(thrice.mesh.tets, twice.mesh.tets);
   ASSERT_TRUE(twice.coarse && thrice.coarse);
   const double ratio =

@@ -79,14 +79,6 @@ inline constexpr double kTwoGridMinimumTetrahedra = 90'000;
 // cost. Measured on the §6.2 insertions (BENCHMARKS.md, "FE speed, ninth session"): the cylinder's 33k tetrahedra
 // 22.1 s with the two-grid solver against 30.6 s, the blunt bevel's 55k 25.1 s against 54 s.
 inline constexpr double kNodalAverageTwoGridMinimumTetrahedra = 25'000;
-// The coarse level's sizes over the block's (mesh::LayeredBlockOptions::coarse_size_factor) when a layer takes the
-// nodal average: its preconditioner runs two cycles per CG iteration, whose coarse solves then dominate (the
-// non-nested coarse operator is dense: 85 entries per column). Measured on the §6.2 sharp bevel's first three load
-// steps (BENCHMARKS.md, ninth session): CG iterations 170 -> 186 -> 211 and time 71 -> 48 -> 44 s for the factors
-// 2, 3 and 4 under load. Without the nodal average the factor stays 2 (on the 100k skin block 3 took 281 CG
-// iterations instead of 177 for about the same time).
-inline constexpr double kNodalAverageCoarseSizeFactor = 3.0;
-
 // Whether the block of the case is meshed with a coarse level (mesh::LayeredBlockOptions::coarse_level): the solver
 // asks for "two-grid", or "auto" on a block of kTwoGridMinimumTetrahedra (kNodalAverageTwoGridMinimumTetrahedra
 // with a nodal average) or more, with linear elements. False for a case with its own tissue mesh.

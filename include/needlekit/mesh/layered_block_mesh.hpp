@@ -39,8 +39,15 @@ struct LayeredBlockOptions {
                                         // split the mesh it was split from; else the block meshed again at
                                         // coarse_size_factor times the sizes, with this mesh's nodes interpolated in
                                         // it (interpolating_coarse_level)
-  double coarse_size_factor = 2.0;      // 1, > 1: the coarse level's sizes (and size gradient) over this mesh's,
-                                        // coarse_level without split only (a split's parent is at twice the sizes)
+  double coarse_size_factor = 3.0;      // 1, > 1: the coarse level's sizes (and size gradient) over this mesh's,
+                                        // coarse_level without split only (a split's parent is at twice the sizes).
+                                        // The non-nested coarse operator is dense (~70 entries per column), so its
+                                        // factor's solves, one or two per CG iteration, grow faster than the fine
+                                        // products: on the 351k skin block 3 took 0.25 s per Newton iteration
+                                        // (332 CG iterations, factor 6.7e6 entries) against 0.32 s with 2 (211,
+                                        // 3.1e7), 0.29 s with 2.5 and 0.34 s with 4; on the 119k block 2 and 3 are
+                                        // even; on the §6.2 sharp bevel (nodal average, two cycles per iteration)
+                                        // 3 beat 2 and 4 (BENCHMARKS.md, ninth and eleventh sessions)
   double max_tetrahedra = limits::kMaxTetrahedra;  // > 0: a block whose estimated tetrahedron count
                                         // (estimated_tetrahedra, tet_count_estimate.hpp) exceeds this is refused
                                         // before meshing; the case file's [mesh] max_tetrahedra
