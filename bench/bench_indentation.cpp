@@ -17,6 +17,7 @@
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
+#include "skin_block_sizes.hpp"
 
 using namespace needlekit;
 
@@ -28,24 +29,20 @@ double peak_rss_gigabytes() {
   return static_cast<double>(usage.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss is in KiB on Linux
 }
 
-// Element sizes for about `thousands` x 1000 tetrahedra, as measured by the mesh benchmarks (BENCHMARKS.md,
-// "Tissue block meshing": 100k, 296k and 1.05M tetrahedra).
+// Element sizes for about `thousands` x 1000 tetrahedra (skin_block_sizes.hpp).
 mesh::LayeredBlockOptions skin_block(double thousands) {
+  const bench::SkinBlockSize& size = bench::kSkinBlockSizes[thousands <= 100 ? 0 : thousands <= 300 ? 1 : 2];
   mesh::LayeredBlockOptions block;
   block.layers = materials::skin_layers();
-  if (thousands <= 100) {
-    block.size_at_site = 25e-6, block.size_far = 250e-6, block.refinement_radius = 250e-6;
-  } else if (thousands <= 300) {
-    block.size_at_site = 11e-6, block.size_far = 180e-6, block.refinement_radius = 300e-6;
-  } else {
-    block.size_at_site = 8.5e-6, block.size_far = 125e-6, block.refinement_radius = 400e-6;
-  }
+  block.size_at_site = size.size_at_site;
+  block.size_far = size.size_far;
+  block.refinement_radius = size.refinement_radius;
   return block;
 }
 
 // The same block meshed at twice the sizes and split into eight (mesh::LayeredBlockOptions::split), which gives the
 // solver its two-grid solver. Sizes for about the same element counts: the direct sizes times 1.35 (100k), 1.13
-// (300k), 1.03 (1M), and the thin-layer cap scaled alike.
+// (300k: 297k tetrahedra), 1.03 (1M), and the thin-layer cap scaled alike.
 mesh::LayeredBlockOptions split_skin_block(double thousands) {
   mesh::LayeredBlockOptions block = skin_block(thousands);
   const double scale = thousands <= 100 ? 1.35 : thousands <= 300 ? 1.13 : 1.03;

@@ -1,6 +1,6 @@
 // Meshing the default skin block (dissertation §3.3: 3000 x 3000 x 1150 um, SC 20 um, EP to 160 um, DM below; one
-// insertion site at the centre) with Gmsh/HXT at about 100k, 300k and 1M tetrahedra. Run one size per process to
-// read its peak memory (peak_rss_MB is the process's maximum resident set so far):
+// insertion site at the centre) with Gmsh (Delaunay 3D) at about 100k, 300k and 1M tetrahedra. Run one size per process
+// to read its peak memory (peak_rss_MB is the process's maximum resident set so far):
 //   build/bin/needlekit_bench --benchmark_filter='BM_SkinBlockMesh/1/'
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
@@ -11,22 +11,14 @@
 #include "needlekit/io/vtu_writer.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
 #include "needlekit/mesh/tet_adjacency.hpp"
+#include "skin_block_sizes.hpp"
 
 using namespace needlekit;
 
 namespace {
 
-struct MeshSize {
-  double size_at_site;       // m
-  double size_far;           // m
-  double refinement_radius;  // m
-};
-
-// Chosen to give ~100k, ~300k and ~1M tetrahedra.
-constexpr MeshSize kSizes[] = {{25e-6, 250e-6, 250e-6}, {11e-6, 180e-6, 300e-6}, {8.5e-6, 125e-6, 400e-6}};
-
 void BM_SkinBlockMesh(benchmark::State& state) {
-  const MeshSize& size = kSizes[state.range(0)];
+  const bench::SkinBlockSize& size = bench::kSkinBlockSizes[state.range(0)];
   mesh::LayeredBlockOptions options;
   options.size_at_site = size.size_at_site;
   options.size_far = size.size_far;
@@ -55,9 +47,9 @@ namespace {
 // §3.3.3's data structures (faces, tet-tet and triangle-triangle adjacency, boundary surface) on the ~300k mesh.
 void BM_TetTopologyAndBoundary(benchmark::State& state) {
   mesh::LayeredBlockOptions options;
-  options.size_at_site = kSizes[1].size_at_site;
-  options.size_far = kSizes[1].size_far;
-  options.refinement_radius = kSizes[1].refinement_radius;
+  options.size_at_site = bench::kSkinBlockSizes[1].size_at_site;
+  options.size_far = bench::kSkinBlockSizes[1].size_far;
+  options.refinement_radius = bench::kSkinBlockSizes[1].refinement_radius;
   const mesh::TetMesh tissue = mesh::layered_block_mesh(options).mesh;
   std::size_t boundary = 0;
   for (auto _ : state) {
@@ -77,9 +69,9 @@ namespace {
 // Writing the ~300k mesh (points, tets, layer, E, nu, quality) as VTU, atomically, to the temporary folder.
 void BM_WriteTissueVtu(benchmark::State& state) {
   mesh::LayeredBlockOptions options;
-  options.size_at_site = kSizes[1].size_at_site;
-  options.size_far = kSizes[1].size_far;
-  options.refinement_radius = kSizes[1].refinement_radius;
+  options.size_at_site = bench::kSkinBlockSizes[1].size_at_site;
+  options.size_far = bench::kSkinBlockSizes[1].size_far;
+  options.refinement_radius = bench::kSkinBlockSizes[1].refinement_radius;
   const mesh::TetMesh tissue = mesh::layered_block_mesh(options).mesh;
   const io::VtuGrid grid = io::tet_mesh_grid(tissue);
   const auto file = std::filesystem::temp_directory_path() / "needlekit_bench_tissue.vtu";
