@@ -10,7 +10,7 @@ NodalVolumePreconditioner::NodalVolumePreconditioner(const mesh::CoarseLevel& co
       nodal_(nodal),
       arena_(arena),
       product_(product),
-      two_grid_(coarse, free_index, one_ring, connectivity, 4),
+      two_grid_(coarse, free_index, one_ring, connectivity, 4, arena),
       multiply_a_([this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { product_.multiply(*a_values_, x, y); }) {}
 
 bool NodalVolumePreconditioner::update(const std::vector<double>& a_values) {

@@ -87,7 +87,7 @@ TangentSystem::TangentSystem(const std::vector<int>& conn, int nn, int node_coun
     nodal_two_grid_ =
         std::make_unique<NodalVolumePreconditioner>(*coarse, free_index, pattern_, *product_, conn, *nodal, arena_);
   else if (solver_ == LinearSolver::TwoGrid)
-    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_, conn, nn);
+    two_grid_ = std::make_unique<TwoGridPreconditioner>(*coarse, free_index, pattern_, conn, nn, arena_);
   else if (splits_preconditioner())
     cholesky_ = std::make_unique<SparseCholesky>(free_count, pre_pattern_.column_pointers, pre_pattern_.row_indices);
   else

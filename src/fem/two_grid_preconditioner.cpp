@@ -12,8 +12,8 @@ namespace needlekit::fem::detail {
 
 TwoGridPreconditioner::TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index,
                                              const UpperPattern& fine, const std::vector<int>& connectivity,
-                                             int nodes_per_element, int chebyshev_degree)
-    : fine_(fine), degree_(chebyshev_degree) {
+                                             int nodes_per_element, tbb::task_arena& arena, int chebyshev_degree)
+    : fine_(fine), arena_(arena), degree_(chebyshev_degree) {
   // A coarse dof is kept when most of its interpolation weight goes to free fine dofs: one on a fixed face or under
   // a needle's tip nodes gives most of it to constrained fine dofs and is left out (as the fine dof of the same node
   // is in a nested level), which also keeps A_c regular where a coarse node reaches a single free fine dof.
@@ -111,31 +111,33 @@ bool TwoGridPreconditioner::update(const std::vector<double>& values, const Mult
   const int coarse_count = coarse_dofs();
   tbb::enumerable_thread_specific<std::vector<int64_t>> positions(
       [&] { return std::vector<int64_t>(static_cast<size_t>(coarse_count), -1); });
-  tbb::parallel_for(tbb::blocked_range<int>(0, coarse_count, 64), [&](const tbb::blocked_range<int>& range) {
-    std::vector<int64_t>& position = positions.local();
-    for (int column = range.begin(); column < range.end(); ++column) {
-      const int64_t first = coarse_pattern_.column_pointers[static_cast<size_t>(column)];
-      const int64_t last = coarse_pattern_.column_pointers[static_cast<size_t>(column) + 1];
-      for (int64_t k = first; k < last; ++k) {
-        position[static_cast<size_t>(coarse_pattern_.row_indices[static_cast<size_t>(k)])] = k;
-        coarse_values_[static_cast<size_t>(k)] = 0;
-      }
-      for (int32_t q = restriction_pointers_[static_cast<size_t>(column)];
-           q < restriction_pointers_[static_cast<size_t>(column) + 1]; ++q) {
-        const Restriction& from = restriction_[static_cast<size_t>(q)];
-        for (int64_t n = neighbour_pointers_[static_cast<size_t>(from.fine)];
-             n < neighbour_pointers_[static_cast<size_t>(from.fine) + 1]; ++n) {
-          const Neighbour& j = neighbours_[static_cast<size_t>(n)];
-          const double v = from.weight * values[static_cast<size_t>(j.entry)];
-          const Interpolation& pj = interpolation_[static_cast<size_t>(j.dof)];
-          for (int a = 0; a < 4; ++a)
-            if (pj.coarse[a] >= 0 && pj.coarse[a] <= column)
-              coarse_values_[static_cast<size_t>(position[static_cast<size_t>(pj.coarse[a])])] += pj.weight[a] * v;
+  arena_.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, coarse_count, 64), [&](const tbb::blocked_range<int>& range) {
+      std::vector<int64_t>& position = positions.local();
+      for (int column = range.begin(); column < range.end(); ++column) {
+        const int64_t first = coarse_pattern_.column_pointers[static_cast<size_t>(column)];
+        const int64_t last = coarse_pattern_.column_pointers[static_cast<size_t>(column) + 1];
+        for (int64_t k = first; k < last; ++k) {
+          position[static_cast<size_t>(coarse_pattern_.row_indices[static_cast<size_t>(k)])] = k;
+          coarse_values_[static_cast<size_t>(k)] = 0;
         }
+        for (int32_t q = restriction_pointers_[static_cast<size_t>(column)];
+             q < restriction_pointers_[static_cast<size_t>(column) + 1]; ++q) {
+          const Restriction& from = restriction_[static_cast<size_t>(q)];
+          for (int64_t n = neighbour_pointers_[static_cast<size_t>(from.fine)];
+               n < neighbour_pointers_[static_cast<size_t>(from.fine) + 1]; ++n) {
+            const Neighbour& j = neighbours_[static_cast<size_t>(n)];
+            const double v = from.weight * values[static_cast<size_t>(j.entry)];
+            const Interpolation& pj = interpolation_[static_cast<size_t>(j.dof)];
+            for (int a = 0; a < 4; ++a)
+              if (pj.coarse[a] >= 0 && pj.coarse[a] <= column)
+                coarse_values_[static_cast<size_t>(position[static_cast<size_t>(pj.coarse[a])])] += pj.weight[a] * v;
+          }
+        }
+        for (int64_t k = first; k < last; ++k)
+          position[static_cast<size_t>(coarse_pattern_.row_indices[static_cast<size_t>(k)])] = -1;
       }
-      for (int64_t k = first; k < last; ++k)
-        position[static_cast<size_t>(coarse_pattern_.row_indices[static_cast<size_t>(k)])] = -1;
-    }
+    });
   });
   if (!coarse_cholesky_->factorize(coarse_values_)) return false;
 

@@ -15,6 +15,8 @@
 // Why written here: Debian's algebraic multigrid (hypre, PETSc GAMG, Trilinos ML/MueLu) comes inside MPI stacks
 // that must own the process; the geometric hierarchy makes a two-level method a few hundred lines.
 #pragma once
+#include <tbb/task_arena.h>
+
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -36,9 +38,10 @@ public:
   // `fine`: the pattern of K over the fine free dofs; `free_index`: per fine dof its free index or -1;
   // `connectivity`: the fine elements' nodes, nodes_per_element each. A coarse dof is kept when more than half of
   // its interpolation weight goes to free fine dofs; A_c's pattern couples the coarse nodes interpolated by one fine
-  // element.
+  // element. The coarse operator's assembly runs in `arena` (the solver's threads).
   TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index, const UpperPattern& fine,
-                        const std::vector<int>& connectivity, int nodes_per_element, int chebyshev_degree = 4);
+                        const std::vector<int>& connectivity, int nodes_per_element, tbb::task_arena& arena,
+                        int chebyshev_degree = 4);
   ~TwoGridPreconditioner();
   TwoGridPreconditioner(const TwoGridPreconditioner&) = delete;
   TwoGridPreconditioner& operator=(const TwoGridPreconditioner&) = delete;
@@ -78,6 +81,7 @@ private:
   std::vector<int64_t> neighbour_pointers_;  // per fine free dof (+1) into neighbours_: K's column and row
   std::vector<Neighbour> neighbours_;
   const UpperPattern& fine_;
+  tbb::task_arena& arena_;
   UpperPattern coarse_pattern_;
   std::vector<double> coarse_values_;
   std::unique_ptr<SparseCholesky> coarse_cholesky_;
