@@ -1,6 +1,6 @@
 // Internal: a two-grid preconditioner for the free-dof stiffness K of a mesh with a coarse level
 // (mesh::CoarseLevel: a split mesh's parent, the corner nodes of quadratic tetrahedra, or the body meshed again at
-// twice the sizes).
+// three times the sizes).
 //
 //   B r = S r + (I - S K) P A_c^-1 P^T (I - K S) r     (symmetric V(1,1) cycle; Trottenberg et al., Multigrid, §2.4)
 //
@@ -8,8 +8,8 @@
 // edge midpoint, barycentric coordinates in a non-nested coarse mesh), the coarse operator is Galerkin's
 // A_c = P^T K P (exact for the coarse level whatever the material jumps or constraints of the fine one, and for
 // non-nested meshes the usual choice: Chan, Smith & Zou 1996, "Overlapping Schwarz methods on unstructured meshes
-// using non-matching coarse grids", Numer Math 73), factorized by CHOLMOD, and the smoother S is a Chebyshev polynomial in D^-1 K
-// (D = diag K) on [lambda_max / 10, 1.1 lambda_max] (Adams, Brezina, Hu, Tuminaro 2003, "Parallel multigrid
+// using non-matching coarse grids", Numer Math 73), factorized by CHOLMOD, and the smoother S is a Chebyshev polynomial
+// in D^-1 K (D = diag K) on [lambda_max / 10, 1.1 lambda_max] (Adams, Brezina, Hu, Tuminaro 2003, "Parallel multigrid
 // smoothing: polynomial versus Gauss-Seidel", J Comput Phys 188), threaded through K's product alone.
 //
 // Why written here: Debian's algebraic multigrid (hypre, PETSc GAMG, Trilinos ML/MueLu) comes inside MPI stacks

@@ -177,9 +177,10 @@ void validate(const IndentationCase& c) {
   }
   if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
       c.tissue_mesh) {
-    throw InvalidInput("solver.linear_solver: \"two-grid\" with linear elements needs a block meshed here (its coarse "
-                       "level is the block meshed at twice the sizes), not a tissue mesh file; expected another "
-                       "linear_solver, or quadratic elements");
+    throw InvalidInput(
+        "solver.linear_solver: \"two-grid\" with linear elements needs a block meshed here (its coarse "
+        "level is the block meshed at coarser sizes), not a tissue mesh file; expected another "
+        "linear_solver, or quadratic elements");
   }
   if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
   c.solver.validate();

@@ -145,7 +145,7 @@ TEST_F(IndentCli, SplitSkinExampleUsesTheTwoGridSolver) {
   const nlohmann::json reference = nlohmann::json::parse(direct.out);
   EXPECT_EQ(reference["linear_solver"], "cholesky-cg");  // meshed directly: below kTwoGridMinimumTetrahedra
   EXPECT_NEAR(json["force_N"][1].get<double>() / reference["force_N"][1].get<double>(), 1.0, 0.1);
-  // The same direct mesh with the two-grid solver on the block meshed again at twice the sizes (the coarse level of
+  // The same direct mesh with the two-grid solver on the block meshed again at coarser sizes (the coarse level of
   // a large direct block): the same forces as Cholesky-CG. On this skin block the first version of the non-nested
   // coarse level had a singular coarse operator and failed at the first step.
   std::ofstream(dir_ / "direct_two_grid.toml") << file_text(dir_ / "direct.toml")

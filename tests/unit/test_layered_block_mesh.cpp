@@ -218,9 +218,10 @@ TEST(LayeredBlockMesh, SplitMeshesAtTwiceTheSizeAndKeepsTheCoarseLevel) {
   EXPECT_TRUE(mesh::tet_mesh_check(split.mesh).valid());
 }
 
-TEST(LayeredBlockMesh, CoarseLevelMeshesTheBlockAgainAtTwiceTheSizes) {
-  // coarse_level without split: the same mesh as without it, plus the block meshed at twice the sizes (about an
-  // eighth of the elements) in which every node of the mesh is interpolated.
+TEST(LayeredBlockMesh, CoarseLevelMeshesTheBlockAgainAtThreeTimesTheSizes) {
+  // coarse_level without split: the same mesh as without it, plus the block meshed at three times the sizes (the
+  // default coarse_size_factor: a 27th of the elements in a uniform mesh) in which every node of the mesh is
+  // interpolated.
   mesh::LayeredBlockOptions o = small_skin_block();
   const mesh::LayeredBlockResult direct = mesh::layered_block_mesh(o);
   o.coarse_level = true;
@@ -231,8 +232,8 @@ TEST(LayeredBlockMesh, CoarseLevelMeshesTheBlockAgainAtTwiceTheSizes) {
   const mesh::CoarseLevel& coarse = *with_coarse.coarse;
   ASSERT_EQ(coarse.interpolation.size(), direct.mesh.nodes.size());
   const double ratio = static_cast<double>(coarse.tets.size()) / static_cast<double>(direct.mesh.tets.size());
-  EXPECT_GT(ratio, 1.0 / 20);
-  EXPECT_LT(ratio, 1.0 / 3);
+  EXPECT_GT(ratio, 1.0 / 40);
+  EXPECT_LT(ratio, 1.0 / 6);  // 0.107: on this small block the graded region around the site is a large part
   for (const mesh::NodeInterpolation& p : coarse.interpolation) {
     EXPECT_NEAR(p.weights[0] + p.weights[1] + p.weights[2] + p.weights[3], 1.0, 1e-12);
     for (int a : p.nodes) EXPECT_LT(a, coarse.nodes);

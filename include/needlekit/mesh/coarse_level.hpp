@@ -2,8 +2,8 @@
 // tetrahedral mesh of the same body and, per node of the fine mesh, the coarse nodes whose linear shape functions
 // interpolate it. Nested levels (a split mesh's parent, refine_uniformly; the corner nodes of quadratic
 // tetrahedra) put a fine node on a coarse node or an edge midpoint. A non-nested level (the same body meshed again
-// at twice the sizes) gives each fine node the barycentric coordinates of the coarse tetrahedron that contains it:
-// interpolating_coarse_level.
+// at three times the sizes, LayeredBlockOptions::coarse_size_factor) gives each fine node the barycentric coordinates
+// of the coarse tetrahedron that contains it: interpolating_coarse_level.
 #pragma once
 #include <array>
 #include <vector>
