@@ -2,8 +2,9 @@
 // 160 um / DM, 100 MPa / 0.134 MPa / 0.08 MPa, nu = 0.4) indented by a 230 um flat cylinder, 20 load steps to
 // 200 um, linear tetrahedra, neo-Hookean, the dissertation's tip-node contact. The argument is the target number of
 // tetrahedra in thousands (100, 300, 1000).
-// BM_SkinIndentation meshes at the sizes directly and solves as "auto" does (from 90k estimated tetrahedra the
-// two-grid solver on the block meshed again at twice the sizes; factorizations then counts the coarse operator's);
+// BM_SkinIndentation meshes at the sizes directly and solves as "auto" does (from 25k estimated tetrahedra the
+// two-grid solver on the block meshed again at three times the sizes; factorizations then counts the coarse
+// operator's);
 // BM_SkinIndentationCholeskyCg is the same with CHOLMOD and CG on reused factorizations; BM_SkinIndentationSplit
 // meshes at twice the sizes and splits every tet into eight (the two-grid solver on the nested coarse level). The
 // label names the linear solver. Run one size per process (peak RSS):

@@ -204,8 +204,7 @@ bool meshes_coarse_level(const IndentationCase& c) {
   if (c.tissue_mesh || c.solver.order != fem::ElementOrder::Linear) return false;
   if (c.solver.linear_solver == fem::LinearSolver::TwoGrid) return true;
   if (c.solver.linear_solver != fem::LinearSolver::Automatic) return false;
-  return mesh::estimated_tetrahedra(block_to_mesh(c)) >=
-         (uses_nodal_average(c) ? kNodalAverageTwoGridMinimumTetrahedra : kTwoGridMinimumTetrahedra);
+  return mesh::estimated_tetrahedra(block_to_mesh(c)) >= kTwoGridMinimumTetrahedra;
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {

@@ -188,7 +188,7 @@ TEST(IndentationCase, WhichBlocksAreMeshedWithACoarseLevel) {
   EXPECT_TRUE(insertion::meshes_coarse_level(small));
   large.solver.linear_solver = fem::LinearSolver::CholeskyCg;
   EXPECT_FALSE(insertion::meshes_coarse_level(large));
-  // A nodal average (ν >= 0.45) takes the two-grid solver from kNodalAverageTwoGridMinimumTetrahedra on.
+  // The same threshold with a nodal average (ν >= 0.45).
   const auto nearly_incompressible = [&](const std::string& text) {
     return parse(replaced(text, "poisson_ratio = 0.4\n[[tissue", "poisson_ratio = 0.49\n[[tissue"));
   };
@@ -197,9 +197,8 @@ TEST(IndentationCase, WhichBlocksAreMeshedWithACoarseLevel) {
                                        replaced(sized("40 um"), "width = \"3000 um\"\nlength = \"3000 um\"",
                                                 "width = \"1000 um\"\nlength = \"1000 um\""));
   EXPECT_TRUE(uses_nodal_average(medium) && uses_nodal_average(coarse));
-  EXPECT_GE(mesh::estimated_tetrahedra(medium.block), insertion::kNodalAverageTwoGridMinimumTetrahedra);
-  EXPECT_LT(mesh::estimated_tetrahedra(medium.block), insertion::kTwoGridMinimumTetrahedra);
-  EXPECT_LT(mesh::estimated_tetrahedra(coarse.block), insertion::kNodalAverageTwoGridMinimumTetrahedra);
+  EXPECT_GE(mesh::estimated_tetrahedra(medium.block), insertion::kTwoGridMinimumTetrahedra);
+  EXPECT_LT(mesh::estimated_tetrahedra(coarse.block), insertion::kTwoGridMinimumTetrahedra);
   EXPECT_TRUE(insertion::meshes_coarse_level(medium));
   EXPECT_FALSE(insertion::meshes_coarse_level(coarse));
   EXPECT_FALSE(insertion::meshes_coarse_level(parse(replaced(sized("12 um"), "element = \"linear\"",

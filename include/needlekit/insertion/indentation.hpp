@@ -69,19 +69,17 @@ double effective_edge_radius(const IndentationCase& indentation_case);
 bool uses_nodal_average(const IndentationCase& indentation_case);
 
 // A block meshed for a run whose solver is "auto" gets a coarse level, and with it the two-grid solver, from this
-// estimated tetrahedron count on (mesh::estimated_tetrahedra), unless it has linear elements that take the nodal
-// average. Measured on the default skin block (BENCHMARKS.md, "Two-grid solver on a directly meshed block"): at an
-// estimate of 80k (105k tetrahedra) both solvers take the same time, at 96k (117k) the two-grid one is 1.28x
-// faster, at 389k (351k) 1.67x, in 0.43x the memory.
-inline constexpr double kTwoGridMinimumTetrahedra = 90'000;
-// The same for a block whose linear tetrahedra take the nodal average (fem::nodal_average_applies): there the
-// alternative is CG on the one-ring preconditioner's Cholesky factor, which grows faster than the two-grid cycle's
-// cost. Measured on the §6.2 insertions (BENCHMARKS.md, "FE speed, ninth session"): the cylinder's 33k tetrahedra
-// 22.1 s with the two-grid solver against 30.6 s, the blunt bevel's 55k 25.1 s against 54 s.
-inline constexpr double kNodalAverageTwoGridMinimumTetrahedra = 25'000;
+// estimated tetrahedron count on (mesh::estimated_tetrahedra), with or without the nodal average. With the coarse
+// level at three times the sizes the two-grid solver beats Cholesky-CG on every skin block measured, from 17k
+// tetrahedra (1.23 s against 1.5-1.7 s) through 29k (1.9-2.0 against 2.9-3.0 s), 43k (3.1 against 4.3 s) and 87k
+// (9.8 against 12.0 s; BENCHMARKS.md, eleventh session); with the nodal average, whose alternative is CG on the
+// one-ring preconditioner's Cholesky factor, the §6.2 cylinder's 33k tetrahedra took 22.1 s against 30.6 s and the
+// blunt bevel's 55k 25.1 s against 54 s (ninth session). At 4.4k tetrahedra both take 0.6 s: small blocks keep
+// the direct path, which needs no second mesh.
+inline constexpr double kTwoGridMinimumTetrahedra = 25'000;
 // Whether the block of the case is meshed with a coarse level (mesh::LayeredBlockOptions::coarse_level): the solver
-// asks for "two-grid", or "auto" on a block of kTwoGridMinimumTetrahedra (kNodalAverageTwoGridMinimumTetrahedra
-// with a nodal average) or more, with linear elements. False for a case with its own tissue mesh.
+// asks for "two-grid", or "auto" on a block of kTwoGridMinimumTetrahedra or more, with linear elements. False for a
+// case with its own tissue mesh.
 bool meshes_coarse_level(const IndentationCase& indentation_case);
 
 // The needles' surfaces placed in the tissue frame at zero displacement (one per site), as the solver takes them
