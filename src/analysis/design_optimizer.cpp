@@ -64,13 +64,17 @@ private:
   std::vector<Point> points_;
 };
 
-// Runs the progress callback from one thread at a time; remembers a cancellation.
+// Runs the progress callback from one thread at a time, with fractions that never decrease (a thread that counted
+// its slice before another's may reach the lock after it: the smaller fraction is dropped); remembers a
+// cancellation.
 class Progress {
 public:
   explicit Progress(const std::function<bool(double)>& callback) : callback_(callback) {}
   void report(double fraction) {
     if (!callback_) return;
     std::lock_guard lock(mutex_);
+    if (fraction < last_fraction_) return;
+    last_fraction_ = fraction;
     if (!callback_(fraction)) cancelled_ = true;
   }
   bool cancelled() const { return cancelled_.load(); }
@@ -78,6 +82,7 @@ public:
 private:
   const std::function<bool(double)>& callback_;
   std::mutex mutex_;
+  double last_fraction_ = 0;  // guarded by mutex_
   std::atomic<bool> cancelled_{false};
 };
 
