@@ -32,13 +32,7 @@ double peak_rss_gigabytes() {
 
 // Element sizes for about `thousands` x 1000 tetrahedra (skin_block_sizes.hpp).
 mesh::LayeredBlockOptions skin_block(double thousands) {
-  const bench::SkinBlockSize& size = bench::kSkinBlockSizes[thousands <= 100 ? 0 : thousands <= 300 ? 1 : 2];
-  mesh::LayeredBlockOptions block;
-  block.layers = materials::skin_layers();
-  block.size_at_site = size.size_at_site;
-  block.size_far = size.size_far;
-  block.refinement_radius = size.refinement_radius;
-  return block;
+  return bench::skin_block_options(thousands <= 100 ? 0 : thousands <= 300 ? 1 : 2);
 }
 
 // The same block meshed at twice the sizes and split into eight (mesh::LayeredBlockOptions::split), which gives the

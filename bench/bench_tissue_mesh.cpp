@@ -18,11 +18,7 @@ using namespace needlekit;
 namespace {
 
 void BM_SkinBlockMesh(benchmark::State& state) {
-  const bench::SkinBlockSize& size = bench::kSkinBlockSizes[state.range(0)];
-  mesh::LayeredBlockOptions options;
-  options.size_at_site = size.size_at_site;
-  options.size_far = size.size_far;
-  options.refinement_radius = size.refinement_radius;
+  const mesh::LayeredBlockOptions options = bench::skin_block_options(static_cast<std::size_t>(state.range(0)));
   mesh::LayeredBlockResult result;
   for (auto _ : state) {
     result = mesh::layered_block_mesh(options);
@@ -46,11 +42,7 @@ namespace {
 
 // §3.3.3's data structures (faces, tet-tet and triangle-triangle adjacency, boundary surface) on the ~300k mesh.
 void BM_TetTopologyAndBoundary(benchmark::State& state) {
-  mesh::LayeredBlockOptions options;
-  options.size_at_site = bench::kSkinBlockSizes[1].size_at_site;
-  options.size_far = bench::kSkinBlockSizes[1].size_far;
-  options.refinement_radius = bench::kSkinBlockSizes[1].refinement_radius;
-  const mesh::TetMesh tissue = mesh::layered_block_mesh(options).mesh;
+  const mesh::TetMesh tissue = mesh::layered_block_mesh(bench::skin_block_options(1)).mesh;
   std::size_t boundary = 0;
   for (auto _ : state) {
     const mesh::TetTopology topology = mesh::tet_topology(tissue);
@@ -68,11 +60,7 @@ namespace {
 
 // Writing the ~300k mesh (points, tets, layer, E, nu, quality) as VTU, atomically, to the temporary folder.
 void BM_WriteTissueVtu(benchmark::State& state) {
-  mesh::LayeredBlockOptions options;
-  options.size_at_site = bench::kSkinBlockSizes[1].size_at_site;
-  options.size_far = bench::kSkinBlockSizes[1].size_far;
-  options.refinement_radius = bench::kSkinBlockSizes[1].refinement_radius;
-  const mesh::TetMesh tissue = mesh::layered_block_mesh(options).mesh;
+  const mesh::TetMesh tissue = mesh::layered_block_mesh(bench::skin_block_options(1)).mesh;
   const io::VtuGrid grid = io::tet_mesh_grid(tissue);
   const auto file = std::filesystem::temp_directory_path() / "needlekit_bench_tissue.vtu";
   for (auto _ : state) io::write_vtu(grid, file);

@@ -2,6 +2,11 @@
 // (bench_tissue_mesh.cpp) and indentation (bench_indentation.cpp) benchmarks.
 #pragma once
 
+#include <cstddef>
+
+#include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/layered_block_mesh.hpp"
+
 namespace needlekit::bench {
 
 struct SkinBlockSize {
@@ -16,5 +21,15 @@ struct SkinBlockSize {
 // makes 16-19 % more elements.
 inline constexpr SkinBlockSize kSkinBlockSizes[] = {
     {25e-6, 250e-6, 250e-6}, {11.8e-6, 193e-6, 300e-6}, {9e-6, 132e-6, 400e-6}};
+
+// The default skin block (its layers given explicitly) at kSkinBlockSizes[size].
+inline mesh::LayeredBlockOptions skin_block_options(std::size_t size) {
+  mesh::LayeredBlockOptions block;
+  block.layers = materials::skin_layers();
+  block.size_at_site = kSkinBlockSizes[size].size_at_site;
+  block.size_far = kSkinBlockSizes[size].size_far;
+  block.refinement_radius = kSkinBlockSizes[size].refinement_radius;
+  return block;
+}
 
 }  // namespace needlekit::bench

@@ -47,8 +47,8 @@ enum class ElementOrder {
 enum class ContactModel { TipNodes, Surface };
 enum class LinearSolver {
   Automatic,   // TwoGrid for quadratic elements, and for linear ones given a coarse level (a split mesh's parent, or
-               // the body meshed again at coarser sizes: insertion::run_indentation meshes one for large blocks)
-               // unless the nodal average applies; else CholeskyCg
+               // the body meshed again at coarser sizes: insertion::run_indentation meshes one for large blocks);
+               // else CholeskyCg
   Cholesky,    // a fresh CHOLMOD factorization per Newton iteration
   CholeskyCg,  // conjugate gradients preconditioned by the last factorization, while cheaper than a new one
   TwoGrid,     // conjugate gradients preconditioned by a two-grid cycle (Chebyshev smoothing, CHOLMOD on the coarse
