@@ -27,7 +27,7 @@ void run_materials() {
   for (const std::string& name : materials::tissue_preset_names()) {
     const materials::TissuePreset preset = materials::tissue_preset(name);
     fmt::print("{}\n", name);
-    for (const mesh::TissueLayer& l : preset.layers) {
+    for (const materials::TissueLayer& l : preset.layers) {
       fmt::print("    {:<17} {:>10} {:>14} {:>6}\n", l.name, fmt::format("{:g} um", l.thickness * 1e6),
                  fmt::format("{:.4g} MPa", l.youngs_modulus * 1e-6), fmt::format("{:g}", l.poisson_ratio));
     }

@@ -2,7 +2,7 @@
 // and the case readers; the calibration folder sits above io.
 #include <fmt/format.h>
 
-#include "../io/toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 #include "needlekit/calibration/calibration_problem.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"

@@ -1,6 +1,6 @@
 #include "needlekit/io/design_config.hpp"
 
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 #include "uncertainty_tables.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 #include "needlekit/io/fe_uncertainty_config.hpp"
 
 #include "needlekit/io/indentation_case.hpp"
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 #include "uncertainty_tables.hpp"
 
 namespace needlekit::io {

@@ -4,7 +4,7 @@
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 #include "tissue_config_toml.hpp"
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 
 namespace needlekit::io {
 namespace {

@@ -6,7 +6,7 @@
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 
 namespace needlekit::io {
 namespace {

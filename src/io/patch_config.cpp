@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "needlekit/io/design_config.hpp"
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 
 namespace needlekit::io {
 namespace {

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "needlekit/io/tissue_config.hpp"
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 
 namespace needlekit::io::config {
 

@@ -1,6 +1,6 @@
 #include "uncertainty_tables.hpp"
 
-#include "toml_config.hpp"
+#include "needlekit/io/toml_config.hpp"
 
 namespace needlekit::io::config {
 namespace {

@@ -18,7 +18,7 @@ constexpr std::string_view kDissertationSkin =
     "surface, under 100 MPa at 10 um depth), EP to 160 um depth E = 0.134 MPa and DM E = 0.08 MPa (L'Etang & "
     "Huang, Ultrasonics 44, 1243-1247, 2006), nu = 0.4 for every layer; block height 1150 um";
 
-std::vector<mesh::TissueLayer> phantom(double modulus) {
+std::vector<TissueLayer> phantom(double modulus) {
   // §6.2: silicone rubber, nu = 0.49 (the issue allows 0.48-0.49), one homogeneous layer.
   return {{"silicone rubber", kSkinHeight, modulus, 0.49}};
 }
@@ -56,7 +56,7 @@ const std::vector<Entry>& presets() {
 
 }  // namespace
 
-std::vector<mesh::TissueLayer> skin_layers(double stratum_corneum_modulus) {
+std::vector<TissueLayer> skin_layers(double stratum_corneum_modulus) {
   return {{"stratum corneum", kStratumCorneum, stratum_corneum_modulus, 0.4},
           {"epidermis", kEpidermisBottom - kStratumCorneum, 0.134e6, 0.4},
           {"dermis", kSkinHeight - kEpidermisBottom, 0.08e6, 0.4}};
@@ -77,10 +77,10 @@ TissuePreset tissue_preset(std::string_view name, std::string_view what) {
                                  fmt::join(tissue_preset_names(), ", ")));
 }
 
-void validate(const std::vector<mesh::TissueLayer>& layers, std::string_view where) {
+void validate(const std::vector<TissueLayer>& layers, std::string_view where) {
   if (layers.empty()) throw InvalidInput(fmt::format("{}: no layers; expected at least one", where));
   for (std::size_t i = 0; i < layers.size(); ++i) {
-    const mesh::TissueLayer& l = layers[i];
+    const TissueLayer& l = layers[i];
     const std::string at = fmt::format("{}[{}] (\"{}\")", where, i, l.name);
     if (l.name.empty()) throw InvalidInput(fmt::format("{}[{}].name: empty; every layer needs a name", where, i));
     if (!std::isfinite(l.thickness) || l.thickness <= 0) {

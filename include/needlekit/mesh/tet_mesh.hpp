@@ -9,15 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/materials/tissue_layer.hpp"
+
 namespace needlekit::mesh {
 
-// One tissue layer: its name (a Gmsh physical group / a config entry) and its linear-elastic constants.
-struct TissueLayer {
-  std::string name;             // e.g. "stratum corneum"
-  double thickness = 0;         // m, > 0 (the last layer of a block may take the rest of the block's height)
-  double youngs_modulus = 0;    // Pa, > 0
-  double poisson_ratio = 0.4;   // (-1, 0.5)
-};
+// The layers a mesh's elements refer to (declared with the tissue presets).
+using materials::TissueLayer;
 
 struct TetMesh {
   std::vector<Eigen::Vector3d> nodes;     // m

@@ -1,6 +1,7 @@
-// Internal to the io folder: reading TOML config files with errors that name FILE:LINE, the dotted key, the value
-// and what was expected. Shared by the design-file reader (design_config.cpp) and the indentation-case reader
-// (indentation_case.cpp). Not installed.
+// The io folder's toolkit for reading TOML case files, with errors that name FILE:LINE, the dotted key, the value
+// and what was expected: every case reader of io uses it, and so does the calibration file reader, which sits above
+// io (docs/architecture.md). It exposes toml++, a private dependency of the library, so it is not installed
+// (CMakeLists.txt excludes it): programs built on an installed needlekit read case files through the readers.
 #pragma once
 #include <toml++/toml.h>
 
