@@ -1,4 +1,4 @@
-// The tool's exit codes (README "Exit codes", core/exit_codes.hpp), one test each, and what a stopped run leaves
+// The tool's exit codes (docs/cli.md "Exit codes", core/exit_codes.hpp), one test each, and what a stopped run leaves
 // behind: 0 success; 2 bad input, including an output directory that cannot be written and a really full disk (a
 // 64 KiB tmpfs), with no partial file; 3 a numerical failure with the completed steps kept and marked; 130 after
 // SIGINT or SIGTERM, with every file it kept complete and marked incomplete.

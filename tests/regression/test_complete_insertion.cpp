@@ -15,7 +15,7 @@
 
 #include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/io/insertion_case.hpp"
-#include "../support/cli_run.hpp"
+#include "../support/scratch_files.hpp"
 
 using namespace needlekit;
 
@@ -25,7 +25,7 @@ namespace {
 // that keeps the per-element volumetric term, the formulation these numbers were recorded with (the default for
 // nu >= 0.45 is now the nodal-averaged volume, which punctures deeper).
 io::InsertionCase graded_block_case(const std::filesystem::path& dir, int steps, const std::string& solver = "") {
-  std::ifstream in(test::kExamples + "insert_sharp_bevel.toml");
+  std::ifstream in(NEEDLEKIT_SOURCE_DIR "/examples/insert_sharp_bevel.toml");
   std::string text((std::istreambuf_iterator<char>(in)), {}), out, line;
   std::istringstream lines(text);
   while (std::getline(lines, line)) {
@@ -42,7 +42,7 @@ io::InsertionCase graded_block_case(const std::filesystem::path& dir, int steps,
 
 class CompleteInsertion : public testing::Test {
 protected:
-  void SetUp() override { dir_ = test::fresh_directory("complete-insertion"); }
+  void SetUp() override { dir_ = test::scratch_directory("complete-insertion"); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::filesystem::path dir_;
 };

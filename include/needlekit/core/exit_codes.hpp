@@ -1,4 +1,4 @@
-// The process exit codes of the needlekit tool, declared once (README "Exit codes"; the CLI's main() maps
+// The process exit codes of the needlekit tool, declared once (docs/cli.md "Exit codes"; the CLI's main() maps
 // exceptions and command outcomes onto them, and the tests assert them).
 #pragma once
 
