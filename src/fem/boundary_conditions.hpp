@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "function_space.hpp"
-#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/fem/solver_options.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 
 namespace needlekit::fem::detail {

@@ -8,7 +8,7 @@
 
 #include "element_colouring.hpp"
 #include "needlekit/fem/hyperelastic_law.hpp"
-#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/fem/solver_options.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 #include "needlekit/mesh/coarse_level.hpp"
 

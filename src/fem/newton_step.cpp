@@ -41,11 +41,8 @@ void book(const IterationRecord& rec, StepResult& res) {
 bool QuasiStaticSolver::Impl::solve_iteration(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
                                               double forcing, StepResult& res, Failure& failure) {
   const auto t0 = Clock::now();
-  if (!system->solve(rhs, du, rec, forcing)) {
-    failure = {StepStatus::LinearSolverFailure,
-               system->solver() == LinearSolver::TwoGrid
-                   ? "the tangent system could not be solved (two-grid CG failed, also with a diagonal shift)"
-                   : "the tangent matrix could not be factorized"};
+  if (!linear_solve->solve(rhs, du, rec, forcing)) {
+    failure = {StepStatus::LinearSolverFailure, linear_solve->failure_reason()};
     return false;
   }
   rec.solve_seconds = seconds_since(t0);
@@ -225,6 +222,18 @@ bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& f
     }
     contact->augment();
   }
+}
+
+std::string to_string(StepStatus status) {
+  switch (status) {
+    case StepStatus::Converged: return "converged";
+    case StepStatus::InvertedElement: return "inverted-element";
+    case StepStatus::IterationLimit: return "newton-iteration-limit";
+    case StepStatus::LinearSolverFailure: return "linear-solver-failure";
+    case StepStatus::ContactCycling: return "contact-cycling";
+    case StepStatus::InvalidTarget: return "invalid-target";
+  }
+  return "unknown";
 }
 
 StepResult QuasiStaticSolver::advance_to(double target) { return impl_->advance(target, nullptr); }

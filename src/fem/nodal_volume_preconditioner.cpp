@@ -2,15 +2,13 @@
 
 namespace needlekit::fem::detail {
 
-NodalVolumePreconditioner::NodalVolumePreconditioner(const mesh::CoarseLevel& coarse,
-                                                     const std::vector<int>& free_index, const UpperPattern& one_ring,
-                                                     SymmetricProduct& product, const std::vector<int>& connectivity,
-                                                     const NodalVolumeAverage& nodal, tbb::task_arena& arena)
-    : free_index_(free_index),
-      nodal_(nodal),
+NodalVolumePreconditioner::NodalVolumePreconditioner(const TangentInputs& inputs, const UpperPattern& one_ring,
+                                                     SymmetricProduct& product, tbb::task_arena& arena)
+    : free_index_(inputs.free_index),
+      nodal_(*inputs.nodal),
       arena_(arena),
       product_(product),
-      two_grid_(coarse, free_index, one_ring, connectivity, 4, arena),
+      two_grid_(inputs, one_ring, arena),
       multiply_a_([this](const Eigen::VectorXd& x, Eigen::VectorXd& y) { product_.multiply(*a_values_, x, y); }) {}
 
 bool NodalVolumePreconditioner::update(const std::vector<double>& a_values) {

@@ -31,12 +31,10 @@ namespace needlekit::fem::detail {
 
 class NodalVolumePreconditioner {
 public:
-  // `one_ring`: A's pattern over the free dofs and `product` the tangent system's product on it (shared: one set of
-  // partial sums); `free_index`: per dof its free index or -1; `connectivity`: the linear elements' nodes (4 each);
-  // `nodal`: the volume average whose G and D the tangent holds. All must outlive this object.
-  NodalVolumePreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index,
-                            const UpperPattern& one_ring, SymmetricProduct& product,
-                            const std::vector<int>& connectivity, const NodalVolumeAverage& nodal,
+  // `one_ring`: A's pattern over the free dofs and `product` the tangent's product on it (shared: one set of
+  // partial sums); of `inputs`, the coarse level and the nodal average (both required; the volume average whose G
+  // and D the tangent holds), the free-dof numbering and the linear elements. All must outlive this object.
+  NodalVolumePreconditioner(const TangentInputs& inputs, const UpperPattern& one_ring, SymmetricProduct& product,
                             tbb::task_arena& arena);
 
   // A's values on the one-ring pattern (kept by reference until the next update): rebuilds the coarse operator and

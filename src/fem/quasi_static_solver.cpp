@@ -1,4 +1,4 @@
-// QuasiStaticSolver: construction (function space, boundary conditions, needles, tangent system), the threaded
+// QuasiStaticSolver: construction (function space, boundary conditions, needles, tangent and its linear solve), the threaded
 // element assembly and the outputs of the converged state. The load steps are in newton_step.cpp.
 #include "needlekit/fem/quasi_static_solver.hpp"
 
@@ -38,8 +38,8 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   const int nq = space.points;
   const auto& free_index = dofs.free_index;
   if (want_force) fint.setZero(ndof);
-  if (want_tangent) system->zero();
-  std::vector<double>& values = system->values();
+  if (want_tangent) tangent->zero();
+  std::vector<double>& values = tangent->values();
   for (size_t colour = 0; colour < colouring.colours(); ++colour) {
     const size_t first_block = colouring.colour_begin[colour];
     block_energy.assign(colouring.colour_begin[colour + 1] - first_block, 0.0);
@@ -91,7 +91,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
           en += we;
           for (int a = 0; a < N; ++a) fint.segment<3>(3 * c[a]) += fe.col(a);
           if (!want_tangent) continue;
-          const int32_t* slot = system->element_slots(at);
+          const int32_t* slot = tangent->element_slots(at);
           for (int col = 0; col < 3 * N; ++col)
             for (int row = 0; row <= col; ++row, ++slot)
               if (*slot >= 0) values[static_cast<size_t>(*slot)] += ke(row, col);
@@ -134,21 +134,21 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
   ev.strain_energy += volumetric_energy;
   if (ev.valid && contact)
     ev.contact_energy = contact->evaluate(space.nodes, uu, disp, want_force, want_tangent, fcontact,
-                                          dofs.free_index, system->pattern(), system->values());
+                                          dofs.free_index, tangent->pattern(), tangent->values());
   if (ev.valid && nodal && want_tangent) {
-    if (system->splits_preconditioner()) {  // P: everything so far (one-ring) plus the element bulk term
-      system->capture_preconditioner();
+    if (tangent->splits_preconditioner()) {  // P: everything so far (one-ring) plus the element bulk term
+      tangent->capture_preconditioner();
       add_bulk_preconditioner();
     }
-    if (system->stores_patch_term())
-      nodal->add_patch_tangent(dofs.free_index, system->pattern(), system->values(), arena);
+    if (tangent->stores_patch_term())
+      nodal->add_patch_tangent(dofs.free_index, tangent->pattern(), tangent->values(), arena);
     if (kdup) nodal->add_prescribed_coupling(dofs.free_index, *dup, *kdup);
   }
   return ev;
 }
 
 void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
-  std::vector<double>& pre = system->preconditioner_values();
+  std::vector<double>& pre = tangent->preconditioner_values();
   const detail::ElementColouring& colouring = space.colouring;
   for (size_t colour = 0; colour < colouring.colours(); ++colour)  // within a colour no two blocks share an entry
     arena.execute([&] {
@@ -160,11 +160,11 @@ void QuasiStaticSolver::Impl::add_bulk_preconditioner() {
           const double scale = nodal->element_bulk_curvature(e) * space.volumes[static_cast<size_t>(e)];
           if (scale == 0) continue;
           const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
-          const int32_t* slot = system->element_slots(at);
+          const int32_t* slot = tangent->element_slots(at);
           for (int col = 0; col < 12; ++col)
             for (int row = 0; row <= col; ++row, ++slot)
               if (*slot >= 0)
-                pre[static_cast<size_t>(system->preconditioner_slot(*slot))] +=
+                pre[static_cast<size_t>(tangent->preconditioner_slot(*slot))] +=
                     scale * jh(row % 3, row / 3) * jh(col % 3, col / 3);
         }
       });
@@ -329,9 +329,13 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   LinearSolver solver = o.linear_solver;
   if (solver == LinearSolver::Automatic)
     solver = coarse || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
-  m.system = std::make_unique<detail::TangentSystem>(
-      m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index, m.space.colouring.elements, solver,
-      m.space.nodes_per_element == 10 ? &m.space.corners : coarse, m.opt, m.arena, m.nodal.get());
+  m.solver = solver;
+  const detail::TangentInputs inputs{m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index,
+                                     m.space.colouring.elements, m.nodal.get(),
+                                     m.space.nodes_per_element == 10 ? &m.space.corners : coarse};
+  m.tangent =
+      std::make_unique<detail::TangentMatrix>(inputs, detail::tangent_layout(solver, m.nodal != nullptr), m.arena);
+  m.linear_solve = detail::make_linear_solve(solver, *m.tangent, inputs, m.opt, m.arena);
 
   m.u = Eigen::VectorXd::Zero(m.ndof);
   m.fint = Eigen::VectorXd::Zero(m.ndof);
@@ -355,9 +359,9 @@ const std::vector<int>& QuasiStaticSolver::contact_flag() const { return impl_->
 const std::vector<double>& QuasiStaticSolver::contact_pressure() const { return impl_->contact_pressure; }
 const SolverOptions& QuasiStaticSolver::options() const { return impl_->opt; }
 int QuasiStaticSolver::dof_count() const { return impl_->ndof; }
-LinearSolver QuasiStaticSolver::linear_solver() const { return impl_->system->solver(); }
-double QuasiStaticSolver::factor_nonzeros() const { return impl_->system->factor_nonzeros(); }
-double QuasiStaticSolver::factor_flops() const { return impl_->system->factor_flops(); }
+LinearSolver QuasiStaticSolver::linear_solver() const { return impl_->solver; }
+double QuasiStaticSolver::factor_nonzeros() const { return impl_->linear_solve->factor_nonzeros(); }
+double QuasiStaticSolver::factor_flops() const { return impl_->linear_solve->factor_flops(); }
 int QuasiStaticSolver::nodal_average_elements() const { return impl_->nodal ? impl_->nodal->element_count() : 0; }
 
 QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vector<Eigen::Vector3d>& u,
@@ -377,8 +381,8 @@ QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vec
     if (m.dofs.free_index[dof] >= 0) ascending[static_cast<size_t>(m.dofs.free_index[dof])] = position++;
   out.gradient.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) out.gradient[ascending[static_cast<size_t>(k)]] = gradient[k];
-  const auto& pattern = m.system->pattern();
-  const auto& values = m.system->values();
+  const auto& pattern = m.tangent->pattern();
+  const auto& values = m.tangent->values();
   out.tangent = Eigen::MatrixXd::Zero(n, n);
   for (Eigen::Index c = 0; c < n; ++c) {
     const Eigen::Index col = ascending[static_cast<size_t>(c)];
@@ -387,7 +391,8 @@ QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vec
       out.tangent(r, col) = out.tangent(col, r) = values[static_cast<size_t>(k)];
     }
   }
-  if (m.nodal && !m.system->stores_patch_term()) m.nodal->add_patch_tangent(m.dofs.free_index, ascending, out.tangent);
+  if (m.nodal && !m.tangent->stores_patch_term())
+    m.nodal->add_patch_tangent(m.dofs.free_index, ascending, out.tangent);
   return out;
 }
 int QuasiStaticSolver::free_dof_count() const { return static_cast<int>(impl_->dofs.free_dofs.size()); }

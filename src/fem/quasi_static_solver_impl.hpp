@@ -13,8 +13,9 @@
 #include "function_space.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "nodal_volume.hpp"
+#include "linear_solve.hpp"
 #include "surface_contact.hpp"
-#include "tangent_system.hpp"
+#include "tangent_matrix.hpp"
 
 namespace needlekit::fem {
 
@@ -45,7 +46,9 @@ struct QuasiStaticSolver::Impl {
   std::unique_ptr<detail::SurfaceContact> contact;  // Surface
   std::unique_ptr<detail::NodalVolumeAverage> nodal;  // linear tetrahedra with the nodal-averaged volume
   tbb::task_arena arena;
-  std::unique_ptr<detail::TangentSystem> system;
+  std::unique_ptr<detail::TangentMatrix> tangent;     // the assembled K
+  std::unique_ptr<detail::LinearSolve> linear_solve;  // K du = rhs, on `tangent`
+  LinearSolver solver = LinearSolver::CholeskyCg;     // resolved (never Automatic)
   int ndof = 0;
 
   Eigen::VectorXd u, fint, fcontact;  // per dof: displacement, internal force, contact force
@@ -76,7 +79,7 @@ struct QuasiStaticSolver::Impl {
   // the system's values; with dup the product K_fp dup of the prescribed dofs into kdup (the linear predictor).
   Eval evaluate(const Eigen::VectorXd& uu, double disp, bool want_force, bool want_tangent,
                 const Eigen::VectorXd* dup = nullptr, Eigen::VectorXd* kdup = nullptr);
-  // The split preconditioner's bulk term (tangent_system.hpp) into the system's preconditioner values.
+  // The split preconditioner's bulk term (split_preconditioned_solve.hpp) into the tangent's preconditioner values.
   void add_bulk_preconditioner();
   Eigen::VectorXd free_residual() const;
   // The failure of an evaluation that found an inverted element: which element, where in the reference mesh.

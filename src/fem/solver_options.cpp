@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "needlekit/core/errors.hpp"
-#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/fem/solver_options.hpp"
 
 namespace needlekit::fem {
 
@@ -13,17 +13,6 @@ std::string to_string(ContactModel contact) { return std::string(name_of(kContac
 std::string to_string(LinearSolver solver) { return std::string(name_of(kLinearSolverNames, solver)); }
 std::string to_string(BoundaryCondition c) { return std::string(name_of(kBoundaryConditionNames, c)); }
 std::string to_string(VolumetricFormulation f) { return std::string(name_of(kVolumetricFormulationNames, f)); }
-std::string to_string(StepStatus status) {
-  switch (status) {
-    case StepStatus::Converged: return "converged";
-    case StepStatus::InvertedElement: return "inverted-element";
-    case StepStatus::IterationLimit: return "newton-iteration-limit";
-    case StepStatus::LinearSolverFailure: return "linear-solver-failure";
-    case StepStatus::ContactCycling: return "contact-cycling";
-    case StepStatus::InvalidTarget: return "invalid-target";
-  }
-  return "unknown";
-}
 
 MaterialLaw material_law_from_string(const std::string& t, const std::string& what) {
   if (t == "st-venant-kirchhoff") return MaterialLaw::StVenantKirchhoff;  // the long name, kept as an alias

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "boundary_conditions.hpp"
-#include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/fem/solver_options.hpp"
 #include "rigid_surface_distance.hpp"
 #include "sparse_pattern.hpp"
 

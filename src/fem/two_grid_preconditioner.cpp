@@ -10,10 +10,13 @@
 
 namespace needlekit::fem::detail {
 
-TwoGridPreconditioner::TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index,
-                                             const UpperPattern& fine, const std::vector<int>& connectivity,
-                                             int nodes_per_element, tbb::task_arena& arena, int chebyshev_degree)
+TwoGridPreconditioner::TwoGridPreconditioner(const TangentInputs& inputs, const UpperPattern& fine,
+                                             tbb::task_arena& arena, int chebyshev_degree)
     : fine_(fine), arena_(arena), degree_(chebyshev_degree) {
+  const mesh::CoarseLevel& coarse = *inputs.coarse;
+  const std::vector<int>& free_index = inputs.free_index;
+  const std::vector<int>& connectivity = inputs.connectivity;
+  const int nodes_per_element = inputs.nodes_per_element;
   // A coarse dof is kept when most of its interpolation weight goes to free fine dofs: one on a fixed face or under
   // a needle's tip nodes gives most of it to constrained fine dofs and is left out (as the fine dof of the same node
   // is in a nested level), which also keeps A_c regular where a coarse node reaches a single free fine dof.

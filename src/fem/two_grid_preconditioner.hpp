@@ -26,6 +26,7 @@
 
 #include "needlekit/mesh/coarse_level.hpp"
 #include "sparse_pattern.hpp"
+#include "tangent_inputs.hpp"
 
 namespace needlekit::fem::detail {
 
@@ -35,12 +36,11 @@ class TwoGridPreconditioner {
 public:
   using Multiply = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;  // y = K x
 
-  // `fine`: the pattern of K over the fine free dofs; `free_index`: per fine dof its free index or -1;
-  // `connectivity`: the fine elements' nodes, nodes_per_element each. A coarse dof is kept when more than half of
-  // its interpolation weight goes to free fine dofs; A_c's pattern couples the coarse nodes interpolated by one fine
+  // `fine`: the pattern of K over the fine free dofs; of `inputs`, the coarse level (required), the free-dof numbering
+  // and the fine elements (connectivity, nodes_per_element). A coarse dof is kept when more than half of its
+  // interpolation weight goes to free fine dofs; A_c's pattern couples the coarse nodes interpolated by one fine
   // element. The coarse operator's assembly runs in `arena` (the solver's threads).
-  TwoGridPreconditioner(const mesh::CoarseLevel& coarse, const std::vector<int>& free_index, const UpperPattern& fine,
-                        const std::vector<int>& connectivity, int nodes_per_element, tbb::task_arena& arena,
+  TwoGridPreconditioner(const TangentInputs& inputs, const UpperPattern& fine, tbb::task_arena& arena,
                         int chebyshev_degree = 4);
   ~TwoGridPreconditioner();
   TwoGridPreconditioner(const TwoGridPreconditioner&) = delete;

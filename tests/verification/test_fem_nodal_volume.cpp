@@ -245,7 +245,7 @@ TEST(NodalVolume, FlatPunchNearIncompressibleConvergesToTheReference) {
 }
 
 // Cholesky-CG on the nodal-averaged tangent is CG on the full (two-ring) K preconditioned by the factor of the
-// one-ring P (src/fem/tangent_system.hpp): it converges to the same state as the direct solver that factorizes K
+// one-ring P (src/fem/split_preconditioned_solve.hpp): it converges to the same state as the direct solver that factorizes K
 // itself, with a factor a fraction of the size. At ν = 0.499, 8 % of the punch radius in 4 steps (the stiffest case
 // for P, whose element bulk term is the locking one).
 TEST(NodalVolume, SplitPreconditionedCgGivesTheDirectSolutionWithASmallerFactor) {
