@@ -194,7 +194,7 @@ TEST(IndentationView, StepsNeedlesAndTheTableInTheView) {
   EXPECT_EQ(json["surface"]["fields"][1]["key"], "von_mises_stress_Pa");
   EXPECT_EQ(json["needles"]["instances"].size(), 2u);
   EXPECT_EQ(json["needles"]["meshes"].size(), 1u);  // the second needle is the first one moved
-  EXPECT_NEAR(json["needles"]["instances"][1]["offset"][0].get<double>(), 200e-6, 1e-12);
+  EXPECT_NEAR(json["needles"]["instances"][1]["offset"][0].get<double>(), 200e-6, 1e-10);  // Float32
   EXPECT_EQ(json["needles"]["displacement_m"].size(), 3u);
   EXPECT_NEAR(json["needles"]["table"]["rows"][1][4][2].get<double>(), 0.18, 1e-12);  // needle 2's force at step 3
   const std::string script = io::view_script(json);
@@ -232,7 +232,7 @@ TEST(IndentationView, AThreeHundredThousandTetrahedronRunFitsInFiveMegabytes) {
     const std::size_t bytes = io::view_script(json).size();
     EXPECT_LE(bytes, budget) << json["steps"].size() << " steps of " << json["surface"]["region"];
     EXPECT_GE(json["steps"].size(), 2u);
-    EXPECT_EQ(json["steps"].back()["depth_um"].get<double>(), 30.0);  // the last step is always kept
+    EXPECT_NEAR(json["steps"].back()["depth_um"].get<double>(), 30.0, 1e-9);  // the last step is always kept
     if (budget < 1e6) {
       EXPECT_EQ(json["surface"]["region"], "top");
       EXPECT_LT(json["steps"].size(), 30u);

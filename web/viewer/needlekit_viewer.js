@@ -139,10 +139,7 @@
     this.renderer.setSize(this.canvas.clientWidth || 640, this.canvas.clientHeight || 420, false);
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0xf4f5f7);
-    this.scene.add(new THREE.AmbientLight(0xffffff, 0.55));
-    var light = new THREE.DirectionalLight(0xffffff, 0.6);
-    light.position.set(0.4, -0.6, 1.0);
-    this.scene.add(light);
+    this.scene.add(new THREE.AmbientLight(0xffffff, 0.4));
     this.world = new THREE.Group();
     this.scene.add(this.world);
 
@@ -192,7 +189,7 @@
   // Patch: each needle a cylinder from its base to its tip.
   View.prototype.buildSegmentNeedles = function (needles) {
     var s = decode(needles.segments), size = this.extent().size;
-    var radius = Math.max(needles.radius_m, 0.004 * size);
+    var radius = Math.max(needles.radius_m, 0.01 * size);  // visible and clickable
     var up = new THREE.Vector3(0, 1, 0);
     for (var n = 0; 6 * n < s.length; ++n) {
       var base = new THREE.Vector3(s[6 * n], s[6 * n + 1], s[6 * n + 2]);
@@ -216,7 +213,8 @@
       hi[k % 3] = Math.max(hi[k % 3], p[k]);
     }
     var size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
-    return {center: new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2), size: size};
+    return {center: new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2), size: size,
+            top: hi[2]};
   };
 
   // Metres are scaled to a unit scene (WebGL's float precision and the camera's clip planes).
@@ -227,6 +225,11 @@
     var aspect = (this.canvas.clientWidth || 640) / (this.canvas.clientHeight || 420);
     this.camera = new THREE.PerspectiveCamera(35, aspect, 0.01, 100);
     this.camera.up.set(0, 0, 1);
+    // A head light: the side in view is always lit.
+    var light = new THREE.DirectionalLight(0xffffff, 0.6);
+    light.position.set(0.3, 0.5, 1);
+    this.camera.add(light);
+    this.scene.add(this.camera);
     var focus = new THREE.Vector3(0, 0, 0);
     if (this.data.kind === "patch" && this.needleMeshes.length > 0) {
       // Look along the needles, from their bases.
@@ -235,7 +238,9 @@
       dir.normalize();
       this.camera.position.copy(dir.multiplyScalar(1.8).add(new THREE.Vector3(0.3, 0.3, 0.3)));
     } else {
-      this.camera.position.set(0.9, -1.3, 0.9);
+      // The tissue's top surface, where the needles act, from above at an angle.
+      focus.z = (e.top - e.center.z) * scale;
+      this.camera.position.set(0.75, -1.15, 1.05).add(focus);
     }
     this.camera.lookAt(focus);
     this.controls = new THREE.OrbitControls(this.camera, this.canvas);
@@ -281,7 +286,7 @@
       }
       drawColourBar(this.bar, field.label, lo * field.scale, hi * field.scale, field.unit);
     } else {
-      colours.array.fill(0.86);
+      colours.array.fill(0.72);
       this.bar.innerHTML = "";
     }
     colours.needsUpdate = true;
