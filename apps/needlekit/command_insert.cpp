@@ -146,11 +146,9 @@ void run_insert(const InsertArguments& arguments) {
   if (has_curve && !arguments.no_plot) files.push_back(png_path.string());
   const bool has_view = view && view->steps() > 0;
   const std::string view_script = indentation_case.name + "_view.js";
-  if (has_view) {
-    files.push_back((dir / view_script).string());
-    files.push_back((dir / (indentation_case.name + "_view.html")).string());
-  }
+  const std::filesystem::path view_page = dir / (indentation_case.name + "_view.html");
   json["files"] = files;
+  json["view"] = has_view ? nlohmann::json(view_page.string()) : nlohmann::json(nullptr);  // docs/views.md
   StagedFiles outputs;
   std::filesystem::path staged_csv;
   if (has_curve) staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
@@ -200,6 +198,7 @@ void run_insert(const InsertArguments& arguments) {
                  c.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error, 100 * fit->relative_rms,
                  c.options.model.scale);
     fmt::print("wrote {}\n", fmt::join(files, ", "));
+    if (has_view) fmt::print("3D view: {} (open it in a browser)\n", view_page.string());
   }
   if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
@@ -212,7 +211,8 @@ void add_insert_command(CLI::App& app) {
       "insert", "Complete insertion force curve: FE indentation to puncture, then the post-puncture cutting force "
                 "(§3.4-3.6)");
   command->add_option("CASE", arguments->case_path, "insertion case file (TOML)")->required();
-  command->add_option("--out", arguments->out_dir, "directory for the CSV, JSON, PNG and the 3D view NAME_view.html (default .)")
+  command->add_option("--out", arguments->out_dir,
+                      "directory for the CSV, JSON, PNG and the 3D view NAME_view.html (default .)")
       ->type_name("DIR");
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_flag("--no-plot", arguments->no_plot, "do not write the PNG plot");
