@@ -1,7 +1,8 @@
 """The 3D views (docs/views.md) in a real browser, opened from file:// with no network: every view of the report of
 `needlekit reproduce --quick` renders (its canvas is not blank), follows its load-step slider (an FE run) or its
 colour select and a click on a needle (a patch fit), and the console stays free of errors; the same for the
-NAME_view.html that `indent --out` writes. Screenshots go under the build tree (chromium_session.screenshot).
+NAME_view.html and patch_view.html that `indent --out` and `patch --out` write. Screenshots go under the build tree
+(chromium_session.screenshot).
 """
 import io
 import json
@@ -142,4 +143,17 @@ def test_the_view_page_of_indent_out(tmp_path):
         driver.get(pages[0].as_uri())
         wait_for_views(driver, 1)
         check_views(driver, "indent_view")
+        assert console_errors(driver) == []
+
+
+def test_the_view_page_of_patch_out(tmp_path):
+    out = tmp_path / "patch"
+    run = subprocess.run([CLI, "patch", str(SOURCE / "examples" / "patch_neck_flexible.toml"), "--out", str(out)],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    assert (out / "patch_view.html").is_file() and (out / "viewer" / "OrbitControls.js").is_file()
+    with chromium() as driver:
+        driver.get((out / "patch_view.html").as_uri())
+        wait_for_views(driver, 1)
+        check_views(driver, "patch_view")
         assert console_errors(driver) == []
