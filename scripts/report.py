@@ -256,6 +256,30 @@ def figure_html(figure, png_path):
             f"</figcaption>{attribution}</figure>")
 
 
+def views_html(views, results):
+    """The section's 3D views (docs/views.md): a placeholder per view that the viewer fills from its data file."""
+    if "viewer" not in results:
+        reason = results.get("viewer_error", "the viewer was not written")
+        return f"<h3>3D views</h3><p class=unavailable>The 3D views are left out: {html.escape(reason)}</p>"
+    blocks = [f"<div class=view><div data-needlekit-view=\"{html.escape(v['name'])}\"></div>"
+              f"<p class=note>{html.escape(v['caption'])} <span class=file>({html.escape(v['script'])})</span></p></div>"
+              for v in views]
+    return ("<h3>3D views</h3><p class=note>Drag to turn, scroll to zoom, right-drag to pan; the select colours the "
+            "surface or the needles, the slider moves through the load steps.</p>" + "".join(blocks))
+
+
+def viewer_scripts(results):
+    """The viewer and the views' data files, as classic scripts (they load from file://, with no network)."""
+    if "viewer" not in results:
+        return ""
+    folder = html.escape(results["viewer"])
+    scripts = [f"{folder}/three.min.js", f"{folder}/OrbitControls.js", f"{folder}/needlekit_viewer.js"]
+    scripts += [v["script"] for section in results["sections"] for v in section.get("views", [])]
+    return (f"<link rel=\"stylesheet\" href=\"{folder}/needlekit_viewer.css\">\n"
+            + "".join(f"<script src=\"{html.escape(s)}\"></script>\n" for s in scripts)
+            + "<script>needlekitViewer.mountAll(document.body);</script>\n")
+
+
 CSS = """
 body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.4}
 h1{font-size:1.6em} h2{border-bottom:2px solid #369;padding-bottom:.2em;margin-top:2em} h4{margin-bottom:.3em}
@@ -304,6 +328,8 @@ def main():
             body.append("<h3>Figures</h3>")
             for figure in section["figures"]:
                 body.append(figure_html(figure, draw_figure(figure)))
+        if section.get("views"):
+            body.append(views_html(section["views"], results))
         if section["deviations"]:
             body.append("<h3>Deviations from the dissertation and their causes</h3><ul>"
                         + "".join(f"<li>{html.escape(d)}</li>" for d in section["deviations"]) + "</ul>")
@@ -327,7 +353,7 @@ the others (experiments, simulations with unstated inputs) are compared and thei
 <th>agree / expected to</th><th>figures</th><th>seconds</th></tr>
 {''.join(summary)}</table>
 {''.join(parts)}
-</body></html>
+{viewer_scripts(results)}</body></html>
 """
     tmp = os.path.join(RUN_DIR, "report.html.tmp")
     with open(tmp, "w") as f:

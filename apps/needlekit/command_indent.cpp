@@ -17,6 +17,7 @@
 #include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
 #include "terminal_warnings.hpp"
+#include "viewer_sources.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -50,7 +51,10 @@ void run_indent(const IndentArguments& arguments) {
   print_warnings(io::indentation_scale_warnings(indentation_case));
 
   std::optional<io::IndentationWriter> writer;
-  if (!arguments.out_dir.empty()) writer.emplace(arguments.out_dir, indentation_case);
+  if (!arguments.out_dir.empty()) {
+    writer.emplace(arguments.out_dir, indentation_case);
+    writer->write_view(viewer_sources());
+  }
 
   ProgressBar progress(fmt::format("indent {}", indentation_case.name));
   insertion::IndentationOptions options;
@@ -90,7 +94,8 @@ void run_indent(const IndentArguments& arguments) {
   if (writer) {
     const bool series = !result.steps.empty();  // the .pvd exists once a step was written
     fmt::print("wrote {} files to {}{}\n", writer->files().size(), arguments.out_dir,
-               series ? fmt::format(" (open {}.pvd in ParaView)", indentation_case.name) : "");
+               series ? fmt::format(" (open {0}.pvd in ParaView, {0}_view.html in a browser)", indentation_case.name)
+                      : "");
   }
   if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
@@ -103,7 +108,8 @@ void add_indent_command(CLI::App& app) {
       "indent", "Nonlinear FE indentation of a layered tissue block by rigid needles, up to puncture (§3.4-3.5)");
   command->add_option("CASE", arguments->case_path, "indentation case file (TOML)")->required();
   command->add_option("--out", arguments->out_dir,
-                      "directory for the ParaView series (.pvd/.vtu per step), force-depth and solver CSV, JSON")
+                      "directory for the ParaView series (.pvd/.vtu per step), force-depth and solver CSV, JSON, and the 3D view "
+                      "NAME_view.html (docs/views.md)")
       ->type_name("DIR");
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");

@@ -26,6 +26,7 @@
 #include "needlekit/io/scale_warnings.hpp"
 #include "progress_bar.hpp"
 #include "terminal_warnings.hpp"
+#include "viewer_sources.hpp"
 
 #ifndef NEEDLEKIT_SCRIPTS_DIR
 #define NEEDLEKIT_SCRIPTS_DIR "scripts"
@@ -82,6 +83,17 @@ void run_insert(const InsertArguments& arguments) {
   std::optional<ProgressBar> progress;
   if (!c.options.pre_puncture) progress.emplace(fmt::format("insert {}: FE indentation", indentation_case.name));
   c.options.indentation.progress = [&progress](const insertion::IndentationProgress& p) { progress->update(p.fraction); };
+  // The 3D view of the FE part (docs/views.md).
+  std::optional<io::IndentationView> view;
+  io::ViewerFiles viewer;
+  if (!c.options.pre_puncture) {
+    viewer = io::viewer_files(viewer_sources());  // before the FE run: a missing file fails fast
+    view.emplace(indentation_case);
+    c.options.indentation.on_mesh = [&view](const mesh::TetMesh& tissue) { view->set_mesh(tissue); };
+    c.options.indentation.on_step = [&view](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
+      view->add_step(step, solver);
+    };
+  }
   const insertion::CompleteInsertionResult result = insertion::complete_insertion(indentation_case, c.options);
   if (progress) progress->finish();
   const std::optional<insertion::IndentationResult>& fe = result.indentation;
@@ -132,11 +144,20 @@ void run_insert(const InsertArguments& arguments) {
   if (has_curve) files.push_back(csv_path.string());
   files.push_back(json_path.string());
   if (has_curve && !arguments.no_plot) files.push_back(png_path.string());
+  const bool has_view = view && view->steps() > 0;
+  const std::string view_script = indentation_case.name + "_view.js";
+  const std::filesystem::path view_page = dir / (indentation_case.name + "_view.html");
   json["files"] = files;
+  json["view"] = has_view ? nlohmann::json(view_page.string()) : nlohmann::json(nullptr);  // docs/views.md
   StagedFiles outputs;
   std::filesystem::path staged_csv;
   if (has_curve) staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
   outputs.write(json_path, io::json_text(json));
+  if (has_view) {
+    outputs.write(dir / view_script, io::view_script(view->json()));
+    io::stage_view_page(outputs, dir, indentation_case.name + "_view.html", indentation_case.name + ": 3D view",
+                        {view_script}, viewer);
+  }
   if (has_curve && !arguments.no_plot) {
     const std::string s = fit ? fmt::format("S = {:.4g} (fitted; case {:.4g})", result.scale, c.options.model.scale)
                               : fmt::format("S = {:.4g}", result.scale);
@@ -177,6 +198,7 @@ void run_insert(const InsertArguments& arguments) {
                  c.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error, 100 * fit->relative_rms,
                  c.options.model.scale);
     fmt::print("wrote {}\n", fmt::join(files, ", "));
+    if (has_view) fmt::print("3D view: {} (open it in a browser)\n", view_page.string());
   }
   if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
@@ -189,7 +211,8 @@ void add_insert_command(CLI::App& app) {
       "insert", "Complete insertion force curve: FE indentation to puncture, then the post-puncture cutting force "
                 "(§3.4-3.6)");
   command->add_option("CASE", arguments->case_path, "insertion case file (TOML)")->required();
-  command->add_option("--out", arguments->out_dir, "directory for the CSV, JSON and PNG (default .)")
+  command->add_option("--out", arguments->out_dir,
+                      "directory for the CSV, JSON, PNG and the 3D view NAME_view.html (default .)")
       ->type_name("DIR");
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_flag("--no-plot", arguments->no_plot, "do not write the PNG plot");

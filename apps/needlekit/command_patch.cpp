@@ -19,12 +19,15 @@
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
+#include "needlekit/io/patch_view.hpp"
 #include "needlekit/io/patch_writers.hpp"
+#include "needlekit/io/view_page.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
 #include "progress_bar.hpp"
 #include "terminal_warnings.hpp"
+#include "viewer_sources.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -205,6 +208,11 @@ void run_patch(const PatchArguments& arguments) {
                                 fmt::join(attribution->notices, "\n")));
     }
     outputs.write(out / "summary.json", io::json_text(summary));
+    // The 3D view (docs/views.md): the surface, the patch and the needles coloured by force or margin.
+    const std::string name = std::filesystem::path(arguments.case_path).stem().string();
+    outputs.write(out / "patch_view.js", io::view_script(io::patch_view(name, surface, r.design, r.fit, r.evaluation)));
+    io::stage_view_page(outputs, out, "patch_view.html", name + ": 3D view", {"patch_view.js"},
+                        io::viewer_files(viewer_sources()));
     outputs.commit();
   }
   if (arguments.json) {
@@ -224,8 +232,9 @@ void add_patch_command(CLI::App& app) {
   command->add_option("CASE", arguments->case_path, "patch case file (TOML), format below")->required();
   command->add_flag("--json", arguments->json, "print the summary (or the sweep) as JSON, units in the key names");
   command->add_option("--out", arguments->out_dir,
-                      "write needles.csv, summary.json, surface.vtu, patch.vtu, needles.vtu (ParaView) and "
-                      "ATTRIBUTION.md into DIR; with --sweep: sweep.csv and sweep.json")
+                      "write needles.csv, summary.json, surface.vtu, patch.vtu, needles.vtu (ParaView), the 3D view "
+                      "patch_view.html (docs/views.md) and ATTRIBUTION.md into DIR; with --sweep: sweep.csv and "
+                      "sweep.json")
       ->type_name("DIR");
   command->add_option("--sweep", arguments->sweep,
                       "sweep the flexible patch's spring-energy cap, e.g. max_spring_energy=0.005mJ:0.05mJ:10 "

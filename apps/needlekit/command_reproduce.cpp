@@ -22,9 +22,11 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/json_text.hpp"
+#include "needlekit/io/view_page.hpp"
 #include "progress_bar.hpp"
 #include "reproduce_report.hpp"
 #include "reproduce_sections.hpp"
+#include "viewer_sources.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -123,6 +125,25 @@ std::string utc_now() {
   return text;
 }
 
+// The 3D views' viewer (docs/views.md) in DIR/viewer when a section has a view: results["viewer"] names the folder,
+// or results["viewer_error"] says why the views cannot be shown (the report says so instead of failing the run).
+void add_viewer(const RunContext& context, nlohmann::json& results) {
+  bool any = false;
+  for (const nlohmann::json& section : results["sections"]) {
+    any = any || !section.value("views", nlohmann::json::array()).empty();
+  }
+  if (!any) return;
+  try {
+    for (const auto& [name, content] : io::viewer_files(viewer_sources())) {
+      context.write(fs::path(io::kViewerFolder) / name, content);
+    }
+    results["viewer"] = io::kViewerFolder;
+  } catch (const IoError& error) {
+    fmt::print(stderr, "needlekit: the report's 3D views are left out: {}\n", error.what());
+    results["viewer_error"] = error.what();
+  }
+}
+
 // One section with its progress bar and a summary line; a section that fails is reported as failed and the run
 // goes on (the exit code says so at the end).
 SectionReport run_section(const std::string& label,
@@ -215,6 +236,7 @@ void run_reproduce(const ReproduceArguments& arguments) {
       results["sections"].push_back(section.json());
       failed_sections += section.json()["status"] == "failed";
     }
+    add_viewer(context, results);
     results["finished_utc"] = utc_now();
     results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     context.write("results.json", io::json_text(results));

@@ -10,6 +10,7 @@
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/view_page.hpp"
 
 namespace needlekit::cli::reproduce {
 
@@ -88,7 +89,8 @@ SectionReport::SectionReport(std::string id, std::string title) {
   json_ = {{"id", std::move(id)},      {"title", std::move(title)}, {"status", "ok"},      {"reason", ""},
            {"inputs", nlohmann::json::array()},  {"comparisons", nlohmann::json::array()},
            {"tables", nlohmann::json::array()},  {"figures", nlohmann::json::array()},
-           {"deviations", nlohmann::json::array()}, {"data_files", nlohmann::json::array()}, {"seconds", 0.0}};
+           {"views", nlohmann::json::array()},   {"deviations", nlohmann::json::array()},
+           {"data_files", nlohmann::json::array()}, {"seconds", 0.0}};
 }
 
 void SectionReport::input(std::string text) { json_["inputs"].push_back(std::move(text)); }
@@ -127,6 +129,17 @@ void SectionReport::figure(std::string file, std::string caption, nlohmann::json
                               {"caption", std::move(caption)},
                               {"spec", std::move(spec)},
                               {"attribution", std::move(attribution)}});
+}
+
+void SectionReport::view(std::string script, std::string name, std::string caption) {
+  json_["views"].push_back({{"script", std::move(script)}, {"name", std::move(name)}, {"caption", std::move(caption)}});
+}
+
+void add_view(const RunContext& context, SectionReport& report, const std::string& name, nlohmann::json view,
+              std::string caption) {
+  if (view.value("steps", nlohmann::json::array()).empty()) return;  // a run without a converged step
+  view["name"] = name;
+  report.view(context.write(fmt::format("views/{}_view.js", name), io::view_script(view)), name, std::move(caption));
 }
 
 void SectionReport::deviation(std::string text) { json_["deviations"].push_back(std::move(text)); }

@@ -76,6 +76,9 @@ public:
   // A figure: `spec` holds the kind of plot and its data (inline or CSV files written by the run); `file` is the
   // PNG's path relative to the output directory.
   void figure(std::string file, std::string caption, nlohmann::json spec, std::string attribution = "");
+  // A 3D view (docs/views.md) beside the figures: `script` is the view's data file (NAME_view.js) relative to the
+  // output directory, `name` the view's "name", `caption` what it shows.
+  void view(std::string script, std::string name, std::string caption);
   // A line on a difference from the dissertation and its cause.
   void deviation(std::string text);
   // The section could not run in this build (a capability is missing): the reason is shown in the report.
@@ -90,5 +93,10 @@ public:
 private:
   nlohmann::json json_;
 };
+
+// Writes a 3D view (io/indentation_view.hpp, io/patch_view.hpp) as views/NAME_view.js, NAME unique in the report,
+// and adds it to the section beside its figures.
+void add_view(const RunContext& context, SectionReport& report, const std::string& name, nlohmann::json view,
+              std::string caption);
 
 }  // namespace needlekit::cli::reproduce

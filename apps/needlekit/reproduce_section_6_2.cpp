@@ -12,6 +12,7 @@
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/indentation_view.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
 #include "needlekit/core/errors.hpp"
@@ -29,6 +30,7 @@ struct FeRun {
   insertion::IndentationResult result;
   nlohmann::json surface_rows = nlohmann::json::array();  // top-surface nodes at the final depth: x_um, y_um, uz_um, u_um
   nlohmann::json top_rows = nlohmann::json::array();      // elements under the surface: x_um, y_um, von_mises_kPa
+  nlohmann::json view;                                     // the 3D view of every load step (io/indentation_view.hpp)
 };
 
 // What a run keeps of its final state for the figures.
@@ -82,9 +84,12 @@ FeRun run_fe(const RunContext& context, const std::string& example, insertion::I
     progress(p.fraction);
   };
   const double cut = 0.75 * run.input.block.size_at_site;
+  io::IndentationView view(run.input);
+  options.on_mesh = [&](const mesh::TetMesh& tissue) { view.set_mesh(tissue); };
   // The final state only (the last load step reaches the case's depth).
   options.on_step = [&](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
     context.check_interrupt();
+    view.add_step(step, solver);
     if (capture == Capture::Nothing || step.depth < run.input.depth * (1 - 1e-9)) return;
     const auto& nodes = solver.nodes();
     if (capture == Capture::SurfaceDisplacement) {
@@ -109,6 +114,7 @@ FeRun run_fe(const RunContext& context, const std::string& example, insertion::I
   if (run.result.status == insertion::IndentationStatus::SolverFailed && run.result.steps.empty()) {
     throw std::runtime_error(fmt::format("{}: {}", example, run.result.reason));
   }
+  run.view = view.json();
   return run;
 }
 
@@ -172,14 +178,21 @@ void phantom_needles(const RunContext& context, SectionReport& report, const Sec
       context.check_interrupt();
       progress(lo + (hi - lo) * p.fraction, n.label);
     };
-    c.options.indentation.on_step = [&](const insertion::IndentationStep&, const fem::QuasiStaticSolver&) {
+    io::IndentationView view(c.indentation);
+    c.options.indentation.on_mesh = [&](const mesh::TetMesh& tissue) { view.set_mesh(tissue); };
+    c.options.indentation.on_step = [&](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
       context.check_interrupt();
+      view.add_step(step, solver);
     };
     // The complete insertion: the FE curve to the puncture point, then the post-puncture load of the needle's mesh.
     const insertion::CompleteInsertionResult complete = insertion::complete_insertion(c.indentation, c.options);
     if (complete.curve.depth.empty()) throw std::runtime_error(fmt::format("{}: {}", n.example, complete.reason));
-    const FeRun run{n.example, c.indentation, *complete.indentation};
+    const FeRun run{n.example, c.indentation, *complete.indentation, {}, {}, {}};
     const insertion::InsertionCurve& curve = complete.curve;
+    add_view(context, report, fmt::format("6_2_{}", n.key), view.json(),
+             fmt::format("{}: the silicone surface pushed in by the needle up to the FE's last step (the puncture point "
+                         "or where the FE stopped)",
+                         n.label));
     report.input(case_text(run) + fmt::format("; post-puncture K = {:g} N/mm^2, S = {:g}, to {:g} um",
                                               complete.stiffness * 1e-6, complete.scale,
                                               c.options.curve.final_depth / kMicro));
@@ -316,6 +329,7 @@ void four_needles(const RunContext& context, SectionReport& report, const Sectio
                                         csv_text({"x_um", "y_um", "von_mises_kPa"}, run.top_rows));
   report.data_file(data);
   report.data_file(top);
+  add_view(context, report, "6_2_fig_6_3_four_needles", run.view, "Fig 6.3: the skin surface under the four needles");
   nlohmann::json series = nlohmann::json::array();
   series.push_back({{"csv", data}, {"x", "depth_um"}, {"y", "total_force_N"}, {"label", "four needles"}});
   for (std::size_t k = 2; k < columns.size(); ++k) {
@@ -342,6 +356,8 @@ void soft_vs_layered(const RunContext& context, SectionReport& report, const Sec
     FeRun run = run_figure_case(context, cases[i].first, Capture::SurfaceDisplacement,
                                 [&](double f) { progress(0.75 + 0.25 * (i + f) / cases.size(), "Fig 6.4"); });
     report.input(case_text(run));
+    add_view(context, report, fmt::format("6_2_fig_6_4{}", i == 0 ? "a" : "b"), run.view,
+             fmt::format("Fig 6.4{}", cases[i].second));
     nlohmann::json rows = nlohmann::json::array();
     std::vector<std::pair<double, double>> profile;
     for (const nlohmann::json& r : run.surface_rows) {

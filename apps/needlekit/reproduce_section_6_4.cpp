@@ -22,6 +22,7 @@
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/materials/needle_material.hpp"
+#include "needlekit/io/patch_view.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
 #include "reproduce_sections.hpp"
 
@@ -145,6 +146,9 @@ void render(const RunContext& context, SectionReport& report, Surfaces& surfaces
                                                                                     {"triangles", triangles}})
                                                      .dump() + "\n");
   report.data_file(surface_file);
+  add_view(context, report, fmt::format("6_4_{}", name),
+           io::patch_view(name, surface, run.design, run.fit, run.evaluation),
+           fmt::format("{} (click a needle for its numbers)", caption));
   report.figure(fmt::format("figures/{}.png", name), caption,
                 {{"kind", "patch3d"},
                  {"csv", needles},

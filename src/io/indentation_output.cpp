@@ -210,7 +210,13 @@ IndentationWriter::IndentationWriter(std::filesystem::path directory, const inse
   create_output_directory(directory_);
 }
 
+void IndentationWriter::write_view(const ViewerSources& sources, ViewOptions options) {
+  viewer_files_ = viewer_files(sources);
+  view_.emplace(case_, options);
+}
+
 void IndentationWriter::set_mesh(const mesh::TetMesh& tissue) {
+  if (view_) view_->set_mesh(tissue);
   tissue_ = tissue;
   partial_.elements = static_cast<int>(tissue.tets.size());
 }
@@ -231,6 +237,17 @@ void IndentationWriter::write_step(const insertion::IndentationStep& step, const
   write_pvd(needle_series_, directory_ / (case_.name + "_needles.pvd"));
   for (const std::string& name : {tissue_name, needle_name, case_.name + ".pvd", case_.name + "_needles.pvd"}) {
     remember(directory_ / name);
+  }
+  if (view_) {
+    view_->add_step(step, solver);
+    StagedFiles files;
+    const std::string script = case_.name + "_view.js";
+    files.write(directory_ / script, view_script(view_->json()));
+    if (view_->steps() == 1) {
+      stage_view_page(files, directory_, case_.name + "_view.html", case_.name + ": 3D view", {script},
+                      viewer_files_);
+    }
+    for (const std::filesystem::path& path : files.commit()) remember(path);
   }
   // The curves so far, so that an interrupted run keeps them too, and a result that says they are incomplete until
   // finish() replaces it.

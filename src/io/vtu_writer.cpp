@@ -29,20 +29,6 @@ int nodes_of(VtkCellType type) {
   return -1;
 }
 
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 // One DataArray of the appended section: its XML attributes and its bytes.
 struct AppendedArray {
   const char* type;
@@ -177,6 +163,21 @@ std::string pvd_document(const std::vector<PvdEntry>& entries) {
 
 void write_pvd(const std::vector<PvdEntry>& entries, const std::filesystem::path& path) {
   write_file_atomically(path, pvd_document(entries));
+}
+
+
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace needlekit::io

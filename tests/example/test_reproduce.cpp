@@ -88,6 +88,13 @@ void Reproduce::report_is_self_contained_with_every_figure() {
     for (const auto& data : section["data_files"]) {
       EXPECT_TRUE(fs::is_regular_file(out / data.get<std::string>())) << data;
     }
+    // The 3D views (docs/views.md): each data file beside the report, within the 5 MB budget.
+    for (const auto& view : section.value("views", nlohmann::json::array())) {
+      const fs::path script = out / view["script"].get<std::string>();
+      EXPECT_TRUE(fs::is_regular_file(script)) << script;
+      if (fs::is_regular_file(script)) EXPECT_LE(fs::file_size(script), 5'000'000u) << script;
+      EXPECT_THAT(report, HasSubstr("data-needlekit-view=\"" + view["name"].get<std::string>() + "\""));
+    }
     // Every section is in the report, with its status.
     EXPECT_THAT(report, HasSubstr(section["title"].get<std::string>().substr(0, 10)));
   }
@@ -96,6 +103,9 @@ void Reproduce::report_is_self_contained_with_every_figure() {
   std::size_t embedded = 0;
   for (std::size_t at = 0; (at = report.find("data:image/png;base64,", at)) != std::string::npos; ++at) ++embedded;
   EXPECT_EQ(embedded, figures);
+  // The viewer is copied beside the report (three.js from libjs-three): the folder opens from file://.
+  EXPECT_TRUE(fs::is_regular_file(out / "viewer" / "three.min.js"));
+  EXPECT_TRUE(fs::is_regular_file(out / "viewer" / "needlekit_viewer.js"));
   EXPECT_THAT(report, testing::Not(HasSubstr("src=\"http")));
   EXPECT_THAT(report, testing::Not(HasSubstr("href=\"http")));
   EXPECT_THAT(run_->out, HasSubstr("report: "));

@@ -13,8 +13,10 @@
 #include <string>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/file_bytes.hpp"
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/io/indentation_output.hpp"
+#include "needlekit/io/view_arrays.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 #include "../support/test_text.hpp"
 
@@ -187,6 +189,7 @@ TEST(Indentation, ParaViewSeriesReadsBackWithMeshio) {
   const auto dir = std::filesystem::temp_directory_path() / ("needlekit-indent-vtu-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   io::IndentationWriter writer(dir, c);
+  writer.write_view({NEEDLEKIT_SOURCE_DIR "/web/viewer"});
   insertion::IndentationOptions options;
   options.on_mesh = [&](const mesh::TetMesh& tissue) { writer.set_mesh(tissue); };
   options.on_step = [&](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
@@ -224,6 +227,29 @@ TEST(Indentation, ParaViewSeriesReadsBackWithMeshio) {
   std::string header;
   std::getline(csv, header);
   EXPECT_THAT(header, HasSubstr("depth_um,force_N,"));
+
+  // The 3D view of the same run (docs/views.md): at step 2 the top-surface vertices under the punch are 10 um down,
+  // have moved by at least that much and carry contact pressure.
+  ASSERT_TRUE(std::filesystem::exists(dir / "punch_view.html"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "viewer" / "three.min.js"));
+  const std::string script = read_file_bytes(dir / "punch_view.js", "view");
+  const nlohmann::json view = nlohmann::json::parse(script.substr(script.find(".push(") + 6, script.rfind(')') -
+                                                                                               script.find(".push(") - 6));
+  ASSERT_EQ(view["steps"].size(), 2u);
+  const std::size_t vertices = view["surface"]["vertices"].get<std::size_t>();
+  const std::vector<double> xyz = io::decoded_array(view["surface"]["positions"]);
+  const std::vector<double> u = io::decoded_array(view["surface"]["fields"][0]["values"]);
+  const std::vector<double> p = io::decoded_array(view["surface"]["fields"][2]["values"]);
+  int under = 0;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const std::size_t k = vertices + v;  // step 2
+    if (std::hypot(xyz[3 * k], xyz[3 * k + 1]) > 0.8 * kRadius || xyz[3 * k + 2] < -50e-6) continue;
+    ++under;
+    EXPECT_NEAR(xyz[3 * k + 2], -10e-6, 1.2e-3 / 65535);
+    EXPECT_GE(u[k], 10e-6 * (1 - 1e-3));
+    EXPECT_GT(p[k], 0.0);
+  }
+  EXPECT_GT(under, 3);
   std::filesystem::remove_all(dir);
 }
 

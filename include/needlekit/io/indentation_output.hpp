@@ -3,11 +3,14 @@
 #pragma once
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/insertion/indentation.hpp"
+#include "needlekit/io/indentation_view.hpp"
+#include "needlekit/io/view_page.hpp"
 #include "needlekit/io/vtu_writer.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 
@@ -54,6 +57,10 @@ nlohmann::json indentation_json(const insertion::IndentationCase& indentation_ca
 class IndentationWriter {
 public:
   IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& indentation_case);
+  // Also writes the 3D view (docs/views.md) after each step: NAME_view.js (io/indentation_view.hpp) and, with the
+  // first step, NAME_view.html and the viewer folder (io/view_page.hpp). Call before set_mesh; reads the viewer's
+  // files at once (IoError when one is missing, before the run).
+  void write_view(const ViewerSources& sources, ViewOptions options = {});
   void set_mesh(const mesh::TetMesh& tissue);
   void write_step(const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver);
   void finish(const insertion::IndentationResult& result);
@@ -68,6 +75,8 @@ private:
   std::vector<PvdEntry> needle_series_;
   std::vector<std::filesystem::path> files_;
   insertion::IndentationResult partial_;  // the steps written so far
+  std::optional<IndentationView> view_;
+  ViewerFiles viewer_files_;
   void remember(const std::filesystem::path& path);
   void write_curves(const insertion::IndentationResult& result);
   void write_result(const nlohmann::json& json);

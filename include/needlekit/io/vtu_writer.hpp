@@ -36,6 +36,9 @@ struct PvdEntry {
   double time = 0;
   std::filesystem::path file;
 };
+// The text with & < > " as XML (and HTML) entities, for attribute values and text.
+std::string xml_escaped(const std::string& text);
+
 std::string pvd_document(const std::vector<PvdEntry>& entries);
 void write_pvd(const std::vector<PvdEntry>& entries, const std::filesystem::path& path);
 
