@@ -81,6 +81,7 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
   const int http_threads = options.http_threads;
   server.new_task_queue = [http_threads] { return new httplib::ThreadPool(static_cast<std::size_t>(http_threads)); };
   server.set_payload_max_length(options.max_body_bytes);
+  server.set_tcp_nodelay(true);  // headers and body are two writes: without it Nagle waits for a delayed ACK (40 ms)
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
   server.set_keep_alive_timeout(2);

@@ -144,4 +144,5 @@ def test_the_patch_tab_fits_a_patch_as_the_cli_does(page, tmp_path):
     assert page.find_element(By.ID, "patch-result").text == \
         f"done: {expected['penetrating']} of {expected['needles']} needles penetrate"
     assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))
+    page.execute_script("document.getElementById('patch-numbers').scrollIntoView()")
     screenshot(page, "design_page_patch")
