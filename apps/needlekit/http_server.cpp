@@ -59,9 +59,14 @@ void send_json(httplib::Response& res, int status, const nlohmann::json& json) {
   res.set_content(json_body(json), "application/json");
 }
 
-// Runs a handler; bad input is 400 with the CLI's message and the key it names.
+// Runs a handler; bad input is 400 with the CLI's message and the key it names, a body over `max_body` 413.
 template <class Handler>
-void answer(httplib::Response& res, Handler&& handler) {
+void answer(const httplib::Request& req, httplib::Response& res, std::size_t max_body, Handler&& handler) {
+  if (req.body.size() > max_body) {
+    send_json(res, 413, error_json(fmt::format("the request body has {} bytes, more than the limit of {}",
+                                               req.body.size(), max_body)));
+    return;
+  }
   try {
     handler();
   } catch (const InvalidInput& error) {
@@ -75,12 +80,13 @@ void answer(httplib::Response& res, Handler&& handler) {
 
 void serve(const ServeOptions& options, const std::function<void(int port)>& listening) {
   const std::map<std::string, Asset> assets = read_assets(options);
-  const MeshChoices meshes = mesh_choices(options.mesh_dir, options.examples_dir);
+  MeshRegistry meshes(options.mesh_dir, options.examples_dir);
+  const std::size_t max_body = options.max_body_bytes;
   JobPool jobs(options.job_workers, options.job_queue);
   httplib::Server server;
   const int http_threads = options.http_threads;
   server.new_task_queue = [http_threads] { return new httplib::ThreadPool(static_cast<std::size_t>(http_threads)); };
-  server.set_payload_max_length(options.max_body_bytes);
+  server.set_payload_max_length(options.max_upload_bytes);  // JSON routes check their own, smaller limit
   server.set_tcp_nodelay(true);  // headers and body are two writes: without it Nagle waits for a delayed ACK (40 ms)
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
@@ -100,7 +106,8 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
 
   // Before routing: a page elsewhere cannot use this server. A POST to /api/ must be application/json (a
   // cross-origin page then needs a CORS preflight, which is never granted), and on loopback the Host header must be
-  // this server's (a DNS-rebinding page sends its own name).
+  // this server's (a DNS-rebinding page sends its own name). An upload is application/octet-stream, not a
+// CORS-safelisted type either.
   server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
     if (loopback(options.host)) {
       const std::string host = req.get_header_value("Host");
@@ -110,9 +117,10 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
         return httplib::Server::HandlerResponse::Handled;
       }
     }
+    const std::string type = req.path == "/api/uploads" ? "application/octet-stream" : "application/json";
     if (req.method == "POST" && req.path.rfind("/api/", 0) == 0 &&
-        req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
-      send_json(res, 415, error_json("the request's Content-Type is not application/json, expected a JSON body"));
+        req.get_header_value("Content-Type").rfind(type, 0) != 0) {
+      send_json(res, 415, error_json(fmt::format("the request's Content-Type is not {}", type)));
       return httplib::Server::HandlerResponse::Handled;
     }
     return httplib::Server::HandlerResponse::Unhandled;
@@ -148,8 +156,8 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
   server.Get("/api/presets", [](const httplib::Request&, httplib::Response& res) {
     send_json(res, 200, presets_json());
   });
-  server.Post("/api/evaluate", [](const httplib::Request& req, httplib::Response& res) {
-    answer(res, [&] { send_json(res, 200, evaluate_json(req.body)); });
+  server.Post("/api/evaluate", [&](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, max_body, [&] { send_json(res, 200, evaluate_json(req.body)); });
   });
   const auto submit = [&jobs](httplib::Response& res, std::string kind, JobWork work) {
     if (const auto id = jobs.submit(std::move(kind), std::move(work))) {
@@ -159,7 +167,7 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
     }
   };
   server.Post("/api/optimize", [&](const httplib::Request& req, httplib::Response& res) {
-    answer(res, [&] {
+    answer(req, res, max_body, [&] {
       OptimizeRequest request;
       request.certified = req.get_param_value("certified") == "true";
       if (req.has_param("top")) {
@@ -174,13 +182,17 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
     });
   });
   server.Post("/api/uncertainty", [&](const httplib::Request& req, httplib::Response& res) {
-    answer(res, [&] { submit(res, "uncertainty", uncertainty_work(req.body)); });
+    answer(req, res, max_body, [&] { submit(res, "uncertainty", uncertainty_work(req.body)); });
   });
   server.Get("/api/meshes", [&meshes](const httplib::Request&, httplib::Response& res) {
-    send_json(res, 200, meshes.listing);
+    send_json(res, 200, meshes.listing());
+  });
+  server.Post("/api/uploads", [&](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, options.max_upload_bytes,
+           [&] { send_json(res, 201, meshes.add_upload(req.body, req.get_param_value("format"))); });
   });
   server.Post("/api/patch", [&](const httplib::Request& req, httplib::Response& res) {
-    answer(res, [&] { submit(res, "patch", patch_work(req.body, meshes)); });
+    answer(req, res, max_body, [&] { submit(res, "patch", patch_work(req.body, meshes)); });
   });
   server.Get(R"(/api/jobs/(\d{1,18}))", [&jobs](const httplib::Request& req, httplib::Response& res) {
     if (const auto status = jobs.status(req.matches[1])) {

@@ -16,7 +16,8 @@ struct ServeOptions {
   std::filesystem::path mesh_dir;                    // data/meshes: the body meshes patch jobs may use, by name
   std::filesystem::path examples_dir;                // examples: patch_*.toml suggest a unit and centre per mesh
   std::filesystem::path three_dir = "/usr/share/javascript/three";  // libjs-three
-  std::size_t max_body_bytes = 1 << 20;              // larger request bodies get 413
+  std::size_t max_body_bytes = 1 << 20;              // larger JSON bodies get 413
+  std::size_t max_upload_bytes = 32 << 20;           // larger mesh uploads (and any larger body) get 413
   int job_workers = 1;                               // threads running optimize/uncertainty jobs
   std::size_t job_queue = 4;                         // jobs waiting for a worker; more get 503
   int http_threads = 8;                              // threads answering requests

@@ -2,14 +2,20 @@
 
 #include <fmt/format.h>
 
+#include <stdlib.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <memory>
 
 #include "needlekit/analysis/column_eigenvalue.hpp"
 #include "needlekit/analysis/design_optimizer.hpp"
 #include "needlekit/analysis/puncture_model.hpp"
+#include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/design_evaluation.hpp"
 #include "needlekit/io/json_config.hpp"
 #include "needlekit/io/json_text.hpp"
@@ -107,23 +113,21 @@ JobWork uncertainty_work(std::string_view body) {
   };
 }
 
-MeshChoices mesh_choices(const std::filesystem::path& mesh_folder, const std::filesystem::path& examples_folder) {
+MeshRegistry::MeshRegistry(const std::filesystem::path& mesh_folder, const std::filesystem::path& examples_folder) {
   namespace fs = std::filesystem;
-  MeshChoices choices{mesh_folder, {}, nlohmann::json::array()};
   for (const fs::directory_entry& entry : fs::directory_iterator(mesh_folder)) {
     if (entry.is_regular_file() && entry.path().extension() == ".obj") {
-      choices.names.push_back(entry.path().filename().string());
+      meshes_[entry.path().filename().string()] = entry.path();
     }
   }
-  std::sort(choices.names.begin(), choices.names.end());
   std::vector<fs::path> examples;
   for (const fs::directory_entry& entry : fs::directory_iterator(examples_folder)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("patch_", 0) == 0 && entry.path().extension() == ".toml") examples.push_back(entry.path());
   }
   std::sort(examples.begin(), examples.end());
-  for (const std::string& name : choices.names) {
-    nlohmann::json mesh = {{"name", name}, {"example", nullptr}};
+  for (const auto& [name, path] : meshes_) {
+    nlohmann::json mesh = {{"name", name}, {"upload", false}, {"example", nullptr}};
     for (const fs::path& example : examples) {
       const io::PatchCase c = io::read_patch_case(example);
       if (c.mesh.filename() != name || !c.placement.center_vertex) continue;
@@ -133,14 +137,71 @@ MeshChoices mesh_choices(const std::filesystem::path& mesh_folder, const std::fi
       mesh["approach"] = patch::to_string(c.placement.approach);
       break;
     }
-    choices.listing.push_back(mesh);
+    listing_.push_back(mesh);
   }
-  return choices;
+  std::string folder = (fs::temp_directory_path() / "needlekit-serve-XXXXXX").string();
+  if (!::mkdtemp(folder.data())) {
+    throw IoError(fmt::format("{}: cannot create the upload folder: {}", folder, std::strerror(errno)));
+  }
+  upload_folder_ = folder;
 }
 
-JobWork patch_work(std::string_view body, const MeshChoices& meshes) {
-  auto c = std::make_shared<const io::PatchCase>(
-      io::parse_patch_case_json(body, "patch.json", meshes.folder, meshes.names));
+MeshRegistry::~MeshRegistry() {
+  std::error_code ignored;
+  std::filesystem::remove_all(upload_folder_, ignored);
+}
+
+nlohmann::json MeshRegistry::listing() const {
+  const std::lock_guard<std::mutex> guard(lock_);
+  return listing_;
+}
+
+std::map<std::string, std::filesystem::path> MeshRegistry::meshes() const {
+  const std::lock_guard<std::mutex> guard(lock_);
+  return meshes_;
+}
+
+nlohmann::json MeshRegistry::add_upload(std::string_view bytes, std::string_view format) {
+  if (format != "obj" && format != "stl" && format != "ply") {
+    throw InvalidInput(fmt::format("format: '{}' is not a mesh format, expected obj, stl or ply", format));
+  }
+  std::string name;
+  {
+    const std::lock_guard<std::mutex> guard(lock_);
+    name = fmt::format("upload-{}.{}", next_upload_++, format);
+  }
+  const std::filesystem::path path = upload_folder_ / name;
+  write_file_atomically(path, bytes);
+  nlohmann::json entry = {{"name", name}, {"upload", true}, {"example", nullptr}};
+  try {
+    const geometry::BodySurface body = geometry::read_body_surface(path, 1.0);
+    entry["triangles"] = body.surface.triangle_count();
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    throw;
+  }
+  const std::lock_guard<std::mutex> guard(lock_);
+  meshes_[name] = path;
+  listing_.push_back(entry);
+  uploads_.push_back(name);
+  if (uploads_.size() > kMaxUploads) {
+    const std::string oldest = uploads_.front();
+    uploads_.pop_front();
+    std::error_code ignored;
+    std::filesystem::remove(meshes_[oldest], ignored);
+    meshes_.erase(oldest);
+    nlohmann::json kept = nlohmann::json::array();
+    for (const nlohmann::json& mesh : listing_) {
+      if (mesh["name"] != oldest) kept.push_back(mesh);
+    }
+    listing_ = std::move(kept);
+  }
+  return entry;
+}
+
+JobWork patch_work(std::string_view body, const MeshRegistry& meshes) {
+  auto c = std::make_shared<const io::PatchCase>(io::parse_patch_case_json(body, "patch.json", meshes.meshes()));
   return [c](JobProgress& progress) {
     const io::PatchSurface surface = io::read_patch_surface(*c);
     if (!progress.report(0.5)) throw Interrupted();  // the fit has no progress of its own: read, then fit

@@ -5,7 +5,11 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
+#include <deque>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,17 +38,37 @@ struct OptimizeRequest {
 JobWork optimize_work(std::string_view body, const OptimizeRequest& request);
 JobWork uncertainty_work(std::string_view body);
 
-// The body meshes offered to patch jobs: the OBJ files of `mesh_folder` (data/meshes), by name, read once at start.
-struct MeshChoices {
-  std::filesystem::path folder;
-  std::vector<std::string> names;
-  nlohmann::json listing;  // GET /api/meshes: per mesh its name and, from the first examples/patch_*.toml that uses
-                           // it, the example, the unit in m, the centre vertex and the approach
+// The body meshes patch jobs may use, by name: the OBJ files of data/meshes (listed once at start, with the unit,
+// centre vertex and approach of the first examples/patch_*.toml that uses each) and the uploads, each written to its
+// own file in a private temporary folder (removed with the registry). Thread-safe.
+class MeshRegistry {
+public:
+  static constexpr std::size_t kMaxUploads = 8;  // the oldest upload is deleted beyond
+
+  MeshRegistry(const std::filesystem::path& mesh_folder, const std::filesystem::path& examples_folder);
+  ~MeshRegistry();
+  MeshRegistry(const MeshRegistry&) = delete;
+  MeshRegistry& operator=(const MeshRegistry&) = delete;
+
+  // GET /api/meshes: [{"name", "upload", "example"?, "unit_m"?, "center_vertex"?, "approach"?, "triangles"?}].
+  nlohmann::json listing() const;
+  // Name -> file, for io::parse_patch_case_json.
+  std::map<std::string, std::filesystem::path> meshes() const;
+  // POST /api/uploads?format=obj|stl|ply: writes `bytes` to a new file "upload-N.FORMAT", reads it as a body surface
+  // (the reader's InvalidInput / IoError for a file that fails to read, the file then deleted) and returns its entry.
+  nlohmann::json add_upload(std::string_view bytes, std::string_view format);
+
+private:
+  mutable std::mutex lock_;
+  std::map<std::string, std::filesystem::path> meshes_;
+  nlohmann::json listing_ = nlohmann::json::array();
+  std::filesystem::path upload_folder_;
+  std::deque<std::string> uploads_;  // oldest first
+  std::uint64_t next_upload_ = 1;
 };
-MeshChoices mesh_choices(const std::filesystem::path& mesh_folder, const std::filesystem::path& examples_folder);
 
 // POST /api/patch: a patch case whose [surface] mesh is a name of `meshes`; the job's result is what
 // `needlekit patch CASE.toml --json` prints.
-JobWork patch_work(std::string_view body, const MeshChoices& meshes);
+JobWork patch_work(std::string_view body, const MeshRegistry& meshes);
 
 }  // namespace needlekit::cli

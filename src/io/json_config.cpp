@@ -4,11 +4,11 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "config_tables.hpp"
 #include "needlekit/core/errors.hpp"
@@ -111,18 +111,22 @@ UncertaintyFile parse_uncertainty_json(std::string_view text, std::string_view s
 }
 
 PatchCase parse_patch_case_json(std::string_view text, std::string_view source_name,
-                                const std::filesystem::path& mesh_folder, const std::vector<std::string>& mesh_names) {
+                                const std::map<std::string, std::filesystem::path>& meshes) {
   const std::string file(source_name);
   const toml::table root = root_of(text, file);
+  std::filesystem::path folder;
   if (const toml::node* mesh = root.at_path("surface.mesh").node(); mesh && mesh->is_string()) {
-    const std::string name = mesh->as_string()->get();
-    if (std::find(mesh_names.begin(), mesh_names.end(), name) == mesh_names.end()) {
+    const auto found = meshes.find(mesh->as_string()->get());
+    if (found == meshes.end() || found->second.filename() != found->first) {
+      std::vector<std::string_view> names;
+      for (const auto& [name, path] : meshes) names.push_back(name);
       throw InvalidInput(fmt::format("{}:1: key 'surface.mesh': '{}' is not one of the meshes offered, expected one "
                                      "of: {}",
-                                     file, name, fmt::join(mesh_names, ", ")));
+                                     file, mesh->as_string()->get(), fmt::join(names, ", ")));
     }
+    folder = found->second.parent_path();
   }
-  return config::patch_case_of_table(root, file, mesh_folder, false);
+  return config::patch_case_of_table(root, file, folder, false);
 }
 
 }  // namespace needlekit::io

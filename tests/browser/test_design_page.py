@@ -146,3 +146,14 @@ def test_the_patch_tab_fits_a_patch_as_the_cli_does(page, tmp_path):
     assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))
     page.execute_script("document.getElementById('patch-numbers').scrollIntoView()")
     screenshot(page, "design_page_patch")
+
+
+def test_the_patch_tab_uploads_a_mesh(page):
+    mesh = EXAMPLES.parent / "data" / "meshes" / "skull_yahoojapan_10k.obj"
+    page.find_element(By.ID, "p-upload").send_keys(str(mesh))
+    page.find_element(By.ID, "upload-mesh").click()
+    WebDriverWait(page, 60).until(lambda d: "triangles" in d.find_element(By.ID, "upload-result").text)
+    assert page.find_element(By.ID, "upload-result").text.endswith(": 10312 triangles")
+    chosen = page.find_element(By.ID, "p-mesh").get_attribute("value")
+    assert chosen.startswith("upload-") and chosen.endswith(".obj")
+    assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))

@@ -328,6 +328,23 @@
     $("patch-result").textContent = `done: ${s.penetrating} of ${s.needles} needles penetrate`;
   }
 
+  // An OBJ, STL or PLY file from this computer: the server keeps it in its own temporary file and lists it.
+  async function upload(meshes) {
+    const file = $("p-upload").files[0];
+    const out = $("upload-result");
+    if (!file) { out.textContent = "choose a file first"; return; }
+    const format = file.name.split(".").pop().toLowerCase();
+    const response = await fetch(`/api/uploads?format=${encodeURIComponent(format)}`, {
+      method: "POST", headers: { "Content-Type": "application/octet-stream" }, body: await file.arrayBuffer(),
+    });
+    const answer = await response.json();
+    if (response.status !== 201) { out.textContent = answer.error; out.className = "error"; return; }
+    out.className = "";
+    out.textContent = `${answer.name}: ${answer.triangles} triangles`;
+    meshes.push(answer);
+    fillSelect($("p-mesh"), [answer], answer.name);
+  }
+
   function chooseMesh(meshes) {
     const mesh = meshes.find((m) => m.name === $("p-mesh").value);
     if (!mesh || !mesh.example) return;
@@ -385,6 +402,7 @@
     fillSelect($("p-mesh"), meshes, suggested ? suggested.name : "");
     $("p-mesh").addEventListener("change", () => chooseMesh(meshes));
     chooseMesh(meshes);
+    $("upload-mesh").addEventListener("click", () => upload(meshes));
     $("run-patch").addEventListener("click", () => runJob("patch", "/api/patch", patchJson(), showPatch));
     view = makeView();
     for (const slider of document.querySelectorAll("input[type=range]")) {

@@ -8,9 +8,9 @@
 //   design.json:1: key 'needle.tip_diameter': '-30 um' is not positive, expected a positive length
 #pragma once
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
-#include <vector>
 
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/patch_config.hpp"
@@ -23,9 +23,10 @@ DesignFile parse_design_json(std::string_view text, std::string_view source_name
 SpaceFile parse_space_json(std::string_view text, std::string_view source_name);
 UncertaintyFile parse_uncertainty_json(std::string_view text, std::string_view source_name);
 
-// A patch case (io/patch_config.hpp) whose [surface] mesh is one of `mesh_names`, files of `mesh_folder`: any other
-// name (a path, "../x") is InvalidInput naming surface.mesh and the names offered; no other file is ever opened.
+// A patch case (io/patch_config.hpp) whose [surface] mesh is a key of `meshes` (a name -> the file, whose file name is
+// that name): any other string (a path, "../x") is InvalidInput naming surface.mesh and the names offered, so no other
+// file is ever opened.
 PatchCase parse_patch_case_json(std::string_view text, std::string_view source_name,
-                                const std::filesystem::path& mesh_folder, const std::vector<std::string>& mesh_names);
+                                const std::map<std::string, std::filesystem::path>& meshes);
 
 }  // namespace needlekit::io
