@@ -8,9 +8,9 @@
 #include "file_format_help.hpp"
 #include "needlekit/analysis/performance_index.hpp"
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/design_evaluation.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
-#include "needlekit/io/scale_warnings.hpp"
 #include "terminal_warnings.hpp"
 
 namespace needlekit::cli {
@@ -82,16 +82,14 @@ void print_table(const io::DesignFile& file, const analysis::PerformanceIndexRes
 
 void run_evaluate(const EvaluateArguments& arguments) {
   const io::DesignFile file = io::read_design_file(arguments.design_path);
-  analysis::PerformanceIndexResult result = analysis::performance_index(file.design, file.conditions, file.options);
-  const std::vector<std::string> warnings = io::needle_scale_warnings(file.design.needle);
-  result.notes.insert(result.notes.end(), warnings.begin(), warnings.end());
-  print_warnings(warnings);
-  const nlohmann::json json = io::performance_json(file.design, result);
+  const io::DesignEvaluation evaluation = io::evaluate_design(file);
+  print_warnings(evaluation.warnings);
+  const nlohmann::json& json = evaluation.json;
   if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, io::json_text(json));
   if (arguments.json) {
     fmt::print("{}", io::json_text(json));
   } else {
-    print_table(file, result);
+    print_table(file, evaluation.result);
   }
 }
 

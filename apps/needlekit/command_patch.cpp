@@ -15,15 +15,14 @@
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
-#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_view.hpp"
+#include "needlekit/io/patch_run.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/io/view_page.hpp"
 #include "needlekit/io/result_writers.hpp"
-#include "needlekit/io/scale_warnings.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
 #include "progress_bar.hpp"
 #include "terminal_warnings.hpp"
@@ -124,19 +123,16 @@ void run_patch(const PatchArguments& arguments) {
     throw InvalidInput(fmt::format("--sweep max_spring_energy needs a flexible patch, but {} has patch.kind = \"{}\"",
                                    arguments.case_path, patch::to_string(c.fit.kind)));
   }
-  geometry::BodySurface body = geometry::read_body_surface(c.mesh, c.mesh_unit);
-  geometry::SurfaceMesh surface = std::move(body.surface);
+  // Warnings: an inward surface turned outwards, implausible scales (a unit mistake?) and a mesh without a licence or
+  // attribution.
+  const io::PatchSurface body = io::read_patch_surface(c);
+  const geometry::SurfaceMesh& surface = body.surface;
+  const std::optional<io::MeshAttribution>& attribution = body.attribution;
   patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweep};
   // A fit that did not converge (the equilibrium solver's iteration limit) ends the command with exit code 3 once
   // everything is written; the other statuses (the patch leaves the surface, springs over E_cri) are outcomes.
   bool not_converged = false;
-  // Warnings: an inward surface turned outwards, implausible scales (a unit mistake?) and a mesh without a licence or
-  // attribution.
-  std::vector<std::string> warnings = io::patch_scale_warnings(surface.mesh(), patch::patch_design(c.design));
-  if (body.flipped) warnings.insert(warnings.begin(), body.note);
-  const std::optional<io::MeshAttribution> attribution = io::mesh_attribution(c.mesh);
-  if (!attribution) warnings.push_back(io::missing_attribution_warning(c.mesh));
-  print_warnings(warnings);
+  print_warnings(body.warnings);
 
   if (sweep) {
     std::string csv =
@@ -180,15 +176,8 @@ void run_patch(const PatchArguments& arguments) {
 
   const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
   not_converged = r.status == patch::FitStatus::NotConverged;
-  nlohmann::json summary = io::patch_summary_json(r.design, c.fit, r.fit, r.evaluation, r.fit_seconds * 1e3);
-  // Beyond the dissertation: the springs measured along the surface (exact geodesic distances).
+  const nlohmann::json summary = io::patch_case_summary(c, r, body.warnings);
   const patch::SpringGeodesics& geodesics = *r.geodesics;
-  summary["spring_geodesic_strain"] =
-      geodesics.strain_abs.count == 0
-          ? nlohmann::json(nullptr)
-          : nlohmann::json{{"max", geodesics.strain_abs.max}, {"mean", geodesics.strain_abs.mean}};
-  summary["spring_geodesics_not_converged"] = geodesics.not_converged;
-  summary["notes"] = warnings;
   if (!arguments.out_dir.empty()) {  // every file or none (StagedFiles: temporary names, renamed at the end)
     const std::filesystem::path out(arguments.out_dir);
     // Created only now: a placement that fails (bad input, exit 2) leaves no folder behind. A fit takes milliseconds.

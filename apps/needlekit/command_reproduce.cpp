@@ -27,6 +27,7 @@
 #include "reproduce_report.hpp"
 #include "reproduce_sections.hpp"
 #include "viewer_sources.hpp"
+#include "resources_root.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -42,28 +43,6 @@ struct ReproduceArguments {
   std::string meshes_dir;
   std::string python;
 };
-
-// The needlekit tree with docs/published/chapter6.json, examples/ and scripts/report.py: $NEEDLEKIT_ROOT, the
-// install prefix's share/needlekit, or the source tree this tool was built from.
-fs::path resources_root() {
-  std::vector<fs::path> candidates;
-  if (const char* root = std::getenv("NEEDLEKIT_ROOT")) candidates.emplace_back(root);
-  std::error_code error;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
-  if (!error) candidates.push_back(exe.parent_path().parent_path() / "share" / "needlekit");
-#ifdef NEEDLEKIT_SOURCE_DIR
-  candidates.emplace_back(NEEDLEKIT_SOURCE_DIR);
-#endif
-  for (const fs::path& candidate : candidates) {
-    if (fs::exists(candidate / "docs" / "published" / "chapter6.json") && fs::exists(candidate / "scripts" / "report.py"))
-      return candidate;
-  }
-  std::string searched;
-  for (const fs::path& candidate : candidates) searched += " " + candidate.string();
-  throw IoError(fmt::format("cannot find needlekit's data (docs/published/chapter6.json, scripts/report.py); searched:{}"
-                            " (set NEEDLEKIT_ROOT to the needlekit source tree)",
-                            searched));
-}
 
 // Creates DIR and the staging folder inside it; throws IoError naming DIR when it cannot be written.
 fs::path create_staging(const fs::path& out) {
@@ -186,7 +165,7 @@ SectionReport run_section(const std::string& label,
 void run_reproduce(const ReproduceArguments& arguments) {
   const auto start = std::chrono::steady_clock::now();
   const std::string started = utc_now();
-  const fs::path resources = resources_root();
+  const fs::path resources = resources_root({"docs/published/chapter6.json", "scripts/report.py"});
   const reproduce::PublishedValues published =
       reproduce::PublishedValues::read(resources / "docs" / "published" / "chapter6.json");
   const fs::path out = arguments.out_dir;

@@ -26,5 +26,6 @@ void add_indent_command(CLI::App& app);     // command_indent.cpp
 void add_insert_command(CLI::App& app);     // command_insert.cpp
 void add_uncertainty_command(CLI::App& app);  // command_uncertainty.cpp
 void add_calibrate_command(CLI::App& app);  // command_calibrate.cpp
+void add_serve_command(CLI::App& app);      // command_serve.cpp
 
 }  // namespace needlekit::cli

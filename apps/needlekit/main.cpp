@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   needlekit::cli::add_insert_command(app);
   needlekit::cli::add_uncertainty_command(app);
   needlekit::cli::add_calibrate_command(app);
+  needlekit::cli::add_serve_command(app);
   app.footer("Run `needlekit COMMAND --help` for the options and input formats of a command.");
 
   try {

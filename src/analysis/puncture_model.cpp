@@ -17,6 +17,8 @@ PunctureModel brain_puncture_model() {
   return m;
 }
 
+std::vector<std::string> puncture_model_preset_names() { return {"skin", "brain"}; }
+
 PunctureModel puncture_model_preset(std::string_view name, std::string_view what) {
   if (name == "skin") return skin_puncture_model();
   if (name == "brain") return brain_puncture_model();

@@ -1,5 +1,6 @@
 #include "needlekit/io/design_config.hpp"
 
+#include "config_tables.hpp"
 #include "needlekit/io/toml_config.hpp"
 #include "uncertainty_tables.hpp"
 
@@ -233,7 +234,10 @@ DesignFile read_needle_tables(const toml::table& root, const Section& top, const
 
 DesignFile parse_design_toml(std::string_view text, std::string_view source_name) {
   const std::string file(source_name);
-  const toml::table root = parse_toml(text, file);
+  return config::design_of_table(parse_toml(text, file), file);
+}
+
+DesignFile config::design_of_table(const toml::table& root, const std::string& file) {
   const Section top(root, "", file, {"needle", "array", "tissue", "insertion"});
   return read_needle_tables(root, top, file, true);
 }
@@ -244,7 +248,13 @@ namespace {
 DesignFile parse_tables(std::string_view text, std::string_view source_name,
                         std::initializer_list<std::string_view> other_tables, bool with_array) {
   const std::string file(source_name);
-  const toml::table root = parse_toml(text, file);
+  return config::design_of_tables(parse_toml(text, file), file, other_tables, with_array);
+}
+
+}  // namespace
+
+DesignFile config::design_of_tables(const toml::table& root, const std::string& file,
+                                    std::initializer_list<std::string_view> other_tables, bool with_array) {
   std::vector<std::string_view> own_tables{"needle", "tissue", "insertion"};
   if (with_array) own_tables.push_back("array");
   std::vector<std::string_view> allowed = own_tables;
@@ -263,8 +273,6 @@ DesignFile parse_tables(std::string_view text, std::string_view source_name,
   return read_needle_tables(root, top, file, with_array);
 }
 
-}  // namespace
-
 DesignFile parse_needle_tables(std::string_view text, std::string_view source_name,
                                std::initializer_list<std::string_view> other_tables) {
   return parse_tables(text, source_name, other_tables, false);
@@ -281,7 +289,10 @@ DesignFile read_design_file(const std::filesystem::path& path) {
 
 SpaceFile parse_space_toml(std::string_view text, std::string_view source_name) {
   const std::string file(source_name);
-  const toml::table root = parse_toml(text, file);
+  return config::space_of_table(parse_toml(text, file), file);
+}
+
+SpaceFile config::space_of_table(const toml::table& root, const std::string& file) {
   const Section top(root, "", file,
                     {"shape", "hollow", "material", "tissue", "puncture_force", "target_depth", "spacing_factor",
                      "ranges", "min_success_probability", "uncertain", "sampling", "correlation"});

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "needlekit/io/design_config.hpp"
+#include "config_tables.hpp"
 #include "needlekit/io/toml_config.hpp"
 
 namespace needlekit::io {
@@ -100,11 +101,16 @@ void read_patch(const Section& t, PatchCase& c) {
 PatchCase parse_patch_case_toml(std::string_view text, std::string_view source_name,
                                 const std::filesystem::path& base_folder, bool uncertainty_tables) {
   const std::string file(source_name);
-  // [needle], [tissue], [insertion] as in design files; this also rejects unknown tables and bad TOML.
-  const DesignFile needle = uncertainty_tables
-                                ? parse_needle_tables(text, file, {"surface", "patch", "uncertain", "sampling", "correlation"})
-                                : parse_needle_tables(text, file, {"surface", "patch"});
-  const toml::table root = parse_toml(text, file);
+  return config::patch_case_of_table(parse_toml(text, file), file, base_folder, uncertainty_tables);
+}
+
+PatchCase config::patch_case_of_table(const toml::table& root, const std::string& file,
+                                      const std::filesystem::path& base_folder, bool uncertainty_tables) {
+  // [needle], [tissue], [insertion] as in design files; this also rejects unknown tables.
+  const DesignFile needle =
+      uncertainty_tables
+          ? design_of_tables(root, file, {"surface", "patch", "uncertain", "sampling", "correlation"}, false)
+          : design_of_tables(root, file, {"surface", "patch"}, false);
   std::vector<std::string_view> tables{"surface", "patch", "needle", "tissue", "insertion"};
   if (uncertainty_tables) tables.insert(tables.end(), {"uncertain", "sampling", "correlation"});
   const Section top(root, "", file, tables);

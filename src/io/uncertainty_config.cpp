@@ -1,5 +1,6 @@
 #include "needlekit/io/uncertainty_config.hpp"
 
+#include "config_tables.hpp"
 #include "needlekit/io/toml_config.hpp"
 #include "uncertainty_tables.hpp"
 
@@ -7,8 +8,11 @@ namespace needlekit::io {
 
 UncertaintyFile parse_uncertainty_toml(std::string_view text, std::string_view source_name) {
   const std::string file(source_name);
-  const DesignFile design = parse_design_tables(text, file, {"uncertain", "sampling", "correlation"});
-  const toml::table root = config::parse_toml(text, file);
+  return config::uncertainty_of_table(config::parse_toml(text, file), file);
+}
+
+UncertaintyFile config::uncertainty_of_table(const toml::table& root, const std::string& file) {
+  const DesignFile design = config::design_of_tables(root, file, {"uncertain", "sampling", "correlation"}, true);
   config::UncertaintyTables tables = config::read_uncertainty_tables(root, file);
   UncertaintyFile result{{design.design, design.conditions, design.options}, std::move(tables.inputs),
                          std::move(tables.correlations), tables.sampling};

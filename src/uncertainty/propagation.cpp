@@ -4,10 +4,13 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <fmt/format.h>
+#include <mutex>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/uncertainty/sobol_indices.hpp"
 
 namespace needlekit::uncertainty {
@@ -184,11 +187,20 @@ PropagationResult propagate(const InputTransform& inputs, const Model& model, co
   std::vector<TaskSums> sums(tasks.size());
   const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
+  std::mutex progress_lock;  // the callback runs from one thread at a time, with fractions that never decrease
+  std::size_t done = 0;
+  std::atomic<bool> stopped = false;
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t t) {
+      if (stopped.load(std::memory_order_relaxed)) return;
       sampler.run(tasks[t], sums[t], result.samples_of_output, stored_output);
+      if (!options.progress) return;
+      const std::lock_guard<std::mutex> lock(progress_lock);
+      ++done;
+      if (!stopped && !options.progress(static_cast<double>(done) / static_cast<double>(tasks.size()))) stopped = true;
     });
   });
+  if (stopped) throw Interrupted();
 
   // Reduce in task order: per group, then the total.
   std::vector<TaskSums> per_group(groups);

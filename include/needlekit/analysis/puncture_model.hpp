@@ -3,6 +3,7 @@
 #pragma once
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "needlekit/analysis/puncture_force_law.hpp"
 
@@ -23,6 +24,8 @@ struct PunctureModel {
 // Presets: skin (α = 0.0183 N, τ = 6.25 /mm) and brain (α = 0.0013 N, τ = 8.5076 /mm), dissertation Tables 6.4/6.5.
 PunctureModel skin_puncture_model();
 PunctureModel brain_puncture_model();
+// The preset names puncture_model_preset() accepts, in a stable order: skin, brain.
+std::vector<std::string> puncture_model_preset_names();
 // "skin" or "brain"; throws InvalidInput naming `what` otherwise.
 PunctureModel puncture_model_preset(std::string_view name, std::string_view what = "tissue.model");
 // Throws InvalidInput for non-positive α, τ or K, or an invalid force law.

@@ -12,6 +12,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,9 @@ struct PropagationOptions {
   bool sobol_indices = true;                     // also run B and AB_i: N·(k + 2) evaluations instead of N
   int threads = 0;                               // >= 0; 0: all hardware threads
   int histogram_bins = 20;                       // >= 1, over [min, max] of each continuous output
+  // Called with the fraction of sample blocks done in [0, 1] (never decreasing), from one thread at a time; return
+  // false to stop: the blocks not yet started are skipped and propagate() throws needlekit::Interrupted.
+  std::function<bool(double)> progress;
 };
 
 struct SobolIndex {

@@ -1,0 +1,74 @@
+// The JSON API of `needlekit serve` (docs/serve.md) without the HTTP: each function parses a request body with the
+// library's readers (io/json_config.hpp), calls one library function and presents its result as the CLI's --json
+// does (numbers rounded as io::json_text rounds them). Bad input throws InvalidInput / IoError with the CLI's message; http_server.cpp turns it into HTTP 400 and
+// error_json().
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "job_pool.hpp"
+
+namespace needlekit::cli {
+
+// {"error": message, "key": the dotted key the message names, or null}.
+nlohmann::json error_json(std::string_view message);
+
+// GET /api/presets: needle shapes, materials (with their values and sources), tissue models, buckling end conditions,
+// effective-length values, patch kinds and approaches, from the library's tables.
+nlohmann::json presets_json();
+
+// POST /api/evaluate: exactly what `needlekit evaluate --json` prints for the design.
+nlohmann::json evaluate_json(std::string_view body);
+
+// POST /api/optimize and POST /api/uncertainty: the body is parsed now (bad input throws before anything is queued);
+// the returned work runs on the job pool and returns what `needlekit optimize --json` (top designs; `certified`:
+// the branch-and-bound optimum) or `needlekit uncertainty --json` prints.
+struct OptimizeRequest {
+  bool certified = false;
+  int top = 10;  // [1, 100]
+};
+JobWork optimize_work(std::string_view body, const OptimizeRequest& request);
+JobWork uncertainty_work(std::string_view body);
+
+// The body meshes patch jobs may use, by name: the OBJ files of data/meshes (listed once at start, with the unit,
+// centre vertex and approach of the first examples/patch_*.toml that uses each) and the uploads, each written to its
+// own file in a private temporary folder (removed with the registry). Thread-safe.
+class MeshRegistry {
+public:
+  static constexpr std::size_t kMaxUploads = 8;  // the oldest upload is deleted beyond
+
+  MeshRegistry(const std::filesystem::path& mesh_folder, const std::filesystem::path& examples_folder);
+  ~MeshRegistry();
+  MeshRegistry(const MeshRegistry&) = delete;
+  MeshRegistry& operator=(const MeshRegistry&) = delete;
+
+  // GET /api/meshes: [{"name", "upload", "example"?, "unit_m"?, "center_vertex"?, "approach"?, "triangles"?}].
+  nlohmann::json listing() const;
+  // Name -> file, for io::parse_patch_case_json.
+  std::map<std::string, std::filesystem::path> meshes() const;
+  // POST /api/uploads?format=obj|stl|ply: writes `bytes` to a new file "upload-N.FORMAT", reads it as a body surface
+  // (the reader's InvalidInput / IoError for a file that fails to read, the file then deleted) and returns its entry.
+  nlohmann::json add_upload(std::string_view bytes, std::string_view format);
+
+private:
+  mutable std::mutex lock_;
+  std::map<std::string, std::filesystem::path> meshes_;
+  nlohmann::json listing_ = nlohmann::json::array();
+  std::filesystem::path upload_folder_;
+  std::deque<std::string> uploads_;  // oldest first
+  std::uint64_t next_upload_ = 1;
+};
+
+// POST /api/patch: a patch case whose [surface] mesh is a name of `meshes`; the job's result is what
+// `needlekit patch CASE.toml --json` prints.
+JobWork patch_work(std::string_view body, const MeshRegistry& meshes);
+
+}  // namespace needlekit::cli

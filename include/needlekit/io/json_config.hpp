@@ -1,0 +1,32 @@
+// Design, design-space and uncertainty files given as JSON (the `needlekit serve` API, docs/serve.md): the same keys,
+// unit strings, defaults and checks as their TOML files (io/design_config.hpp, io/uncertainty_config.hpp), because
+// the JSON is converted to a TOML table and read by the same reader. A JSON object is a TOML table, an array an
+// array, a string a string, an integer an integer, a number with a fraction or exponent a float, true/false a
+// boolean; null has no TOML value and is an error naming its key.
+//
+// Messages are the TOML reader's, with `source_name` for the file and line 1 (a JSON value has no line of its own):
+//   design.json:1: key 'needle.tip_diameter': '-30 um' is not positive, expected a positive length
+#pragma once
+#include <filesystem>
+#include <map>
+#include <string>
+#include <string_view>
+
+#include "needlekit/io/design_config.hpp"
+#include "needlekit/io/patch_config.hpp"
+#include "needlekit/io/uncertainty_config.hpp"
+
+namespace needlekit::io {
+
+// Throw IoError for text that is not JSON or not a JSON object, InvalidInput for what the TOML reader refuses.
+DesignFile parse_design_json(std::string_view text, std::string_view source_name);
+SpaceFile parse_space_json(std::string_view text, std::string_view source_name);
+UncertaintyFile parse_uncertainty_json(std::string_view text, std::string_view source_name);
+
+// A patch case (io/patch_config.hpp) whose [surface] mesh is a key of `meshes` (a name -> the file, whose file name is
+// that name): any other string (a path, "../x") is InvalidInput naming surface.mesh and the names offered, so no other
+// file is ever opened.
+PatchCase parse_patch_case_json(std::string_view text, std::string_view source_name,
+                                const std::map<std::string, std::filesystem::path>& meshes);
+
+}  // namespace needlekit::io

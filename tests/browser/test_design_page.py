@@ -1,0 +1,159 @@
+"""The design page of `needlekit serve` in headless Chromium: the index it shows equals `needlekit evaluate --json`
+for the same design to the printed digits, as a value moves and as the form changes; an out-of-range value shows the
+CLI's message next to its field; the TOML it downloads is read by `needlekit evaluate`; the optimizer and the
+uncertainty analysis run with a progress bar; the console stays free of errors. Screenshots go under the build tree."""
+import json
+
+import pytest
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import Select, WebDriverWait
+
+from chromium_session import chromium, console_errors, screenshot
+from serve_fixture import EXAMPLES, after_location, cli_error, cli_json, server, toml_text  # noqa: F401
+
+
+@pytest.fixture(scope="module")
+def page(server):
+    with chromium() as driver:
+        driver.get(server.url + "/")
+        WebDriverWait(driver, 30).until(lambda d: d.execute_script("return document.body.dataset.ready === 'true'"))
+        yield driver
+
+
+def shown_index(driver):
+    return driver.find_element(By.ID, "performance-index").text
+
+
+def same_to_printed_digits(shown, value):
+    """`shown` is `value` rounded to the digits it prints (toPrecision(6))."""
+    return float(shown) == float(f"{value:.6g}")
+
+
+def wait_for_answer(driver):
+    """Waits until the page shows the answer for its latest value."""
+    WebDriverWait(driver, 15).until(lambda d: d.execute_script("return document.body.dataset.pending") == "false")
+
+
+def set_text(driver, element_id, text):
+    """Types into a field as a user would, and waits until the page shows the answer for it."""
+    field = driver.find_element(By.ID, element_id)
+    field.clear()
+    field.send_keys(text)
+    assert driver.execute_script("return document.getElementById(arguments[0]).value", element_id) == text
+    wait_for_answer(driver)
+
+
+def cli_for_page(driver, tmp_path, name):
+    """`needlekit evaluate --json` of the TOML file the page downloads for its current design."""
+    path = tmp_path / f"{name}.toml"
+    path.write_text(driver.execute_script("return window.needlekitDesign.tomlText()"))
+    return cli_json("evaluate", str(path))
+
+
+def test_the_index_shown_is_the_clis(page, tmp_path):
+    expected = cli_json("evaluate", str(EXAMPLES / "evaluate_table_6_1_cone.toml"))
+    assert same_to_printed_digits(shown_index(page), expected["performance_index_per_um"]), shown_index(page)
+    assert page.find_element(By.ID, "status").text == expected["status"]
+    assert console_errors(page) == []
+    screenshot(page, "design_page_table_6_1_cone")
+
+
+def test_moving_values_and_changing_the_form_follow_the_cli(page, tmp_path):
+    set_text(page, "tip_diameter", "50 um")
+    set_text(page, "length", "600 um")
+    set_text(page, "angle", "12 deg")
+    Select(page.find_element(By.ID, "material")).select_by_value("su-8")
+    wait_for_answer(page)
+    page.find_element(By.ID, "hollow").click()
+    wait_for_answer(page)
+    set_text(page, "bore_diameter", "25 um")
+    set_text(page, "needles_per_row", "15")
+    design = page.execute_script("return window.needlekitDesign.designJson()")
+    assert design["needle"] == {"shape": "cone", "tip_diameter": "50 um", "base_diameter": "150 um",
+                                "bore_diameter": "25 um", "length": "600 um", "material": "su-8"}
+    expected = cli_for_page(page, tmp_path, "moved")
+    assert same_to_printed_digits(shown_index(page), expected["performance_index_per_um"]), shown_index(page)
+    buckling = page.find_element(By.CSS_SELECTOR, "#margin-buckling .ok").text
+    assert buckling == ("ok" if expected["buckling_ok"] else "FAILS")
+    # a slider moves the value in its unit
+    slider = page.find_element(By.ID, "base_diameter-slider")
+    page.execute_script("arguments[0].value = 200; arguments[0].dispatchEvent(new Event('input'))", slider)
+    assert page.execute_script("return window.needlekitDesign.designJson().needle.base_diameter") == "200 um"
+    wait_for_answer(page)
+    expected = cli_for_page(page, tmp_path, "slider")
+    assert same_to_printed_digits(shown_index(page), expected["performance_index_per_um"]), shown_index(page)
+    assert console_errors(page) == []
+    screenshot(page, "design_page_moved")
+
+
+@pytest.mark.parametrize("case, value", [("negative", "-30 um"), ("bare_number", "30"), ("wrong_unit", "30 kg")])
+def test_an_out_of_range_value_shows_the_clis_message_next_to_its_field(page, tmp_path, case, value):
+    set_text(page, "tip_diameter", value)
+    message = page.find_element(By.CSS_SELECTOR, '.field[data-key="needle.tip_diameter"] .error').text
+    path = tmp_path / "bad.toml"
+    path.write_text(page.execute_script("return window.needlekitDesign.tomlText()"))
+    cli_message = cli_error("evaluate", str(path))
+    assert "key 'needle.tip_diameter'" in cli_message
+    assert after_location(message) == after_location(cli_message)
+    assert page.find_element(By.ID, "performance-index").text == "–"
+    screenshot(page, f"design_page_bad_tip_diameter_{case}")
+    # The only console entries are the browser's own notes of the 400 answer.
+    errors = console_errors(page)
+    assert all("/api/evaluate" in e["message"] and "400" in e["message"] for e in errors), errors
+    set_text(page, "tip_diameter", "50 um")
+    assert page.find_element(By.CSS_SELECTOR, '.field[data-key="needle.tip_diameter"] .error').text == ""
+
+
+def test_the_optimizer_and_the_uncertainty_analysis_run_with_a_progress_bar(page, tmp_path):
+    set_text(page, "angle", "0 deg")  # the optimizer's space has no angle: Fig 6.20 is at 0 deg
+    Select(page.find_element(By.ID, "material")).select_by_value("silicon")
+    if page.find_element(By.ID, "hollow").is_selected():
+        page.find_element(By.ID, "hollow").click()
+    wait_for_answer(page)
+    page.find_element(By.ID, "run-optimize").click()
+    WebDriverWait(page, 120).until(lambda d: d.find_elements(By.ID, "use-optimum"))
+    assert page.find_element(By.ID, "optimize-progress").get_attribute("value") == "1"
+    expected = cli_json("optimize", str(EXAMPLES / "optimize_fig_6_20_cone_solid.toml"), "--top", "5")
+    shown = page.find_element(By.ID, "optimize-result").text
+    assert f"n = {expected['best']['needles_per_row']}," in shown
+    assert same_to_printed_digits(shown.split("PI = ")[1].split()[0], expected["best"]["performance_index_per_um"])
+    page.find_element(By.ID, "use-optimum").click()
+    wait_for_answer(page)
+    assert same_to_printed_digits(shown_index(page), expected["best"]["performance_index_per_um"])
+    screenshot(page, "design_page_optimum")
+
+    page.find_element(By.ID, "run-uncertainty").click()
+    WebDriverWait(page, 120).until(lambda d: "P(success) =" in d.find_element(By.ID, "uncertainty-result").text)
+    assert page.find_element(By.ID, "uncertainty-progress").get_attribute("value") == "1"
+    assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))
+    screenshot(page, "design_page_uncertainty")
+
+
+def test_the_patch_tab_fits_a_patch_as_the_cli_does(page, tmp_path):
+    meshes = [o.get_attribute("value") for o in page.find_elements(By.CSS_SELECTOR, "#p-mesh option")]
+    assert "vh_male_head_neck_loop2.obj" in meshes
+    Select(page.find_element(By.ID, "p-mesh")).select_by_value("vh_male_head_neck_loop2.obj")
+    assert page.find_element(By.ID, "p-center").get_attribute("value") == "2243"  # from examples/patch_neck_*.toml
+    page.find_element(By.ID, "run-patch").click()
+    WebDriverWait(page, 180).until(lambda d: d.find_element(By.ID, "patch-result").text.startswith("done"))
+    case = page.execute_script("return window.needlekitDesign.patchJson()")
+    case["surface"]["mesh"] = str(EXAMPLES.parent / "data" / "meshes" / case["surface"]["mesh"])
+    path = tmp_path / "patch.toml"
+    path.write_text(toml_text(case))
+    expected = cli_json("patch", str(path))
+    assert page.find_element(By.ID, "patch-result").text == \
+        f"done: {expected['penetrating']} of {expected['needles']} needles penetrate"
+    assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))
+    page.execute_script("document.getElementById('patch-numbers').scrollIntoView()")
+    screenshot(page, "design_page_patch")
+
+
+def test_the_patch_tab_uploads_a_mesh(page):
+    mesh = EXAMPLES.parent / "data" / "meshes" / "skull_yahoojapan_10k.obj"
+    page.find_element(By.ID, "p-upload").send_keys(str(mesh))
+    page.find_element(By.ID, "upload-mesh").click()
+    WebDriverWait(page, 60).until(lambda d: "triangles" in d.find_element(By.ID, "upload-result").text)
+    assert page.find_element(By.ID, "upload-result").text.endswith(": 10312 triangles")
+    chosen = page.find_element(By.ID, "p-mesh").get_attribute("value")
+    assert chosen.startswith("upload-") and chosen.endswith(".obj")
+    assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))
