@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "child_process.hpp"
 #include "commands.hpp"
 #include "file_format_help.hpp"
 #include "needlekit/core/units.hpp"
@@ -26,11 +28,42 @@ struct IndentArguments {
   std::string case_path;
   std::string out_dir;
   bool json = false;
+  bool no_plot = false;
   std::string size_at_tip;
   std::string size_far;
   std::string depth;
   int steps = 0;
 };
+
+std::string needle_map_script() {
+  if (const char* path = std::getenv("NEEDLEKIT_NEEDLE_MAP_SCRIPT")) return path;
+  return std::string(NEEDLEKIT_SCRIPTS_DIR) + "/plot_needle_map.py";
+}
+
+// DIR/NAME_needle_map.png from NAME_needles.csv (scripts/plot_needle_map.py writes it under a temporary name).
+std::string write_needle_map(const std::filesystem::path& directory, const insertion::IndentationCase& c) {
+  const std::filesystem::path png = directory / (c.name + "_needle_map.png");
+  if (run_program({"/usr/bin/python3", needle_map_script(), (directory / (c.name + "_needles.csv")).string(),
+                   png.string(), "--title", c.name}) != 0) {
+    throw IoError(fmt::format("{}: the plot script {} failed (is python3-matplotlib installed? --no-plot skips the "
+                              "plot)",
+                              png.string(), needle_map_script()));
+  }
+  return png.string();
+}
+
+// The array's totals and which needles punctured, for the text output.
+void print_array(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
+  const insertion::ArrayOutcome& array = *result.array;
+  fmt::print("array: {} x {} {} at pitch {:.4g} um ({} symmetry){}; {:.4g} % punctured at the last step\n",
+             c.array->rows, c.array->columns, name_of(insertion::kArrayLayoutNames, c.array->layout),
+             c.array->pitch * 1e6, name_of(insertion::kArraySymmetryNames, c.array->symmetry),
+             c.array->backing_plate ? ", backing plate" : "",
+             100 * (array.punctured_fraction.empty() ? 0.0 : array.punctured_fraction.back()));
+  if (array.first_puncture_travel) fmt::print("first puncture at plate travel {:.4g} um\n", *array.first_puncture_travel * 1e6);
+  fmt::print("inserted depth: mean {:.4g} um, spread {:.4g} um ({:.3g} % of the needle's length)\n",
+             array.mean_inserted_depth * 1e6, array.inserted_depth_spread * 1e6, 100 * array.mean_penetrated_fraction);
+}
 
 void run_indent(const IndentArguments& arguments) {
   insertion::IndentationCase indentation_case = io::read_indentation_case(arguments.case_path);
@@ -68,6 +101,8 @@ void run_indent(const IndentArguments& arguments) {
   const insertion::IndentationResult result = insertion::run_indentation(indentation_case, options);
   progress.finish();
   if (writer) writer->finish(result);
+  std::string map_png;
+  if (writer && result.array && !arguments.no_plot) map_png = write_needle_map(arguments.out_dir, indentation_case);
   // A load step that did not converge: the completed steps are kept and printed, the exit code is 3.
   const bool failed = result.status == insertion::IndentationStatus::SolverFailed;
   if (arguments.json) {
@@ -90,10 +125,12 @@ void run_indent(const IndentArguments& arguments) {
   } else {
     fmt::print("puncture: none\n");
   }
+  if (result.array) print_array(indentation_case, result);
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
     const bool series = !result.steps.empty();  // the .pvd exists once a step was written
-    fmt::print("wrote {} files to {}{}\n", writer->files().size(), arguments.out_dir,
+    fmt::print("wrote {} files to {}{}
+", writer->files().size() + (map_png.empty() ? 0 : 1), arguments.out_dir,
                series ? fmt::format(" (open {0}.pvd in ParaView, {0}_view.html in a browser)", indentation_case.name)
                       : "");
   }
@@ -112,6 +149,8 @@ void add_indent_command(CLI::App& app) {
                       "NAME_view.html (docs/views.md)")
       ->type_name("DIR");
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
+  command->add_flag("--no-plot", arguments->no_plot,
+                    "with [array] and --out: do not write NAME_needle_map.png (needs /usr/bin/python3 with matplotlib)");
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--depth", arguments->depth, "override [loading] depth, e.g. \"50 um\"");

@@ -35,6 +35,21 @@ std::string solver_settings_help() {
   return text;
 }
 
+// [array]'s counts and lengths (insertion::kArrayCounts, kArrayLengths), with their defaults.
+std::string array_settings_help() {
+  std::string text;
+  for (const auto& parameter : insertion::kArrayCounts) {
+    text += fmt::format("               {:<26} {}: {}\n", fmt::format("{} = {}", parameter.key, parameter.default_value()),
+                        parameter.range(), parameter.meaning);
+  }
+  for (const auto& parameter : insertion::kArrayLengths) {
+    text += fmt::format("               {:<26} {} m: {}\n",
+                        fmt::format("{} = \"{:g} um\"", parameter.key, parameter.default_value() * 1e6),
+                        parameter.range(), parameter.meaning);
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string design_file_help() {
@@ -107,7 +122,9 @@ std::string indentation_case_help() {
                edge_radius = "{:g} um"     surface contact, parametric needle: its edges rounded with this radius
                                          (default {:g} um, or half the largest the tip allows; < D1/2)
   [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
-  [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = {}
+  [array]      instead of [[needles]]: the needle repeated; layout = {}, backing_plate = false (the plate's travel
+               and force reported; the depth must stay below the needle's length), symmetry = {}
+{}  [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = {}
                or [[tissue.layers]] name, thickness (the last may be "rest"),
                youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
   [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
@@ -124,17 +141,18 @@ std::string indentation_case_help() {
   [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = {{ first = "a.csv",
                second = "b.csv", crack_area = "6661 um2" }} (Eq 3.16 from two insertions; CSV depth_um,force_N)
 Choices:
-{}{}{}{}{}{}{}Settings of [solver]:
+{}{}{}{}{}{}{}{}{}Settings of [solver]:
 {})",
-      needle::kTypicalEdgeRadius * 1e6, needle::kTypicalEdgeRadius * 1e6,
-      quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
+      needle::kTypicalEdgeRadius * 1e6, needle::kTypicalEdgeRadius * 1e6, choices_of(insertion::kArrayLayoutNames),
+      choices_of(insertion::kArraySymmetryNames), array_settings_help(), quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
       choices_of(fem::kContactModelNames), choices_of(fem::kElementOrderNames), choices_of(fem::kBoundaryConditionNames),
       choices_of(io::kPredictorNames), choices_of(fem::kLinearSolverNames),
       choices_of(fem::kVolumetricFormulationNames), meanings_of(fem::kMaterialLawNames, "law"),
       meanings_of(fem::kContactModelNames, "contact"), meanings_of(fem::kElementOrderNames, "element"),
       meanings_of(fem::kBoundaryConditionNames, "boundary"), meanings_of(io::kPredictorNames, "predictor"),
       meanings_of(fem::kLinearSolverNames, "linear_solver"),
-      meanings_of(fem::kVolumetricFormulationNames, "volumetric"), solver_settings_help());
+      meanings_of(fem::kVolumetricFormulationNames, "volumetric"), meanings_of(insertion::kArrayLayoutNames, "layout"),
+      meanings_of(insertion::kArraySymmetryNames, "symmetry"), solver_settings_help());
 }
 
 std::string patch_case_help() {

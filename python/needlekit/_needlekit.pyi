@@ -56,12 +56,15 @@ class BoundaryCondition:
 
   SymmetryPlanes
 
-  QuarterSymmetry"""
+  QuarterSymmetry
+
+  HalfSymmetry"""
     SidesAndBottomFixed: ClassVar[BoundaryCondition]
     BottomFixed: ClassVar[BoundaryCondition]
     BottomFixedSidesRoller: ClassVar[BoundaryCondition]
     SymmetryPlanes: ClassVar[BoundaryCondition]
     QuarterSymmetry: ClassVar[BoundaryCondition]
+    HalfSymmetry: ClassVar[BoundaryCondition]
     def __int__(self) -> int: ...
     @property
     def name(self) -> str: ...

@@ -77,7 +77,8 @@ void bind_indentation(py::module_& m) {
       .value("BottomFixed", fem::BoundaryCondition::BottomFixed)
       .value("BottomFixedSidesRoller", fem::BoundaryCondition::BottomFixedSidesRoller)
       .value("SymmetryPlanes", fem::BoundaryCondition::SymmetryPlanes)
-      .value("QuarterSymmetry", fem::BoundaryCondition::QuarterSymmetry);
+      .value("QuarterSymmetry", fem::BoundaryCondition::QuarterSymmetry)
+      .value("HalfSymmetry", fem::BoundaryCondition::HalfSymmetry);
   py::class_<SolverOptions> solver(m, "SolverOptions", "The FE solver's law, elements, contact and tolerances (§3.4).");
   def_keyword_init<SolverOptions>(solver);
   solver.def_readwrite("law", &SolverOptions::law)

@@ -91,6 +91,10 @@ std::vector<char> fixed_dofs(const FunctionSpace& space, BoundaryCondition condi
         if (p.y() < lo.y() + tol) f[1] = 1;
         if (bottom || p.x() > hi.x() - tol || p.y() > hi.y() - tol) f[0] = f[1] = f[2] = 1;
         break;
+      case BoundaryCondition::HalfSymmetry:
+        if (p.y() < lo.y() + tol) f[1] = 1;
+        if (bottom || side_x || p.y() > hi.y() - tol) f[0] = f[1] = f[2] = 1;
+        break;
     }
   }
   return fixed;

@@ -11,6 +11,8 @@
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/mesh/tet_count_estimate.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
+#include "array_model.hpp"
+#include "needle_outcomes.hpp"
 
 namespace needlekit::insertion {
 namespace {
@@ -27,11 +29,18 @@ double lowest_tip_height(const IndentationCase& indentation_case) {
   return lowest;
 }
 
-// The case's block with one insertion site per needle, as run_indentation meshes it.
+// The case's block with one insertion site per needle, as run_indentation meshes it. A needle on the block's edge
+// (on a symmetry plane of a reduced array model) has its site, the embedded node that the refinement grows from,
+// half a tip size inside the top surface, which is where the mesher takes sites.
 mesh::LayeredBlockOptions block_to_mesh(const IndentationCase& c) {
   mesh::LayeredBlockOptions block = c.block;
   block.insertion_sites.clear();
-  for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
+  const Eigen::Array2d half(block.width / 2, block.length / 2);
+  const Eigen::Array2d inside = half - 0.5 * block.size_at_site;
+  for (const NeedleSite& site : c.needles) {
+    const Eigen::Array2d p = site.position.array();
+    block.insertion_sites.push_back(((p.abs() < half).all() ? p : p.max(-inside).min(inside)).matrix());
+  }
   return block;
 }
 
@@ -41,6 +50,7 @@ IndentationStep step_of(const fem::StepResult& solved, double depth) {
   IndentationStep step;
   step.depth = depth;
   step.needle_force = solved.indenter_force;
+  step.needle_contact_area = solved.contact_area;
   for (double f : solved.indenter_force) step.force += f;
   for (double a : solved.contact_area) step.contact_area += a;
   for (double p : solved.max_contact_pressure) step.max_contact_pressure = std::max(step.max_contact_pressure, p);
@@ -135,6 +145,7 @@ void validate(const IndentationCase& c) {
     needle::eroded_needle(*c.geometry, effective_edge_radius(c));  // throws for a radius outside its range
   }
   if (c.needles.empty()) throw InvalidInput("needles: no needle, expected at least one insertion site");
+  detail::validate_array_case(c);
   for (std::size_t i = 0; i < c.needles.size(); ++i) {
     const NeedleSite& site = c.needles[i];
     if (!site.position.allFinite()) {
@@ -262,14 +273,16 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     options.progress(progress);
   };
 
+  const detail::ArrayModel array_model = detail::array_model(c);
+  const IndentationCase& m = array_model.reduced ? *array_model.reduced : c;  // the model solved
   mesh::TetMesh tissue;
   std::optional<mesh::CoarseLevel> coarse;  // the block's coarse level, if meshed with one (the two-grid solver)
   if (c.tissue_mesh) {
     tissue = *c.tissue_mesh;
   } else {
     report("mesh", 0.0);
-    mesh::LayeredBlockOptions block = block_to_mesh(c);
-    block.coarse_level = meshes_coarse_level(c);
+    mesh::LayeredBlockOptions block = block_to_mesh(m);
+    block.coarse_level = meshes_coarse_level(m);
     const Clock::time_point mesh_start = Clock::now();
     mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
     tissue = std::move(meshed.mesh);
@@ -291,7 +304,8 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       report("step", (p.target_displacement - lowest) / c.depth - 0.5 / c.steps);
     };
   }
-  fem::QuasiStaticSolver solver(tissue, placed_indenters(c), solver_options, coarse ? &*coarse : nullptr);
+  solver_options.boundary = m.solver.boundary;
+  fem::QuasiStaticSolver solver(tissue, placed_indenters(m), solver_options, coarse ? &*coarse : nullptr);
   result.nodes = static_cast<int>(solver.nodes().size());
   result.dofs = solver.free_dof_count();
   result.linear_solver = solver.linear_solver();
@@ -299,6 +313,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   result.setup_seconds = seconds_since(setup_start);
 
   std::vector<PunctureSample> samples;
+  detail::NeedleRecorder needles(c);
   bool failed = false;
   for (int k = 1; k <= c.steps; ++k) {
     const double depth = c.depth * k / c.steps;
@@ -325,7 +340,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       if (!partial) break;
     }
     const double step_depth = partial ? reached : depth;
-    IndentationStep step = step_of(solved, step_depth);
+    IndentationStep step = detail::whole_step(step_of(solved, step_depth), array_model);
     // External work of the needles, trapezoidal over the converged steps (the needles move only along z).
     const double previous_depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
     const double previous_force = result.steps.empty() ? 0.0 : result.steps.back().force;
@@ -337,7 +352,10 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     if (options.on_step) options.on_step(step, solver);
     report("step", static_cast<double>(k) / c.steps);
     samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});
-    if (!result.puncture) {
+    needles.add(step);
+    if (c.array) {  // per needle: the first needle's puncture
+      result.puncture = needles.first_puncture(result.steps);
+    } else if (!result.puncture) {
       result.puncture = puncture_point(samples, c.puncture);
       if (result.puncture && samples.size() == 1)
         result.puncture = puncture_in_first_step(solver, c, lowest, samples.front(), *result.puncture);
@@ -351,15 +369,23 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       }
       break;
     }
-    if (result.puncture && c.stop_at_puncture) break;
+    if (result.puncture && c.stop_at_puncture && (!c.array || needles.all_punctured())) break;
   }
+  result.needles = needles.needles();
+  if (c.array) result.array = needles.array_outcome(result.steps);
   if (!failed) {
     if (result.puncture) {
       const std::string after = result.reason;  // the solver's failure after the puncture, if any
       result.status = IndentationStatus::Punctured;
-      result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}{}",
+      const double fraction = result.array ? result.array->punctured_fraction.back() : 1.0;
+      result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}{}{}",
                                   to_string(result.puncture->criterion), um(result.puncture->depth),
                                   result.puncture->force,
+                                  result.array ? fmt::format(" under the first needle; {:.4g} % of the {} needles "
+                                                             "punctured by depth {}",
+                                                             100 * fraction, c.needles.size(),
+                                                             um(result.steps.back().depth))
+                                               : "",
                                   c.stop_at_puncture ? "" : fmt::format("; continued to {}", um(c.depth)), after);
     } else {
       result.status = IndentationStatus::ReachedDepth;

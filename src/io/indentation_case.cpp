@@ -134,6 +134,57 @@ std::vector<insertion::NeedleSite> read_sites(const Section& top, double default
   return sites;
 }
 
+// ---- [array] ------------------------------------------------------------------------------------------------------
+
+insertion::NeedleArray read_array(const Section& section) {
+  insertion::NeedleArray array;
+  if (const toml::node* node = section.optional("layout")) {
+    array.layout = choice_of(section, *node, "layout", insertion::kArrayLayoutNames);
+  }
+  for (const auto& parameter : insertion::kArrayCounts) {  // declared once in needle_array.hpp
+    if (const toml::node* node = section.optional(parameter.key)) {
+      array.*parameter.field = integer_in(section, *node, parameter.key, static_cast<int>(parameter.min),
+                                          static_cast<int>(parameter.max));
+    }
+  }
+  for (const auto& parameter : insertion::kArrayLengths) {
+    if (const toml::node* node = section.optional(parameter.key)) {
+      const double value = quantity_of(section, *node, parameter.key, Dimension::Length);
+      if (!parameter.accepts(value)) {
+        section.fail(*node, parameter.key,
+                     fmt::format("{} is out of range, expected a length {} m", describe(*node), parameter.range()));
+      }
+      array.*parameter.field = value;
+    }
+  }
+  if (const toml::node* node = section.optional("backing_plate")) {
+    array.backing_plate = boolean_of(section, *node, "backing_plate");
+  }
+  if (const toml::node* node = section.optional("symmetry")) {
+    array.symmetry = choice_of(section, *node, "symmetry", insertion::kArraySymmetryNames);
+  }
+  return array;
+}
+
+// The case's needles and block from [array]: every needle of the array at [needle]'s tip height; unless [tissue]
+// gives them, the block's width and length are the footprint plus the margin on every side.
+void apply_array(const toml::table& root, const Section& top, const Section& section, double tip_height,
+                 insertion::IndentationCase& c) {
+  if (const toml::node* needles = top.optional("needles")) {
+    top.fail(*needles, "needles", "given together with [array], expected the needles in one of them");
+  }
+  if (const toml::node* sites = root.at_path("mesh.sites").node()) {
+    top.fail(*sites, "mesh.sites", "given together with [array], expected the needles in one of them");
+  }
+  c.array = read_array(section);
+  validate_at_keys(root, section.file(), section.table(), [&] { insertion::validate(*c.array, insertion::base_diameter(c)); });
+  const Eigen::Vector2d footprint = insertion::array_footprint(*c.array, insertion::base_diameter(c));
+  if (!root.at_path("tissue.width").node()) c.block.width = footprint.x() + 2 * c.array->margin;
+  if (!root.at_path("tissue.length").node()) c.block.length = footprint.y() + 2 * c.array->margin;
+  c.needles.clear();
+  for (const Eigen::Vector2d& position : insertion::array_positions(*c.array)) c.needles.push_back({position, tip_height});
+}
+
 // ---- the rest -----------------------------------------------------------------------------------------------------
 
 void read_model(const Section& section, fem::SolverOptions& solver) {
@@ -247,7 +298,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   const std::string file(source_name);
   const toml::table root = parse_toml(text, file);
   const Section top(root, "", file,
-                    {"name", "needle", "needles", "tissue", "mesh", "loading", "model", "solver", "puncture"});
+                    {"name", "needle", "needles", "array", "tissue", "mesh", "loading", "model", "solver", "puncture"});
 
   insertion::IndentationCase result;
   result.name = std::filesystem::path(file).stem().string();
@@ -273,8 +324,13 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     top.fail(*top.optional("mesh")->as_table()->get("sites"), "mesh.sites",
              "given together with [[needles]], expected the sites in one of them");
   }
-  result.needles = read_sites(top, needle_read.tip_height, tissue.block.insertion_sites);
-  for (std::size_t i = 0; i < result.needles.size(); ++i) {
+  if (const auto array = top.optional_subsection("array", {"layout", "rows", "columns", "pitch", "margin",
+                                                            "backing_plate", "symmetry"})) {
+    apply_array(root, top, *array, needle_read.tip_height, result);  // the block holds the array: validate checks it
+  } else {
+    result.needles = read_sites(top, needle_read.tip_height, tissue.block.insertion_sites);
+  }
+  for (std::size_t i = 0; i < result.needles.size() && !result.array; ++i) {
     const Eigen::Vector2d p = result.needles[i].position;
     if (!result.tissue_mesh && !(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
       const toml::node& at = top.optional("needles") ? *top.optional("needles")->as_array()->get(i) : root;

@@ -8,6 +8,7 @@
 
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
+#include "needlekit/io/array_output.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
@@ -71,7 +72,10 @@ VtuGrid needle_grid(const insertion::IndentationCase& indentation_case, double i
   VtuGrid grid;
   VtuField needle{"needle_id", 1, {}};
   int id = 0;
-  for (const fem::Indenter& indenter : insertion::placed_indenters(indentation_case)) {
+  // A reduced array model shows the needles it solves, on its reduced block.
+  const bool reduced = indentation_case.array && indentation_case.array->symmetry != insertion::ArraySymmetry::None;
+  for (const fem::Indenter& indenter : insertion::placed_indenters(
+           reduced ? insertion::modelled_case(indentation_case) : indentation_case)) {
     const int offset = static_cast<int>(grid.points.size());
     const Eigen::Vector3d shift = indenter_displacement * indenter.direction.normalized();
     for (const Eigen::Vector3d& v : indenter.surface.vertices) grid.points.push_back(v + shift);
@@ -180,12 +184,8 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["nodal_average_elements"] = result.nodal_average_elements;
   json["volumetric_stabilization_per_shear_modulus"] = c.solver.volumetric_stabilization;
   json["edge_radius_um"] = insertion::effective_edge_radius(c) * 1e6;
-  nlohmann::json needles = nlohmann::json::array();
-  for (const insertion::NeedleSite& site : c.needles) {
-    needles.push_back({{"x_um", site.position.x() * 1e6}, {"y_um", site.position.y() * 1e6},
-                       {"tip_height_um", site.tip_height * 1e6}});
-  }
-  json["needles"] = needles;
+  json["needles"] = needles_json(c, result);
+  if (c.array) json["array"] = array_json(c, result);
   nlohmann::json layers = nlohmann::json::array();
   for (const mesh::TissueLayer& layer : c.block.layers) {
     layers.push_back({{"name", layer.name}, {"thickness_um", layer.thickness * 1e6},
@@ -284,6 +284,12 @@ void IndentationWriter::finish(const insertion::IndentationResult& result) {
   };
   write_curves(result);
   write("_puncture.json", io::json_text(puncture_json(case_, result)));
+  if (!result.needles.empty()) {
+    write("_needles.csv", needles_csv(case_, result));
+    const std::filesystem::path map = directory_ / (case_.name + "_needle_map.vtu");
+    write_vtu(needle_map_grid(result), map);
+    remember(map);
+  }
   write_result(indentation_json(case_, result));
 }
 

@@ -47,6 +47,8 @@ enum class BoundaryCondition {
                           // (homogeneous uniaxial tests)
   QuarterSymmetry,        // u_x = 0 on x = min, u_y = 0 on y = min (symmetry planes through the needle axis);
                           // x = max, y = max and the bottom fixed: a quarter of a centred §3.4 block
+  HalfSymmetry,           // u_y = 0 on y = min (a symmetry plane through the needles); the other sides and the bottom
+                          // fixed: a half of a centred §3.4 block
 };
 
 // The names of the enums above, as case files, JSON and the CLI help write them (core/enum_table.hpp).
@@ -65,7 +67,7 @@ inline constexpr EnumTable<LinearSolver, 4> kLinearSolverNames{{
     {LinearSolver::CholeskyCg, "cholesky-cg", "CG preconditioned by the last CHOLMOD factorization"},
     {LinearSolver::Cholesky, "cholesky", "a fresh CHOLMOD factorization per Newton iteration"},
 }};
-inline constexpr EnumTable<BoundaryCondition, 5> kBoundaryConditionNames{{
+inline constexpr EnumTable<BoundaryCondition, 6> kBoundaryConditionNames{{
     {BoundaryCondition::SidesAndBottomFixed, "sides-and-bottom-fixed", "§3.4: the four sides and the bottom fixed"},
     {BoundaryCondition::BottomFixed, "bottom-fixed", "the bottom fixed, the sides free"},
     {BoundaryCondition::BottomFixedSidesRoller, "bottom-fixed-sides-roller", "the bottom fixed, the sides slide"},
@@ -73,6 +75,8 @@ inline constexpr EnumTable<BoundaryCondition, 5> kBoundaryConditionNames{{
      "u_x = 0 on x = min, u_y = 0 on y = min, u_z = 0 on the bottom (uniaxial tests)"},
     {BoundaryCondition::QuarterSymmetry, "quarter-symmetry",
      "symmetry planes through the needle axis at x = min and y = min, the other sides and the bottom fixed"},
+    {BoundaryCondition::HalfSymmetry, "half-symmetry",
+     "a symmetry plane through the needles at y = min, the other sides and the bottom fixed"},
 }};
 inline constexpr EnumTable<VolumetricFormulation, 3> kVolumetricFormulationNames{{
     {VolumetricFormulation::Automatic, "auto",

@@ -21,6 +21,7 @@
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/insertion/force_curve.hpp"
+#include "needlekit/insertion/needle_array.hpp"
 #include "needlekit/insertion/puncture_criteria.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
@@ -43,6 +44,11 @@ struct IndentationCase {
   // needle::default_edge_radius). An error with tip-nodes contact (a flat face) or a needle given as a mesh.
   std::optional<double> edge_radius;
   std::vector<NeedleSite> needles{NeedleSite{}};   // at least one; all move by the same displacement
+  // A needle array: `needles` then holds its whole array (array_positions) and `block` the whole block; with a
+  // symmetry the reduced model is solved (modelled_case) and every result is the whole array's. Puncture is then
+  // evaluated per needle: the run's puncture is the first needle's, and stop_at_puncture stops once every needle has
+  // punctured.
+  std::optional<NeedleArray> array;
   mesh::LayeredBlockOptions block;           // the tissue block (insertion_sites are taken from `needles`)
   std::optional<mesh::TetMesh> tissue_mesh;  // when set, used as is instead of meshing `block`
   double depth = 200e-6;                     // m, > 0: final depth of the tip below the undeformed surface
@@ -64,6 +70,15 @@ double tissue_height(const IndentationCase& indentation_case);
 // m: the edge radius the contact uses: 0 for tip-nodes contact or a needle given as a mesh, else edge_radius or its
 // default.
 double effective_edge_radius(const IndentationCase& indentation_case);
+
+// m: the needle's base diameter (the parametric needle's, else the needle mesh's largest extent across its axis).
+double base_diameter(const IndentationCase& indentation_case);
+// m: the needle's length (the parametric needle's, else the needle mesh's extent along its axis).
+double needle_length(const IndentationCase& indentation_case);
+
+// The case that is meshed and solved: the case itself, or for an array with a symmetry its reduced model (the half
+// or quarter block, the needles in it, some cut by the symmetry planes, and the symmetry boundary condition).
+IndentationCase modelled_case(const IndentationCase& indentation_case);
 
 // Whether the FE averages the volume at the nodes in some layer of the case's tissue (fem::nodal_average_applies).
 bool uses_nodal_average(const IndentationCase& indentation_case);
@@ -97,11 +112,12 @@ std::string to_string(IndentationStatus status);
 struct IndentationStep {
   double depth = 0;                  // m, tip depth below the undeformed surface
   double force = 0;                  // N, total reaction force on the needles (positive pushing down)
-  std::vector<double> needle_force;  // N, per needle
+  std::vector<double> needle_force;  // N, per needle (of the whole array)
+  std::vector<double> needle_contact_area;  // m^2, per needle (of the whole array)
   double contact_area = 0;           // m^2, total tissue area in contact with the needles
   double contact_pressure = 0;       // Pa, mean pressure under the tips: force / contact_area (Eq 3.17's P_s)
   double max_contact_pressure = 0;   // Pa, largest nodal contact pressure
-  int contact_nodes = 0;             // nodes in contact, all needles
+  int contact_nodes = 0;             // nodes in contact, all needles (of the model solved: a reduced array's)
   double strain_energy = 0;          // J, stored in the tissue (Δ = ½uᵀKu of Eq 3.17)
   double external_work = 0;          // J, work of the needles since the start (trapezoidal over the steps)
   int newton_iterations = 0;         // of this step (all substeps)
@@ -144,11 +160,36 @@ struct IndentationOptions {
   bool keep_displacements = false;
 };
 
+// One needle of the case (of the whole array), per converged step. Its puncture is evaluated by the case's
+// criteria on its own force and contact area and its share of the stored energy (in proportion to its work).
+struct NeedleOutcome {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // m, (x, y) of the tip's centre
+  std::vector<double> force;             // N, per step
+  std::vector<double> depth;             // m, per step: the tip below the undeformed surface
+  std::optional<PuncturePoint> puncture;  // its own puncture point (force: this needle's), if any
+  int puncture_step = 0;                 // the step (from 1) in which it punctured; 0: not punctured
+  // m, >= 0: the travel of the punctured needle beyond its puncture depth at the last step (the part of it that
+  // the model takes as inserted: the tissue's deflection at puncture is not recovered); 0 when not punctured
+  double inserted_depth = 0;
+};
+
+// The totals of a needle array (Larrañeta et al. 2014's penetrated fraction: inserted depth / needle length).
+struct ArrayOutcome {
+  std::vector<double> plate_travel;        // m, per step: the common displacement of the needles (and the plate)
+  std::vector<double> punctured_fraction;  // [0, 1], per step: needles punctured so far
+  std::optional<double> first_puncture_travel;  // m, the plate's travel when the first needle punctured
+  double mean_inserted_depth = 0;          // m, over every needle (0 for the unpunctured), last step
+  double inserted_depth_spread = 0;        // m, the standard deviation of the same
+  double mean_penetrated_fraction = 0;     // [0, 1], mean_inserted_depth / the needle's length
+};
+
 struct IndentationResult {
   IndentationStatus status = IndentationStatus::ReachedDepth;
   std::string reason;                         // why the run stopped (always set)
   std::vector<IndentationStep> steps;         // every converged step, in order
   std::optional<PuncturePoint> puncture;      // empty: no criterion fired within the simulated depth
+  std::vector<NeedleOutcome> needles;         // one per needle of the case (of the whole array)
+  std::optional<ArrayOutcome> array;          // with IndentationCase::array
   std::vector<StepDisplacement> displacements;  // per converged load step, with IndentationOptions::keep_displacements
   int warm_started_steps = 0;                 // load steps that started from IndentationOptions::warm_start
   int elements = 0;                           // tetrahedra of the tissue mesh

@@ -10,6 +10,11 @@
 //              (default 64) and axial_segments (default 16) of the parametric needle's surface mesh
 //   [[needles]]  optional, one entry per needle: x, y (default "0 um"), tip_height (default: [needle]'s);
 //              without it, one needle at (0, 0)
+//   [array]    optional, instead of [[needles]]: the needle of [needle] repeated (insertion/needle_array.hpp):
+//              layout (insertion::kArrayLayoutNames, default "square"), rows, columns (default 1), pitch (default
+//              "600 um", >= the needle's base diameter), margin (default "1000 um": the block is the footprint plus
+//              the margin on every side unless [tissue] width/length are given), backing_plate (default false),
+//              symmetry (insertion::kArraySymmetryNames, default "none")
 //   [tissue], [mesh]  as in tissue_config.hpp (shared with `needlekit tissue-mesh`): width, length, height, preset
 //              or [[tissue.layers]] (name, thickness or "rest", youngs_modulus, poisson_ratio); size_at_tip,
 //              size_far, refinement_radius, size_gradient, thin_layer_size_factor, sites (one needle per site when

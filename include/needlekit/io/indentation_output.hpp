@@ -44,15 +44,17 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "strain_energy_J", "external_work_J", "newton_iterations" (arrays, one entry per converged step), "elements",
-// "nodes", "dofs", "law", "element", "contact", "boundary", "needles", "layers", "mesh_quality", "notes" (warnings:
-// io/scale_warnings.hpp), "mesh_seconds", "setup_seconds", "total_seconds".
+// "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp: needles_json), "array"
+// (with an array: array_json), "layers", "mesh_quality", "notes" (warnings: io/scale_warnings.hpp), "mesh_seconds",
+// "setup_seconds", "total_seconds".
 nlohmann::json indentation_json(const insertion::IndentationCase& indentation_case,
                                 const insertion::IndentationResult& result);
 
 // Writes DIR/NAME.pvd, DIR/NAME_step_KKK.vtu (tissue), DIR/NAME_needles_step_KKK.vtu, NAME_force_depth.csv and
 // NAME_solver_steps.csv after each step, so that a run that stops keeps every completed step, with NAME_result.json
 // of the steps so far and "status": "incomplete" (a run that was interrupted or killed leaves it so); finish()
-// rewrites the CSV files and writes NAME_puncture.json and the final NAME_result.json. Every file is written to a
+// rewrites the CSV files and writes NAME_puncture.json, the per-needle NAME_needles.csv and NAME_needle_map.vtu
+// (io/array_output.hpp) and the final NAME_result.json. Every file is written to a
 // temporary name and renamed. The constructor creates the directory (IoError naming it when it cannot be written).
 class IndentationWriter {
 public:

@@ -1,0 +1,148 @@
+#include "array_model.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "needlekit/core/errors.hpp"
+
+namespace needlekit::insertion {
+namespace {
+
+std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
+
+// m: the extent of the needle mesh along axis `axis` (the needle frame: z along the needle).
+double extent(const geometry::TriangleMesh& needle, int axis) {
+  double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& v : needle.vertices) top = std::max(top, v[axis]), bottom = std::min(bottom, v[axis]);
+  return needle.vertices.empty() ? 0.0 : top - bottom;
+}
+
+// The block must hold the array's footprint (the bases of the outer needles).
+void check_footprint(const IndentationCase& c) {
+  const Eigen::Vector2d footprint = array_footprint(*c.array, base_diameter(c));
+  for (const auto& [key, size, needed] : {std::tuple{"tissue.width", c.block.width, footprint.x()},
+                                         std::tuple{"tissue.length", c.block.length, footprint.y()}}) {
+    if (size < needed) {
+      throw InvalidInput(fmt::format("{}: {} is too small for the array, whose footprint is {} across, expected at "
+                                     "least {} or no {} (then the footprint plus array.margin on every side)",
+                                     key, um(size), um(needed), um(needed), key));
+    }
+  }
+}
+
+}  // namespace
+
+double base_diameter(const IndentationCase& c) {
+  if (c.geometry) return c.geometry->base_diameter;
+  return std::max(extent(c.needle, 0), extent(c.needle, 1));
+}
+
+double needle_length(const IndentationCase& c) { return c.geometry ? c.geometry->length : extent(c.needle, 2); }
+
+IndentationCase modelled_case(const IndentationCase& c) {
+  detail::ArrayModel model = detail::array_model(c);
+  return model.reduced ? std::move(*model.reduced) : c;
+}
+
+namespace detail {
+
+void validate_array_case(const IndentationCase& c) {
+  if (!c.array) return;
+  const NeedleArray& a = *c.array;
+  validate(a, base_diameter(c));
+  const std::vector<Eigen::Vector2d> positions = array_positions(a);
+  bool matches = positions.size() == c.needles.size();
+  for (std::size_t k = 0; matches && k < positions.size(); ++k) {
+    matches = (positions[k] - c.needles[k].position).norm() <= 1e-9 * a.pitch &&
+              c.needles[k].tip_height == c.needles.front().tip_height;
+  }
+  if (!matches) {
+    throw InvalidInput(fmt::format("needles: {} needles, not the {} x {} array's, expected one needle per array "
+                                   "position (array_positions) at the same tip height, or no [[needles]]",
+                                   c.needles.size(), a.rows, a.columns));
+  }
+  if (!c.tissue_mesh) check_footprint(c);
+  if (a.symmetry != ArraySymmetry::None && c.tissue_mesh) {
+    throw InvalidInput("array.symmetry: a reduced model needs the block meshed here, not a tissue mesh file, expected "
+                       "symmetry = \"none\" or a [tissue] block");
+  }
+  if (a.symmetry != ArraySymmetry::None && c.solver.boundary != fem::BoundaryCondition::SidesAndBottomFixed) {
+    throw InvalidInput(fmt::format("array.symmetry: the reduced model keeps the sides and the bottom fixed, but "
+                                   "[model] boundary = \"{}\", expected boundary = \"sides-and-bottom-fixed\" or "
+                                   "symmetry = \"none\"",
+                                   name_of(fem::kBoundaryConditionNames, c.solver.boundary)));
+  }
+  if (a.backing_plate && !(c.depth < needle_length(c))) {
+    throw InvalidInput(fmt::format("loading.depth: {} reaches the needles' length {}: the backing plate would touch "
+                                   "the tissue, which the model leaves out, expected a depth below the length",
+                                   um(c.depth), um(needle_length(c))));
+  }
+}
+
+ArrayModel array_model(const IndentationCase& c) {
+  ArrayModel model;
+  const int n = static_cast<int>(c.needles.size());
+  if (!c.array || c.array->symmetry == ArraySymmetry::None) {
+    model.source.resize(static_cast<std::size_t>(n));
+    std::iota(model.source.begin(), model.source.end(), 0);
+    model.multiplicity.assign(static_cast<std::size_t>(n), 1.0);
+    return model;
+  }
+  // The needles are in array order (validate): needle k = row * columns + column. The half keeps the rows with
+  // y >= 0, the quarter also the columns with x >= 0; a needle's mirror image across y = 0 is in row rows - 1 - row
+  // (of the same x: the rows of a hexagonal half have the same shift), across x = 0 in column columns - 1 - column.
+  const NeedleArray& a = *c.array;
+  const bool quarter = a.symmetry == ArraySymmetry::Quarter;
+  const auto kept_row = [&](int row) { return std::max(row, a.rows - 1 - row); };
+  const auto kept_column = [&](int column) { return quarter ? std::max(column, a.columns - 1 - column) : column; };
+  IndentationCase reduced = c;
+  reduced.array.reset();
+  reduced.needles.clear();
+  if (quarter) reduced.block.width /= 2;
+  reduced.block.length /= 2;
+  reduced.solver.boundary = quarter ? fem::BoundaryCondition::QuarterSymmetry : fem::BoundaryCondition::HalfSymmetry;
+  // The kept part of the block, x in [0, W/2] (quarter) and y in [0, L/2], re-centred on the origin (the block
+  // mesher's frame): the symmetry planes become the faces x = min and y = min.
+  const Eigen::Vector2d shift(quarter ? -c.block.width / 4 : 0.0, -c.block.length / 4);
+  std::vector<int> solved(static_cast<std::size_t>(n), -1);
+  for (int k = 0; k < n; ++k) {
+    const int row = k / a.columns, column = k % a.columns;
+    if (kept_row(row) != row || kept_column(column) != column) continue;
+    solved[static_cast<std::size_t>(k)] = static_cast<int>(reduced.needles.size());
+    NeedleSite site = c.needles[static_cast<std::size_t>(k)];
+    site.position += shift;
+    reduced.needles.push_back(site);
+  }
+  for (int k = 0; k < n; ++k) {
+    const int row = k / a.columns, column = k % a.columns;
+    model.source.push_back(solved[static_cast<std::size_t>(kept_row(row) * a.columns + kept_column(column))]);
+    const bool on_x_plane = 2 * row == a.rows - 1;                  // the middle row of an odd count
+    const bool on_y_plane = quarter && 2 * column == a.columns - 1;  // the middle column of an odd count
+    model.multiplicity.push_back((on_x_plane ? 2.0 : 1.0) * (on_y_plane ? 2.0 : 1.0));
+  }
+  model.factor = quarter ? 4.0 : 2.0;
+  model.reduced = std::move(reduced);
+  return model;
+}
+
+IndentationStep whole_step(const IndentationStep& solved, const ArrayModel& model) {
+  IndentationStep step = solved;
+  step.force *= model.factor;
+  step.contact_area *= model.factor;
+  step.strain_energy *= model.factor;
+  step.external_work *= model.factor;
+  step.needle_force.assign(model.source.size(), 0.0);
+  step.needle_contact_area.assign(model.source.size(), 0.0);
+  for (std::size_t k = 0; k < model.source.size(); ++k) {
+    const auto s = static_cast<std::size_t>(model.source[k]);
+    step.needle_force[k] = model.multiplicity[k] * solved.needle_force[s];
+    step.needle_contact_area[k] = model.multiplicity[k] * solved.needle_contact_area[s];
+  }
+  return step;
+}
+
+}  // namespace detail
+}  // namespace needlekit::insertion
