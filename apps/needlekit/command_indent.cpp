@@ -129,8 +129,7 @@ void run_indent(const IndentArguments& arguments) {
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
     const bool series = !result.steps.empty();  // the .pvd exists once a step was written
-    fmt::print("wrote {} files to {}{}
-", writer->files().size() + (map_png.empty() ? 0 : 1), arguments.out_dir,
+    fmt::print("wrote {} files to {}{}\n", writer->files().size() + (map_png.empty() ? 0 : 1), arguments.out_dir,
                series ? fmt::format(" (open {0}.pvd in ParaView, {0}_view.html in a browser)", indentation_case.name)
                       : "");
   }
