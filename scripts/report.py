@@ -7,6 +7,8 @@ Reads RUN_DIR/results.json (written by `needlekit reproduce`), draws every figur
 (matplotlib, Agg backend, no display needed) and writes RUN_DIR/report.html with the PNGs embedded as base64 (no
 network needed to open it). Every number comes from results.json or the CSV files of the run: this script only
 formats them. Figure kinds: "bars", "lines", "scatter2d", "points3d", "patch3d" (see each draw_* function for its fields).
+The 3D views that a section lists ("views": data files views/NAME_view.js) are shown by the viewer that the run copied
+into RUN_DIR/viewer (docs/views.md), loaded as classic scripts so that the report opens from file://.
 """
 import base64
 import csv
