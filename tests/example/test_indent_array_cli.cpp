@@ -1,6 +1,6 @@
-// `needlekit indent` on the 3 x 3 array example (examples/indent_array_3x3.toml, quarter model): every needle of the
-// whole array in the JSON with its forces and puncture, the needles the symmetry maps onto each other alike, the
-// per-needle CSV, the ParaView point set and the map figure; bad array input exits with code 2 and writes nothing.
+// `needlekit indent` on the 3 x 3 array example (examples/indent_array_3x3.toml): every needle of the array in the
+// JSON with its forces and puncture, the needles the symmetry maps onto each other alike, the per-needle CSV, the
+// ParaView point set and the map figure; bad array input exits with code 2 and writes nothing.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -40,17 +40,19 @@ TEST_F(IndentArrayCli, ArrayExampleReportsEveryNeedle) {
     ASSERT_EQ(needle["force_N"].size(), steps);
     total += needle["force_N"].back().get<double>();
   }
-  // The needles' forces add up to the plate's; the pitch and the quarter model's mirror images hold.
+  // The needles' forces add up to the plate's; mirror images carry nearly the same force (a 30 um mesh: 5 %).
   EXPECT_NEAR(total / json["force_N"].back().get<double>(), 1.0, 1e-12);
   EXPECT_DOUBLE_EQ(needles[2]["x_um"].get<double>() - needles[1]["x_um"].get<double>(), 600.0);
-  EXPECT_EQ(needles[0]["force_N"], needles[8]["force_N"]);
-  EXPECT_EQ(needles[1]["force_N"], needles[7]["force_N"]);
+  const auto last = [&](int k) { return needles[k]["force_N"].back().get<double>(); };
+  EXPECT_NEAR(last(8) / last(0), 1.0, 0.05);
+  EXPECT_NEAR(last(7) / last(1), 1.0, 0.05);
   // The centre needle, drawn down by eight neighbours, carries the least and punctures last (docs/arrays.md).
-  for (int k : {0, 1, 3}) EXPECT_LT(needles[4]["force_N"].back(), needles[k]["force_N"].back()) << k;
-  ASSERT_TRUE(needles[4]["punctured"].get<bool>());
-  EXPECT_GT(needles[4]["puncture_step"], needles[0]["puncture_step"]);
+  for (int k : {0, 1, 2, 3, 5, 6, 7, 8}) {
+    EXPECT_LT(last(4), last(k)) << k;
+    EXPECT_GT(needles[4]["puncture_depth_um"].get<double>(), needles[k]["puncture_depth_um"].get<double>()) << k;
+  }
   const nlohmann::json& array = json["array"];
-  EXPECT_EQ(array["symmetry"], "quarter");
+  EXPECT_EQ(array["symmetry"], "none");
   EXPECT_EQ(array["plate_travel_um"].size(), steps);
   EXPECT_DOUBLE_EQ(array["punctured_fraction"].back().get<double>(), 1.0);
   EXPECT_GT(array["mean_penetrated_fraction"].get<double>(), 0.0);
@@ -68,12 +70,13 @@ TEST_F(IndentArrayCli, BadArrayInputExitsWithCode2AndWritesNothing) {
   std::ofstream(dir_ / "pitch.toml") << std::regex_replace(example, std::regex("pitch = \"600 um\""), "pitch = \"200 um\"");
   const CliRun pitch = run("indent pitch.toml --out results");
   EXPECT_EQ(pitch.exit_code, 2);
-  EXPECT_THAT(pitch.err, HasSubstr("pitch.toml:18: key 'array.pitch': 200 um is smaller than the needle's base"));
-  std::ofstream(dir_ / "hexagonal.toml")
-      << std::regex_replace(example, std::regex("layout = \"square\""), "layout = \"hexagonal\"");
+  EXPECT_THAT(pitch.err, HasSubstr("pitch.toml:17: key 'array.pitch': 200 um is smaller than the needle's base"));
+  std::ofstream(dir_ / "hexagonal.toml") << std::regex_replace(
+      std::regex_replace(example, std::regex("layout = \"square\""), "layout = \"hexagonal\""),
+      std::regex("symmetry = \"none\""), "symmetry = \"quarter\"");
   const CliRun hexagonal = run("indent hexagonal.toml --out results");
   EXPECT_EQ(hexagonal.exit_code, 2);
-  EXPECT_THAT(hexagonal.err, HasSubstr("hexagonal.toml:21: key 'array.symmetry': \"quarter\" on a hexagonal array"));
+  EXPECT_THAT(hexagonal.err, HasSubstr("hexagonal.toml:20: key 'array.symmetry': \"quarter\" on a hexagonal array"));
   std::ofstream(dir_ / "small.toml") << std::regex_replace(example, std::regex("height = \"1000 um\""),
                                                            "height = \"1000 um\"\nwidth = \"1000 um\"");
   const CliRun small = run("indent small.toml --out results");
