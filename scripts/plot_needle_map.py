@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Plot the needle map of an array indentation written by `needlekit indent --out` (NAME_needles.csv: needle, row,
-column, x_um, y_um, punctured, ..., final_depth_um, ..., inserted_depth_um): one marker per needle at its (x, y),
-coloured by its tip depth at the last step, filled when it punctured and hollow when not.
+column, x_um, y_um, punctured, ..., inserted_depth_um): one marker per needle at its (x, y), coloured by its inserted
+depth at the last step (its travel beyond its puncture point; the tips of a rigid patch all reach the same depth),
+filled when it punctured and hollow when not.
 
 usage: plot_needle_map.py NEEDLES.csv OUT.png [--title TEXT]
 Uses Debian's python3-matplotlib with the Agg backend (no display needed). The PNG is written to a temporary name
@@ -17,7 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-REQUIRED = ("x_um", "y_um", "punctured", "final_depth_um")
+REQUIRED = ("x_um", "y_um", "punctured", "inserted_depth_um")
 
 
 def fail(message):
@@ -37,7 +38,7 @@ def read_needles(path):
     if missing:
         fail(f"{path}: missing columns {', '.join(missing)}")
     try:
-        return [(float(r["x_um"]), float(r["y_um"]), r["punctured"] == "1", float(r["final_depth_um"])) for r in rows]
+        return [(float(r["x_um"]), float(r["y_um"]), r["punctured"] == "1", float(r["inserted_depth_um"])) for r in rows]
     except ValueError as e:
         fail(f"{path}: {e}")
 
@@ -62,12 +63,12 @@ def main():
                edgecolors="black", label="punctured")
     ax.scatter([x[i] for i in intact], [y[i] for i in intact], facecolors="none", edgecolors=[colours[i] for i in intact],
                s=120, linewidths=2, label="not punctured")
-    fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap="viridis"), ax=ax, label="tip depth at the last step (um)")
+    fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap="viridis"), ax=ax, label="inserted depth at the last step (um)")
     ax.set_xlabel("x (um)")
     ax.set_ylabel("y (um)")
     ax.set_aspect("equal")
     ax.margins(0.15)
-    ax.legend(loc="upper right", fontsize="small")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2, fontsize="small")
     ax.set_title(args.title or f"{len(punctured)} of {len(needles)} needles punctured")
     temporary = args.out + ".partial.png"
     try:

@@ -55,7 +55,7 @@ std::string write_needle_map(const std::filesystem::path& directory, const inser
 // The array's totals and which needles punctured, for the text output.
 void print_array(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
   const insertion::ArrayOutcome& array = *result.array;
-  fmt::print("array: {} x {} {} at pitch {:.4g} um ({} symmetry){}; {:.4g} % punctured at the last step\n",
+  fmt::print("array: {} x {} {} at pitch {:.4g} um (symmetry {}){}; {:.4g} % punctured at the last step\n",
              c.array->rows, c.array->columns, name_of(insertion::kArrayLayoutNames, c.array->layout),
              c.array->pitch * 1e6, name_of(insertion::kArraySymmetryNames, c.array->symmetry),
              c.array->backing_plate ? ", backing plate" : "",

@@ -119,9 +119,9 @@ ArrayModel array_model(const IndentationCase& c) {
   for (int k = 0; k < n; ++k) {
     const int row = k / a.columns, column = k % a.columns;
     model.source.push_back(solved[static_cast<std::size_t>(kept_row(row) * a.columns + kept_column(column))]);
-    const bool on_x_plane = 2 * row == a.rows - 1;                  // the middle row of an odd count
-    const bool on_y_plane = quarter && 2 * column == a.columns - 1;  // the middle column of an odd count
-    model.multiplicity.push_back((on_x_plane ? 2.0 : 1.0) * (on_y_plane ? 2.0 : 1.0));
+    const bool on_plane_y0 = 2 * row == a.rows - 1;                   // the middle row of an odd count
+    const bool on_plane_x0 = quarter && 2 * column == a.columns - 1;  // the middle column of an odd count
+    model.multiplicity.push_back((on_plane_y0 ? 2.0 : 1.0) * (on_plane_x0 ? 2.0 : 1.0));
   }
   model.factor = quarter ? 4.0 : 2.0;
   model.reduced = std::move(reduced);

@@ -29,18 +29,11 @@ double lowest_tip_height(const IndentationCase& indentation_case) {
   return lowest;
 }
 
-// The case's block with one insertion site per needle, as run_indentation meshes it. A needle on the block's edge
-// (on a symmetry plane of a reduced array model) has its site, the embedded node that the refinement grows from,
-// half a tip size inside the top surface, which is where the mesher takes sites.
+// The case's block with one insertion site per needle, as run_indentation meshes it.
 mesh::LayeredBlockOptions block_to_mesh(const IndentationCase& c) {
   mesh::LayeredBlockOptions block = c.block;
   block.insertion_sites.clear();
-  const Eigen::Array2d half(block.width / 2, block.length / 2);
-  const Eigen::Array2d inside = half - 0.5 * block.size_at_site;
-  for (const NeedleSite& site : c.needles) {
-    const Eigen::Array2d p = site.position.array();
-    block.insertion_sites.push_back(((p.abs() < half).all() ? p : p.max(-inside).min(inside)).matrix());
-  }
+  for (const NeedleSite& site : c.needles) block.insertion_sites.push_back(site.position);
   return block;
 }
 

@@ -87,9 +87,10 @@ void validate_options(const LayeredBlockOptions& o, const std::vector<TissueLaye
   if (o.threads < 0) throw InvalidInput(fmt::format("layered block: threads = {}; expected >= 0", o.threads));
   for (std::size_t s = 0; s < o.insertion_sites.size(); ++s) {
     const Eigen::Vector2d& p = o.insertion_sites[s];
-    if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
-      throw InvalidInput(fmt::format("layered block: insertion site {} at ({:g}, {:g}) um is not inside the top surface "
-                                     "(|x| < {:g} um, |y| < {:g} um)",
+    // On the edge is allowed: a needle on a symmetry plane of a reduced model (the edge gets a node there).
+    if (!(std::abs(p.x()) <= 0.5 * o.width && std::abs(p.y()) <= 0.5 * o.length)) {
+      throw InvalidInput(fmt::format("layered block: insertion site {} at ({:g}, {:g}) um is not on the top surface "
+                                     "(|x| <= {:g} um, |y| <= {:g} um)",
                                      s, p.x() * 1e6, p.y() * 1e6, 0.5 * o.width * 1e6, 0.5 * o.length * 1e6));
     }
   }

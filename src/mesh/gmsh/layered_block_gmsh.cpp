@@ -75,6 +75,38 @@ TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<
   return mesh;
 }
 
+// Sites on the top face's edges: points to embed in its boundary curves, and corners (the block's vertices).
+struct EdgeSites {
+  std::vector<int> points;                     // added OCC points, on an edge
+  std::vector<Eigen::Vector2d> positions;      // model units, of `points`
+  std::vector<Eigen::Vector2d> corners;        // model units
+};
+
+// Embeds each edge site in the boundary curve of the top face that holds it and appends its point, or the corner's
+// vertex, to `site_points` (the refinement grows from them).
+void embed_edge_sites(const EdgeSites& sites, const std::pair<int, int>& top, double eps, std::vector<int>& site_points) {
+  gmsh::vectorpair curves;
+  gmsh::model::getBoundary({top}, curves, false, false, false);
+  for (std::size_t k = 0; k < sites.points.size(); ++k) {
+    const Eigen::Vector2d& p = sites.positions[k];
+    int holder = -1;
+    for (const auto& curve : curves) {
+      double x0, y0, z0, x1, y1, z1;
+      gmsh::model::getBoundingBox(1, std::abs(curve.second), x0, y0, z0, x1, y1, z1);
+      if (p.x() > x0 - eps && p.x() < x1 + eps && p.y() > y0 - eps && p.y() < y1 + eps) holder = std::abs(curve.second);
+    }
+    if (holder < 0) throw std::logic_error(fmt::format("no top edge holds the site at ({}, {})", p.x(), p.y()));
+    gmsh::model::mesh::embed(0, {sites.points[k]}, 1, holder);
+    site_points.push_back(sites.points[k]);
+  }
+  for (const Eigen::Vector2d& p : sites.corners) {
+    gmsh::vectorpair vertex;
+    gmsh::model::getEntitiesInBoundingBox(p.x() - eps, p.y() - eps, -eps, p.x() + eps, p.y() + eps, eps, vertex, 0);
+    if (vertex.size() != 1) throw std::logic_error(fmt::format("{} block vertices at a corner site", vertex.size()));
+    site_points.push_back(vertex[0].second);
+  }
+}
+
 }  // namespace
 
 // The Gmsh part: geometry, size fields, Delaunay 3D, conversion to a TetMesh (no orientation, quality or timing).
@@ -112,23 +144,33 @@ TetMesh gmsh_layered_block(const LayeredBlockOptions& options, const std::vector
     } else {
       volume_of_layer[0] = boxes[0].second;
     }
+    const double eps = 1e-3 * std::min({w, l, layers.front().thickness * u});
+    EdgeSites edge_sites;
     std::vector<int> site_points, site_circles;
     for (const Eigen::Vector2d& s : options.insertion_sites) {
-      site_points.push_back(gmsh::model::occ::addPoint(s.x() * u, s.y() * u, 0));
+      const bool on_x = std::abs(s.x() * u) > 0.5 * w - 1e-9 * w, on_y = std::abs(s.y() * u) > 0.5 * l - 1e-9 * l;
+      // On the top face's edge (a symmetry plane of a reduced model): exactly on it, a node of that edge.
+      const double x = on_x ? std::copysign(0.5 * w, s.x()) : s.x() * u, y = on_y ? std::copysign(0.5 * l, s.y()) : s.y() * u;
+      if (on_x && on_y) {  // a corner: the block's own vertex
+        edge_sites.corners.emplace_back(x, y);
+        continue;
+      }
+      (on_x || on_y ? edge_sites.points : site_points).push_back(gmsh::model::occ::addPoint(x, y, 0));
+      if (on_x || on_y) edge_sites.positions.emplace_back(x, y);
       if (options.site_circle_radius > 0) {
-        site_circles.push_back(gmsh::model::occ::addCircle(s.x() * u, s.y() * u, 0, options.site_circle_radius * u));
+        site_circles.push_back(gmsh::model::occ::addCircle(x, y, 0, options.site_circle_radius * u));
       }
     }
     gmsh::model::occ::synchronize();
 
     // The top surface z = 0; the sites become mesh nodes on it.
     gmsh::vectorpair top;
-    const double eps = 1e-3 * std::min({w, l, layers.front().thickness * u});
     gmsh::model::getEntitiesInBoundingBox(-0.5 * w - eps, -0.5 * l - eps, -eps, 0.5 * w + eps, 0.5 * l + eps, eps,
                                           top, 2);
     if (top.size() != 1) throw std::logic_error(fmt::format("{} top surfaces", top.size()));
     if (!site_points.empty()) gmsh::model::mesh::embed(0, site_points, 2, top[0].second);
     if (!site_circles.empty()) gmsh::model::mesh::embed(1, site_circles, 2, top[0].second);
+    embed_edge_sites(edge_sites, top[0], eps, site_points);
 
     // The horizontal faces of a thin layer must not carry the same triangulation: with every node of the top face
     // straight above one of the bottom face, the vertical rectangles between them are cocircular and the 3D mesher
