@@ -1,0 +1,333 @@
+# The source files of every target, listed by hand (scripts/source_lists.py writes and checks this file;
+# CTest architecture.source_lists fails when a .cpp is missing here or a listed file is gone).
+
+set(NEEDLEKIT_LIBRARY_SOURCES
+  src/analysis/bending.cpp
+  src/analysis/buckling.cpp
+  src/analysis/column_eigenvalue.cpp
+  src/analysis/design_optimizer.cpp
+  src/analysis/design_point_evaluator.cpp
+  src/analysis/design_space.cpp
+  src/analysis/evaluate_many.cpp
+  src/analysis/performance_index.cpp
+  src/analysis/puncture_force_law.cpp
+  src/analysis/puncture_model.cpp
+  src/analysis/sensitivity_sweep.cpp
+  src/analysis/skin_permeation.cpp
+  src/calibration/calibrate.cpp
+  src/calibration/calibration_file.cpp
+  src/calibration/calibration_output.cpp
+  src/calibration/case_parameters.cpp
+  src/calibration/discretisation_error.cpp
+  src/calibration/experiment_model.cpp
+  src/calibration/parameter_statistics.cpp
+  src/core/atomic_file.cpp
+  src/core/file_bytes.cpp
+  src/core/interrupt.cpp
+  src/core/plausible_scale.cpp
+  src/core/units.cpp
+  src/fem/boundary_conditions.cpp
+  src/fem/cholesky_solve.cpp
+  src/fem/conjugate_gradients.cpp
+  src/fem/element_colouring.cpp
+  src/fem/function_space.cpp
+  src/fem/hyperelastic_law.cpp
+  src/fem/line_search.cpp
+  src/fem/linear_solve.cpp
+  src/fem/morton_order.cpp
+  src/fem/newton_step.cpp
+  src/fem/nodal_volume.cpp
+  src/fem/nodal_volume_preconditioner.cpp
+  src/fem/quasi_static_solver.cpp
+  src/fem/rigid_surface_distance.cpp
+  src/fem/solver_options.cpp
+  src/fem/sparse_cholesky.cpp
+  src/fem/sparse_pattern.cpp
+  src/fem/split_preconditioned_solve.cpp
+  src/fem/surface_contact.cpp
+  src/fem/symmetric_product.cpp
+  src/fem/tangent_matrix.cpp
+  src/fem/tet_element.cpp
+  src/fem/two_grid_preconditioner.cpp
+  src/fem/two_grid_solve.cpp
+  src/geometry/body_surface.cpp
+  src/geometry/cutting_plane_trace.cpp
+  src/geometry/geodesic_distance.cpp
+  src/geometry/geodesic_trace.cpp
+  src/geometry/off_reader.cpp
+  src/geometry/ply_reader.cpp
+  src/geometry/surface_mesh.cpp
+  src/geometry/surface_walk.cpp
+  src/geometry/triangle_mesh.cpp
+  src/geometry/triangle_mesh_reader.cpp
+  src/insertion/array_model.cpp
+  src/insertion/complete_insertion.cpp
+  src/insertion/force_curve.cpp
+  src/insertion/indentation.cpp
+  src/insertion/insertion_curve.cpp
+  src/insertion/needle_array.cpp
+  src/insertion/needle_outcomes.cpp
+  src/insertion/post_puncture_force.cpp
+  src/insertion/puncture_criteria.cpp
+  src/insertion/triangle_classification.cpp
+  src/io/array_output.cpp
+  src/io/design_config.cpp
+  src/io/design_evaluation.cpp
+  src/io/fe_uncertainty_config.cpp
+  src/io/force_curve_csv.cpp
+  src/io/indentation_case.cpp
+  src/io/indentation_output.cpp
+  src/io/indentation_view.cpp
+  src/io/insertion_case.cpp
+  src/io/insertion_output.cpp
+  src/io/json_config.cpp
+  src/io/json_text.cpp
+  src/io/mesh_attribution.cpp
+  src/io/patch_config.cpp
+  src/io/patch_run.cpp
+  src/io/patch_uncertainty_config.cpp
+  src/io/patch_view.cpp
+  src/io/patch_writers.cpp
+  src/io/result_writers.cpp
+  src/io/scale_warnings.cpp
+  src/io/tet_mesh_vtu.cpp
+  src/io/tissue_config.cpp
+  src/io/tissue_view_surface.cpp
+  src/io/uncertainty_config.cpp
+  src/io/uncertainty_output.cpp
+  src/io/uncertainty_tables.cpp
+  src/io/view_arrays.cpp
+  src/io/view_page.cpp
+  src/io/vtu_writer.cpp
+  src/materials/needle_material.cpp
+  src/materials/preset_key.cpp
+  src/materials/tissue_presets.cpp
+  src/mesh/coarse_level.cpp
+  src/mesh/gmsh_module.cpp
+  src/mesh/layer_assignment.cpp
+  src/mesh/layered_block_mesh.cpp
+  src/mesh/mesh_validation.cpp
+  src/mesh/msh_import.cpp
+  src/mesh/msh_read_isolated.cpp
+  src/mesh/structured_block_mesh.cpp
+  src/mesh/tet_adjacency.cpp
+  src/mesh/tet_count_estimate.cpp
+  src/mesh/uniform_refinement.cpp
+  src/needle/cylindrical_wedge.cpp
+  src/needle/needle_geometry.cpp
+  src/needle/needle_surface_mesh.cpp
+  src/needle/rounded_edges.cpp
+  src/needle/section_properties.cpp
+  src/patch/equilibrium_fit.cpp
+  src/patch/fit_and_evaluate.cpp
+  src/patch/fit_patch.cpp
+  src/patch/fitted_patch.cpp
+  src/patch/flexible_fit.cpp
+  src/patch/needle_evaluation.cpp
+  src/patch/patch_design.cpp
+  src/patch/patch_placement.cpp
+  src/patch/placement_scan.cpp
+  src/patch/rigid_fit.cpp
+  src/patch/spring_geodesics.cpp
+  src/uncertainty/confidence_interval.cpp
+  src/uncertainty/design_inputs.cpp
+  src/uncertainty/design_outcome.cpp
+  src/uncertainty/design_uncertainty.cpp
+  src/uncertainty/distribution.cpp
+  src/uncertainty/fe_surrogate.cpp
+  src/uncertainty/input_transform.cpp
+  src/uncertainty/patch_uncertainty.cpp
+  src/uncertainty/propagation.cpp
+  src/uncertainty/response_surface.cpp
+  src/uncertainty/robust_design.cpp
+  src/uncertainty/sample_points.cpp
+  src/uncertainty/sobol_indices.cpp
+)
+
+set(NEEDLEKIT_GMSH_SOURCES
+  src/mesh/gmsh/gmsh_module_entry.cpp
+  src/mesh/gmsh/gmsh_session.cpp
+  src/mesh/gmsh/layered_block_gmsh.cpp
+  src/mesh/gmsh/msh_read_gmsh.cpp
+)
+
+set(NEEDLEKIT_CLI_SOURCES
+  apps/needlekit/blas_kernels.cpp
+  apps/needlekit/child_process.cpp
+  apps/needlekit/command_calibrate.cpp
+  apps/needlekit/command_evaluate.cpp
+  apps/needlekit/command_indent.cpp
+  apps/needlekit/command_insert.cpp
+  apps/needlekit/command_materials.cpp
+  apps/needlekit/command_mesh.cpp
+  apps/needlekit/command_optimize.cpp
+  apps/needlekit/command_patch.cpp
+  apps/needlekit/command_reproduce.cpp
+  apps/needlekit/command_serve.cpp
+  apps/needlekit/command_surface.cpp
+  apps/needlekit/command_sweep.cpp
+  apps/needlekit/command_tissue_mesh.cpp
+  apps/needlekit/command_uncertainty.cpp
+  apps/needlekit/command_uncertainty_fe.cpp
+  apps/needlekit/command_uncertainty_patch.cpp
+  apps/needlekit/file_format_help.cpp
+  apps/needlekit/http_server.cpp
+  apps/needlekit/job_pool.cpp
+  apps/needlekit/main.cpp
+  apps/needlekit/progress_bar.cpp
+  apps/needlekit/reproduce_report.cpp
+  apps/needlekit/reproduce_section_6_2.cpp
+  apps/needlekit/reproduce_section_6_2_calibrated.cpp
+  apps/needlekit/reproduce_section_6_3.cpp
+  apps/needlekit/reproduce_section_6_4.cpp
+  apps/needlekit/reproduce_section_uncertainty.cpp
+  apps/needlekit/resources_root.cpp
+  apps/needlekit/serve_api.cpp
+  apps/needlekit/terminal_warnings.cpp
+  apps/needlekit/viewer_sources.cpp
+)
+
+set(NEEDLEKIT_UNIT_TEST_SOURCES
+  tests/unit/test_atomic_file.cpp
+  tests/unit/test_calibration.cpp
+  tests/unit/test_coarse_level.cpp
+  tests/unit/test_design_config.cpp
+  tests/unit/test_design_outcome.cpp
+  tests/unit/test_enum_tables.cpp
+  tests/unit/test_fem_inputs.cpp
+  tests/unit/test_indentation_case.cpp
+  tests/unit/test_insertion_io.cpp
+  tests/unit/test_json_config.cpp
+  tests/unit/test_json_text.cpp
+  tests/unit/test_layered_block_mesh.cpp
+  tests/unit/test_line_search.cpp
+  tests/unit/test_needle_array.cpp
+  tests/unit/test_optimizer_progress.cpp
+  tests/unit/test_patch.cpp
+  tests/unit/test_performance_index.cpp
+  tests/unit/test_post_puncture.cpp
+  tests/unit/test_propagation_progress.cpp
+  tests/unit/test_puncture_criteria.cpp
+  tests/unit/test_puncture_force_law.cpp
+  tests/unit/test_result_writers.cpp
+  tests/unit/test_rounded_edges.cpp
+  tests/unit/test_scale_warnings.cpp
+  tests/unit/test_sensitivity_sweep.cpp
+  tests/unit/test_sparse_pattern.cpp
+  tests/unit/test_surface_mesh.cpp
+  tests/unit/test_surface_readers_robustness.cpp
+  tests/unit/test_surface_walk_robustness.cpp
+  tests/unit/test_symmetric_product.cpp
+  tests/unit/test_tet_mesh_tools.cpp
+  tests/unit/test_tissue_config.cpp
+  tests/unit/test_tissue_view.cpp
+  tests/unit/test_triangle_mesh.cpp
+  tests/unit/test_uncertainty_config.cpp
+  tests/unit/test_uniform_refinement.cpp
+  tests/unit/test_units.cpp
+  tests/unit/test_vtu_writer.cpp
+  tests/unit/test_work_limits.cpp
+)
+
+set(NEEDLEKIT_VERIFICATION_TEST_SOURCES
+  tests/verification/test_calibration_recovery.cpp
+  tests/verification/test_certified_optimum.cpp
+  tests/verification/test_column_eigenvalue.cpp
+  tests/verification/test_embedded_volume.cpp
+  tests/verification/test_fe_surrogate.cpp
+  tests/verification/test_fem_bevel_contact.cpp
+  tests/verification/test_fem_cone_contact.cpp
+  tests/verification/test_fem_element.cpp
+  tests/verification/test_fem_flat_punch.cpp
+  tests/verification/test_fem_homogeneous.cpp
+  tests/verification/test_fem_multiple_needles.cpp
+  tests/verification/test_fem_nodal_volume.cpp
+  tests/verification/test_fem_two_grid.cpp
+  tests/verification/test_fit_and_evaluate.cpp
+  tests/verification/test_geodesic_distance.cpp
+  tests/verification/test_geodesic_trace.cpp
+  tests/verification/test_indentation.cpp
+  tests/verification/test_needle_arrays.cpp
+  tests/verification/test_needle_surface_mesh.cpp
+  tests/verification/test_patch_fitting.cpp
+  tests/verification/test_patch_uncertainty.cpp
+  tests/verification/test_post_puncture_force.cpp
+  tests/verification/test_robust_design.cpp
+  tests/verification/test_uncertainty.cpp
+)
+
+set(NEEDLEKIT_REGRESSION_TEST_SOURCES
+  tests/regression/test_complete_insertion.cpp
+  tests/regression/test_dissertation_chapter6.cpp
+  tests/regression/test_insertion_6_2.cpp
+  tests/regression/test_patch_forces.cpp
+  tests/regression/test_section_6_2_puncture.cpp
+)
+
+set(NEEDLEKIT_EXAMPLE_TEST_SOURCES
+  tests/example/test_calibrate_cli.cpp
+  tests/example/test_cli.cpp
+  tests/example/test_exit_codes.cpp
+  tests/example/test_gmsh_module.cpp
+  tests/example/test_help_choices.cpp
+  tests/example/test_honest_outputs.cpp
+  tests/example/test_indent_array_cli.cpp
+  tests/example/test_indent_cli.cpp
+  tests/example/test_insert_cli.cpp
+  tests/example/test_mesh_determinism.cpp
+  tests/example/test_patch_examples.cpp
+  tests/example/test_reproduce.cpp
+  tests/example/test_surface_cli.cpp
+  tests/example/test_tissue_mesh_cli.cpp
+  tests/example/test_uncertainty_cli.cpp
+  tests/example/test_uncertainty_fe_cli.cpp
+  tests/example/test_uncertainty_patch_cli.cpp
+)
+
+set(NEEDLEKIT_BENCH_SOURCES
+  bench/bench_calibration.cpp
+  bench/bench_design_optimizer.cpp
+  bench/bench_fem_element.cpp
+  bench/bench_indentation.cpp
+  bench/bench_patch.cpp
+  bench/bench_patch_uncertainty.cpp
+  bench/bench_post_puncture.cpp
+  bench/bench_surface_mesh.cpp
+  bench/bench_symmetric_product.cpp
+  bench/bench_tissue_mesh.cpp
+  bench/bench_uncertainty.cpp
+)
+
+set(NEEDLEKIT_FUZZ_TARGET_SOURCES
+  fuzz/calibration_toml.cpp
+  fuzz/design_toml.cpp
+  fuzz/force_curve_csv.cpp
+  fuzz/gmsh_msh.cpp
+  fuzz/indentation_case_toml.cpp
+  fuzz/insertion_case_toml.cpp
+  fuzz/patch_case_toml.cpp
+  fuzz/space_toml.cpp
+  fuzz/surface_obj.cpp
+  fuzz/surface_off.cpp
+  fuzz/surface_ply.cpp
+  fuzz/surface_stl.cpp
+  fuzz/tissue_case_toml.cpp
+  fuzz/uncertainty_toml.cpp
+)
+
+set(NEEDLEKIT_PYTHON_SOURCES
+  python/src/analysis.cpp
+  python/src/calibration.cpp
+  python/src/common.cpp
+  python/src/core.cpp
+  python/src/evaluate_many.cpp
+  python/src/geometry.cpp
+  python/src/insertion.cpp
+  python/src/io.cpp
+  python/src/mesh.cpp
+  python/src/module.cpp
+  python/src/needle.cpp
+  python/src/patch.cpp
+  python/src/uncertainty.cpp
+  python/src/uncertainty_patch_and_fe.cpp
+)
