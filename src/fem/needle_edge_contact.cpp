@@ -133,6 +133,7 @@ NeedleEdgeContact::NeedleEdgeContact(const TopSurface& top, const std::vector<do
   lambda_.assign(points_.size(), 0.0);
   force_now_.assign(points_.size(), 0.0);
   gap_now_.assign(points_.size(), std::numeric_limits<double>::infinity());
+  face_.assign(points_.size(), -1);
 }
 
 double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d,
@@ -168,7 +169,16 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
     const Eigen::Vector3d p = points_[i] + d * direction_;
     int best = -1;
     double best_gap = std::numeric_limits<double>::infinity();
+    if (!search_) {  // the face of the last search, its plane extended
+      best = face_[i];
+      if (best < 0) continue;
+      const auto& tri = top_.triangles[static_cast<size_t>(best)];
+      const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
+      if (!pr.valid) continue;
+      best_gap = pr.gap;
+    }
     for (const Candidate& c : near) {
+      if (!search_) break;
       if ((p.array() < c.lo.array()).any() || (p.array() > c.hi.array()).any()) continue;
       const auto& tri = top_.triangles[static_cast<size_t>(c.triangle)];
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
@@ -178,6 +188,7 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
       best = c.triangle;
       best_gap = pr.gap;
     }
+    if (search_) face_[i] = best;
     if (best < 0) continue;
     const auto& tri = top_.triangles[static_cast<size_t>(best)];
     const std::array<int, 3> corner{tri[0], tri[1], tri[2]};
@@ -197,6 +208,7 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
       add_node_block<3>(corner, stiffness, free_index, pattern, values);
     }
   }
+  search_ = false;
   return energy;
 }
 

@@ -9,7 +9,9 @@
 //
 // The gap of a point p against a triangle (x0, x1, x2) is its signed distance to the triangle's plane,
 // g = (p - x0) . n, n = (x1 - x0) x (x2 - x0) / |...| (Wriggers 2006 §4.1, node-to-segment), taken on the triangle
-// whose plane is nearest among those the point projects into. Energy (lambda - k g)^2 / (2 k) while positive; its
+// whose plane is nearest among those the point projects into. That face is searched at the first evaluation after
+// an augmentation, a converged step or a restore, and kept through the Newton solve (FEBio's segment updates): the
+// gap jumps where neighbouring faces meet at an angle, and a search at every iteration made Newton cycle. Energy (lambda - k g)^2 / (2 k) while positive; its
 // forces and its exact tangent k grad g grad g^T - P hess g (the second derivative of g in the triangle's nodes,
 // triangle_plane_gap) make the contact tangent consistent.
 #pragma once
@@ -56,9 +58,11 @@ public:
                   bool want_tangent, Eigen::VectorXd& force, const std::vector<int>& free_index,
                   const UpperPattern& pattern, std::vector<double>& values);
   double max_penetration() const;  // m, at the last evaluation
-  void augment() { lambda_ = force_now_; }
+  void augment() { lambda_ = force_now_, search_ = true; }
   const std::vector<double>& multipliers() const { return lambda_; }
-  void set_multipliers(const std::vector<double>& lambda) { lambda_ = lambda; }
+  void set_multipliers(const std::vector<double>& lambda) { lambda_ = lambda, search_ = true; }
+  // A load step converged: the next evaluation searches the faces again.
+  void search_again() { search_ = true; }
   // The tissue's force on the needle at the last evaluation (N, world axes) and the active points' indices hashed
   // into `hash` (FNV-1a).
   const Eigen::Vector3d& force_on_needle() const { return force_on_needle_; }
@@ -72,6 +76,8 @@ private:
   std::vector<Eigen::Vector3d> points_;
   Eigen::Vector3d direction_;
   std::vector<double> lambda_, force_now_, gap_now_;
+  std::vector<int> face_;  // per point: the tissue face it is held against (index into top.triangles), -1: none
+  bool search_ = true;
   Eigen::Vector3d force_on_needle_ = Eigen::Vector3d::Zero();
 };
 
