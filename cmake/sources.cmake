@@ -29,12 +29,14 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/fem/boundary_conditions.cpp
   src/fem/cholesky_solve.cpp
   src/fem/conjugate_gradients.cpp
+  src/fem/coulomb_friction.cpp
   src/fem/element_colouring.cpp
   src/fem/function_space.cpp
   src/fem/hyperelastic_law.cpp
   src/fem/line_search.cpp
   src/fem/linear_solve.cpp
   src/fem/morton_order.cpp
+  src/fem/needle_edge_contact.cpp
   src/fem/newton_step.cpp
   src/fem/nodal_volume.cpp
   src/fem/nodal_volume_preconditioner.cpp
@@ -191,6 +193,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_atomic_file.cpp
   tests/unit/test_calibration.cpp
   tests/unit/test_coarse_level.cpp
+  tests/unit/test_contact_kernels.cpp
   tests/unit/test_design_config.cpp
   tests/unit/test_design_outcome.cpp
   tests/unit/test_enum_tables.cpp
@@ -237,6 +240,7 @@ set(NEEDLEKIT_VERIFICATION_TEST_SOURCES
   tests/verification/test_fe_surrogate.cpp
   tests/verification/test_fem_bevel_contact.cpp
   tests/verification/test_fem_cone_contact.cpp
+  tests/verification/test_fem_contact_friction.cpp
   tests/verification/test_fem_element.cpp
   tests/verification/test_fem_flat_punch.cpp
   tests/verification/test_fem_homogeneous.cpp

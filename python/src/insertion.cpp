@@ -92,6 +92,8 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("max_cutbacks", &SolverOptions::max_cutbacks, ">= 0")
       .def_readwrite("linear_solver", &SolverOptions::linear_solver)
       .def_readwrite("penalty_factor", &SolverOptions::penalty_factor, "> 0")
+      .def_readwrite("friction", &SolverOptions::friction, ">= 0: Coulomb coefficient (surface contact)")
+      .def_readwrite("two_pass", &SolverOptions::two_pass, "surface contact: the needle's sharp edges against the tissue's faces too")
       .def_readwrite("penetration_tolerance", &SolverOptions::penetration_tolerance, "(0, 1)")
       .def_readwrite("volumetric_stabilization", &SolverOptions::volumetric_stabilization,
                      ">= 0: with the nodal-averaged volume, the bulk modulus each tetrahedron keeps, in multiples of "

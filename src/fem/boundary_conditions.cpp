@@ -12,6 +12,34 @@
 #include "tet_kernel.hpp"
 
 namespace needlekit::fem::detail {
+namespace {
+// The linear triangles of one top face (`face`: its three corners, then for a quadratic face its three mid-edge
+// nodes in any order), counter-clockwise seen from above: the face itself, or its four corner/mid-edge sub-triangles.
+void add_top_triangles(const std::vector<Eigen::Vector3d>& nodes, const std::vector<int>& face,
+                       std::vector<std::array<int, 3>>& out) {
+  std::array<int, 3> c{face[0], face[1], face[2]};
+  const Eigen::Vector3d up = (nodes[c[1]] - nodes[c[0]]).cross(nodes[c[2]] - nodes[c[0]]);
+  if (up.z() < 0) std::swap(c[1], c[2]);
+  if (face.size() == 3) {
+    out.push_back(c);
+    return;
+  }
+  std::array<int, 3> mid{};  // mid[k]: the node on the edge (c[k], c[k+1])
+  for (size_t m = 3; m < face.size(); ++m) {
+    int best = 0;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const double distance = (nodes[face[m]] - 0.5 * (nodes[c[k]] + nodes[c[(k + 1) % 3]])).norm();
+      if (distance < best_distance) best_distance = distance, best = k;
+    }
+    mid[best] = face[m];
+  }
+  out.push_back({c[0], mid[0], mid[2]});
+  out.push_back({mid[0], c[1], mid[1]});
+  out.push_back({mid[2], mid[1], c[2]});
+  out.push_back({mid[0], mid[1], mid[2]});
+}
+}  // namespace
 
 TopSurface top_surface(const mesh::TetMesh& mesh, const FunctionSpace& space, double tol) {
   const int nnode = static_cast<int>(space.nodes.size());
@@ -44,6 +72,7 @@ TopSurface top_surface(const mesh::TetMesh& mesh, const FunctionSpace& space, do
     } else {
       for (int c = 0; c < 3; ++c) top.node_area[k[c]] += area / 3;
     }
+    add_top_triangles(space.nodes, face_nodes, top.triangles);
     for (int n : face_nodes) {
       is_top[n] = 1;
       top.node_size[n] = std::min(top.node_size[n], h);

@@ -3,6 +3,7 @@
 // needle's flat tip (Eqs 3.9-3.12) and the resulting split of the degrees of freedom into free and prescribed ones.
 #pragma once
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "function_space.hpp"
@@ -19,6 +20,9 @@ struct TopSurface {
   std::vector<double> node_area;     // per node of the function space: lumped area, m^2 (linear: A/3 per corner;
                                      // T6 faces: corners A/12, mid-edges A/4); 0 off the top
   std::vector<double> node_size;     // per node: smallest sqrt(2 A) of its top faces, m (inf off the top)
+  // The top faces as linear triangles of function-space nodes, counter-clockwise seen from above (outward normal
+  // +z in the reference state): the corner triangles, or for quadratic faces the four corner/mid-edge sub-triangles.
+  std::vector<std::array<int, 3>> triangles;
 };
 // Throws InvalidInput when no boundary face lies on the top plane. `tolerance`: m, distance from the plane.
 TopSurface top_surface(const mesh::TetMesh& mesh, const FunctionSpace& space, double tolerance);

@@ -1,6 +1,6 @@
 // Load steps of the quasi-static solver: the predictor (linearised elastic solution, §3.4, or the secant
 // extrapolation of the last step), Newton's method with a backtracking line search on the total potential energy,
-// the augmented-Lagrangian loop of surface contact, and the cut-back of failed steps.
+// the augmented-Lagrangian loop of surface contact (with its friction bounds), and the cut-back of failed steps.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -215,9 +215,11 @@ bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& f
   for (int aug = 0;; ++aug) {
     if (!newton(target, res, failure, cutbacks_so_far)) return false;
     const double pen = contact->max_penetration();
-    if (pen <= opt.penetration_tolerance * std::max(std::abs(target), contact->smallest_size()) ||
-        aug >= opt.max_augmentations) {
+    const bool settled = pen <= opt.penetration_tolerance * std::max(std::abs(target), contact->smallest_size()) &&
+                         contact->friction_settled();
+    if (settled || aug >= opt.max_augmentations) {
       contact->update_ahead(space.nodes, u, target);
+      contact->commit_friction(space.nodes, u, target);
       return true;
     }
     contact->augment();
@@ -262,7 +264,7 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
   while (ok && m.d != target) {
     const double next = std::abs(target - m.d) <= std::abs(step) * (1 + 1e-12) ? target : m.d + step;
     const Eigen::VectorXd u_saved = m.u;
-    const auto multipliers_saved = m.contact ? m.contact->multipliers() : std::vector<std::vector<double>>{};
+    const auto multipliers_saved = m.contact ? m.contact->multipliers() : detail::SurfaceContact::Multipliers{};
     Impl::Failure failure;
     const bool warm = start != nullptr && next == target;
     if (warm) {

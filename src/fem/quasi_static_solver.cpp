@@ -199,6 +199,7 @@ void QuasiStaticSolver::Impl::add_free(Eigen::VectorXd& uu, const Eigen::VectorX
 void QuasiStaticSolver::Impl::measure(StepResult& res) {
   const size_t m = needles.size();
   res.indenter_force.assign(m, 0);
+  res.contact_force.assign(m, Eigen::Vector3d::Zero());
   res.max_contact_pressure.assign(m, 0);
   res.mean_contact_pressure.assign(m, 0);
   res.contact_area.assign(m, 0);
@@ -225,7 +226,10 @@ void QuasiStaticSolver::Impl::measure(StepResult& res) {
     } else {
       for (size_t t = 0; t < top.nodes.size(); ++t)
         if (contact->node_force(k, t) > 0) record(top.nodes[t], contact->axial_force(k, t));
+      res.indenter_force[k] += contact->edge_axial_force(k);  // the second pass: force only, no nodal area
+      res.contact_force[k] = contact->force_on_needle(k);
     }
+    if (opt.contact == ContactModel::TipNodes) res.contact_force[k] = -res.indenter_force[k] * nd.direction;
     if (res.contact_area[k] > 0) res.mean_contact_pressure[k] = res.indenter_force[k] / res.contact_area[k];
   }
   res.max_penetration = contact ? contact->max_penetration() : 0.0;
@@ -306,7 +310,8 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   if (o.contact == ContactModel::Surface) {
     std::vector<Indenter> placed;
     for (const auto& nd : m.needles) placed.push_back(nd.indenter);
-    m.contact = std::make_unique<detail::SurfaceContact>(m.top, m.space, placed, o.penalty_factor);
+    m.contact = std::make_unique<detail::SurfaceContact>(m.top, m.space, placed, o.penalty_factor, o.friction,
+                                                       o.two_pass);
   }
 
   // Degrees of freedom: boundary conditions (§3.4: sides and bottom fixed, top free) and tip nodes.

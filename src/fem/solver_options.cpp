@@ -67,6 +67,7 @@ void SolverOptions::validate() const {
   check(penetration_tolerance > 0 && penetration_tolerance < 1, "penetration_tolerance", penetration_tolerance,
         "(0, 1)");
   check(max_augmentations >= 0, "max_augmentations", max_augmentations, ">= 0");
+  check(friction >= 0 && std::isfinite(friction), "friction", friction, ">= 0");
   check(boundary_tolerance >= 0, "boundary_tolerance", boundary_tolerance, ">= 0");
   check(max_reuse_iterations >= 1, "max_reuse_iterations", max_reuse_iterations, ">= 1");
   check(linear_tolerance > 0 && linear_tolerance < 1, "linear_tolerance", linear_tolerance, "(0, 1)");

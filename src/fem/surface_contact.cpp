@@ -7,8 +7,8 @@
 namespace needlekit::fem::detail {
 
 SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space, const std::vector<Indenter>& needles,
-                               double penalty_factor)
-    : top_nodes_(top.nodes) {
+                               double penalty_factor, double friction, bool two_pass)
+    : top_nodes_(top.nodes), friction_(friction) {
   h_min_ = std::numeric_limits<double>::infinity();
   stiffness_.resize(top.nodes.size());
   for (size_t t = 0; t < top.nodes.size(); ++t) {
@@ -16,16 +16,21 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
     h_min_ = std::min(h_min_, top.node_size[n]);
     stiffness_[t] = penalty_factor * space.node_youngs_modulus[n] / top.node_size[n] * top.node_area[n];
   }
+  const size_t count = top.nodes.size();
+  std::vector<FrictionState> at_rest(count);  // the slip counts from the reference positions, the needle at d = 0
+  for (size_t t = 0; t < count; ++t) at_rest[t].reference = space.nodes[top.nodes[t]];
   for (const Indenter& needle : needles) {
-    NeedleContact nc;
-    nc.direction = needle.direction.normalized();
-    nc.distance = std::make_unique<RigidSurfaceDistance>(needle.surface, nc.direction, needle.edge_radius);
-    nc.lambda.assign(top.nodes.size(), 0.0);
-    nc.gap_now.assign(top.nodes.size(), std::numeric_limits<double>::infinity());
-    nc.force_now.assign(top.nodes.size(), 0.0);
-    nc.normal_now.assign(top.nodes.size(), Eigen::Vector3d::Zero());
-    nc.ahead.assign(top.nodes.size(), 1);  // the needle starts above the tissue
-    needles_.push_back(std::move(nc));
+    const Eigen::Vector3d direction = needle.direction.normalized();
+    needles_.push_back(NeedleContact{
+        direction, std::make_unique<RigidSurfaceDistance>(needle.surface, direction, needle.edge_radius),
+        std::vector<double>(count, 0.0), std::vector<double>(count, std::numeric_limits<double>::infinity()),
+        std::vector<double>(count, 0.0), std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
+        std::vector<char>(count, 1),  // the needle starts above the tissue
+        at_rest, std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
+        NeedleEdgeContact(top, stiffness_,
+                          two_pass ? sharp_feature_points(needle.surface, h_min_ / 2, needle.edge_radius)
+                                   : std::vector<Eigen::Vector3d>{},
+                          direction)});
   }
 }
 
@@ -36,7 +41,6 @@ double SurfaceContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const
   if (want_force) force.setZero(u.size());
   double energy = 0;
   for (auto& nd : needles_) {
-    const Eigen::Vector3d shift = d * nd.direction;
     const double reach = (nd.distance->box_max() - nd.distance->box_min()).norm();
     double margin = 0;
     for (size_t t = 0; t < top_nodes_.size(); ++t) margin = std::max(margin, nd.lambda[t] / stiffness_[t]);
@@ -45,9 +49,17 @@ double SurfaceContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const
     for (size_t t = 0; t < top_nodes_.size(); ++t) {
       const int a = top_nodes_[t];
       const double k = stiffness_[t];
-      const Eigen::Vector3d q = nodes[a] + u.segment<3>(3 * a) - shift;
+      const Eigen::Vector3d q = relative(nodes, u, d, nd, t);
       nd.force_now[t] = 0;
       nd.gap_now[t] = std::numeric_limits<double>::infinity();
+      if (friction_ > 0) {  // the frozen Coulomb law (coulomb_friction.hpp); zero where the bound is
+        const FrictionResponse fr = friction_response(nd.friction[t], q, k);
+        nd.traction_now[t] = fr.force;
+        energy += fr.energy;
+        if (want_force) force.segment<3>(3 * a) -= fr.force;
+        if (want_tangent && nd.friction[t].bound > 0)
+          add_node_block<1>({a}, fr.stiffness, free_index, pattern, values);
+      }
       if ((q.array() < lo.array()).any() || (q.array() > hi.array()).any()) continue;
       const auto sd = nd.distance->signed_distance(q, reach, nd.ahead[t]);
       nd.gap_now[t] = sd.distance;
@@ -57,60 +69,101 @@ double SurfaceContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const
       nd.force_now[t] = p;
       nd.normal_now[t] = sd.normal;
       if (want_force) force.segment<3>(3 * a) += p * sd.normal;
-      if (!want_tangent) continue;
-      const Eigen::Matrix3d kn = k * sd.normal * sd.normal.transpose();
-      for (int i = 0; i < 3; ++i) {
-        const int r = free_index[3 * a + i];
-        if (r < 0) continue;
-        for (int j = 0; j < 3; ++j) {
-          const int c = free_index[3 * a + j];
-          if (c < 0 || r > c) continue;
-          values[static_cast<size_t>(entry_position(pattern, r, c))] += kn(i, j);
-        }
-      }
+      if (want_tangent)
+        add_node_block<1>({a}, Eigen::Matrix3d(k * sd.normal * sd.normal.transpose()), free_index, pattern, values);
     }
+    energy += nd.edges.evaluate(nodes, u, d, want_force, want_tangent, force, free_index, pattern, values);
   }
   return energy;
 }
 
 double SurfaceContact::max_penetration() const {
   double pen = 0;
-  for (const auto& nd : needles_)
+  for (const auto& nd : needles_) {
     for (double gap : nd.gap_now)
       if (std::isfinite(gap)) pen = std::max(pen, -gap);
+    pen = std::max(pen, nd.edges.max_penetration());
+  }
   return pen;
 }
 
 void SurfaceContact::augment() {
-  for (auto& nd : needles_) nd.lambda = nd.force_now;
+  for (auto& nd : needles_) {
+    nd.lambda = nd.force_now;
+    nd.edges.augment();
+    if (friction_ == 0) continue;
+    for (size_t t = 0; t < top_nodes_.size(); ++t) {
+      nd.friction[t].bound = friction_ * nd.force_now[t];
+      if (nd.force_now[t] > 0) nd.friction[t].normal = nd.normal_now[t];
+    }
+  }
+}
+
+bool SurfaceContact::friction_settled() const {
+  if (friction_ == 0) return true;
+  double largest = 0, change = 0;
+  for (const auto& nd : needles_)
+    for (size_t t = 0; t < top_nodes_.size(); ++t) {
+      largest = std::max(largest, friction_ * nd.force_now[t]);
+      change = std::max(change, std::abs(friction_ * nd.force_now[t] - nd.friction[t].bound));
+    }
+  return change <= kFrictionBoundTolerance * largest;
+}
+
+void SurfaceContact::commit_friction(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d) {
+  if (friction_ == 0) return;
+  for (auto& nd : needles_)
+    for (size_t t = 0; t < top_nodes_.size(); ++t) {
+      FrictionState& state = nd.friction[t];
+      const Eigen::Vector3d q = relative(nodes, u, d, nd, t);
+      state.traction = friction_response(state, q, stiffness_[t]).force;
+      state.reference = q;
+    }
+}
+
+Eigen::Vector3d SurfaceContact::force_on_needle(size_t needle) const {
+  const NeedleContact& nd = needles_[needle];
+  Eigen::Vector3d sum = nd.edges.force_on_needle();
+  for (size_t t = 0; t < top_nodes_.size(); ++t) sum += nd.traction_now[t] - nd.force_now[t] * nd.normal_now[t];
+  return sum;
 }
 
 void SurfaceContact::update_ahead(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d) {
   for (auto& nd : needles_) {
     const double reach = (nd.distance->box_max() - nd.distance->box_min()).norm();
     for (size_t t = 0; t < top_nodes_.size(); ++t) {
-      const int a = top_nodes_[t];
-      const auto sd = nd.distance->signed_distance(nodes[a] + u.segment<3>(3 * a) - d * nd.direction, reach);
+      const auto sd = nd.distance->signed_distance(relative(nodes, u, d, nd, t), reach);
       nd.ahead[t] = sd.distance >= reach || sd.normal.dot(nd.direction) > RigidSurfaceDistance::kLeadingCosine;
     }
+    nd.edges.search_again();
   }
 }
 
-std::vector<std::vector<double>> SurfaceContact::multipliers() const {
-  std::vector<std::vector<double>> out;
-  for (const auto& nd : needles_) out.push_back(nd.lambda);
+SurfaceContact::Multipliers SurfaceContact::multipliers() const {
+  Multipliers out;
+  for (const auto& nd : needles_) {
+    out.nodes.push_back(nd.lambda);
+    out.edges.push_back(nd.edges.multipliers());
+    out.friction.push_back(nd.friction);
+  }
   return out;
 }
 
-void SurfaceContact::set_multipliers(const std::vector<std::vector<double>>& multipliers) {
-  for (size_t k = 0; k < needles_.size(); ++k) needles_[k].lambda = multipliers[k];
+void SurfaceContact::set_multipliers(const Multipliers& multipliers) {
+  for (size_t k = 0; k < needles_.size(); ++k) {
+    needles_[k].lambda = multipliers.nodes[k];
+    needles_[k].edges.set_multipliers(multipliers.edges[k]);
+    needles_[k].friction = multipliers.friction[k];
+  }
 }
 
 size_t SurfaceContact::active_set_fingerprint() const {
   size_t hash = 1469598103934665603ull;  // FNV-1a over the indices of the active (needle, node) pairs
-  for (size_t k = 0; k < needles_.size(); ++k)
+  for (size_t k = 0; k < needles_.size(); ++k) {
     for (size_t t = 0; t < top_nodes_.size(); ++t)
       if (needles_[k].force_now[t] > 0) hash = (hash ^ (k * top_nodes_.size() + t)) * 1099511628211ull;
+    needles_[k].edges.hash_active(hash);
+  }
   return hash;
 }
 

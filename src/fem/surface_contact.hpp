@@ -1,13 +1,17 @@
-// Internal: frictionless unilateral node-to-surface contact of the tissue's top-surface nodes against rigid needle
-// meshes (ContactModel::Surface), enforced by a penalty with augmented-Lagrangian multipliers (the multipliers are
-// updated between Newton solves until the penetration is below a tolerance; Simo & Laursen 1992). The penalty
-// stiffness of a node is penalty_factor * E / h * (its tributary area).
+// Internal: unilateral node-to-surface contact of the tissue's top-surface nodes against rigid needle meshes
+// (ContactModel::Surface), enforced by a penalty with augmented-Lagrangian multipliers (the multipliers are updated
+// between Newton solves until the penetration is below a tolerance; Simo & Laursen 1992), with Coulomb friction
+// (coulomb_friction.hpp) when SolverOptions::friction > 0, and the second pass of the needle's sharp features against
+// the tissue's faces (needle_edge_contact.hpp) when SolverOptions::two_pass. The penalty stiffness of a node is penalty_factor * E / h * (its
+// tributary area); the tangential one the same.
 #pragma once
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
 
 #include "boundary_conditions.hpp"
+#include "coulomb_friction.hpp"
+#include "needle_edge_contact.hpp"
 #include "needlekit/fem/solver_options.hpp"
 #include "rigid_surface_distance.hpp"
 #include "sparse_pattern.hpp"
@@ -17,7 +21,7 @@ namespace needlekit::fem::detail {
 class SurfaceContact {
 public:
   SurfaceContact(const TopSurface& top, const FunctionSpace& space, const std::vector<Indenter>& needles,
-                 double penalty_factor);
+                 double penalty_factor, double friction, bool two_pass);
 
   // Contact energy of the state (u, needle displacement d); with `want_force` the contact forces into `force`
   // (per dof, zeroed first), with `want_tangent` the penalty tangent k n n^T added into `values` (pattern over the
@@ -28,15 +32,25 @@ public:
 
   // Largest penetration at the last evaluation, m.
   double max_penetration() const;
-  // Augmented-Lagrangian update: multipliers = the contact forces of the last evaluation.
+  // Augmented-Lagrangian update: multipliers = the contact forces of the last evaluation; friction bounds = the
+  // coefficient times them, in the tangent planes of the last evaluation.
   void augment();
+  // Whether the friction bounds are within kFrictionBoundTolerance of the coefficient times the normal forces of the
+  // last evaluation (always without friction).
+  bool friction_settled() const;
+  // A load step converged at (u, d): the friction's reference positions and forces become the current ones.
+  void commit_friction(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d);
   // Which top nodes are ahead of each needle in the converged state (u, d): their nearest point on the needle's
   // surface has an outward normal along the direction of motion (under a leading face or its rim), or they are out
   // of reach. Nodes beside the needle (nearest a side wall) are not.
   void update_ahead(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d);
-  // The multipliers of every needle, to restore after a failed step.
-  std::vector<std::vector<double>> multipliers() const;
-  void set_multipliers(const std::vector<std::vector<double>>& multipliers);
+  // The multipliers and friction states of every needle, to restore after a failed step.
+  struct Multipliers {
+    std::vector<std::vector<double>> nodes, edges;
+    std::vector<std::vector<FrictionState>> friction;
+  };
+  Multipliers multipliers() const;
+  void set_multipliers(const Multipliers& multipliers);
   // Number of (node, needle) pairs in contact at the last evaluation and a fingerprint of that set.
   size_t active_set_fingerprint() const;
 
@@ -44,7 +58,14 @@ public:
   // component along the needle's direction.
   double node_force(size_t needle, size_t top_index) const { return needles_[needle].force_now[top_index]; }
   double axial_force(size_t needle, size_t top_index) const {
-    return needles_[needle].force_now[top_index] * needles_[needle].normal_now[top_index].dot(needles_[needle].direction);
+    const NeedleContact& nd = needles_[needle];
+    return (nd.force_now[top_index] * nd.normal_now[top_index] - nd.traction_now[top_index]).dot(nd.direction);
+  }
+  // The tissue's resultant force on a needle at the last evaluation, N: both passes, with friction.
+  Eigen::Vector3d force_on_needle(size_t needle) const;
+  // The second pass's share of it along -direction (the needle's points against the tissue's faces), N.
+  double edge_axial_force(size_t needle) const {
+    return -needles_[needle].edges.force_on_needle().dot(needles_[needle].direction);
   }
   // The smallest element size at the top, m.
   double smallest_size() const { return h_min_; }
@@ -59,10 +80,20 @@ private:
     std::vector<Eigen::Vector3d> normal_now;
     std::vector<char> ahead;        // per top node, under the needle's leading faces at the last converged state
                                     // (see RigidSurfaceDistance::signed_distance)
+    std::vector<FrictionState> friction;         // per top node
+    std::vector<Eigen::Vector3d> traction_now;   // per top node: friction force on the needle, N
+    NeedleEdgeContact edges;                     // the second pass
   };
+  // The node's position in the needle's frame.
+  Eigen::Vector3d relative(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d,
+                           const NeedleContact& nd, size_t t) const {
+    const int a = top_nodes_[t];
+    return nodes[a] + u.segment<3>(3 * a) - d * nd.direction;
+  }
   const std::vector<int>& top_nodes_;
   std::vector<double> stiffness_;  // per top node (index into top_nodes_), N/m
   double h_min_ = 0;
+  double friction_ = 0;            // Coulomb coefficient, >= 0
   std::vector<NeedleContact> needles_;
 };
 

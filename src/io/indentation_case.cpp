@@ -230,6 +230,9 @@ void read_solver(const Section& section, insertion::IndentationCase& c) {
       solver.*parameter.field = static_cast<int>(value);
     }
   }
+  if (const toml::node* node = section.optional("two_pass")) {
+    solver.two_pass = boolean_of(section, *node, "two_pass");
+  }
   if (const toml::node* node = section.optional("predictor")) {
     solver.extrapolate_predictor = choice_of(section, *node, "predictor", kPredictorNames);
   }
@@ -253,7 +256,7 @@ void read_solver(const Section& section, insertion::IndentationCase& c) {
     }
   }
   if (solver.contact != fem::ContactModel::Surface) {  // settings of the surface contact: not silently ignored
-    for (std::string_view key : {"penalty_factor", "penetration_tolerance"}) {
+    for (std::string_view key : {"penalty_factor", "penetration_tolerance", "friction", "two_pass"}) {
       if (const toml::node* node = section.optional(key)) {
         section.fail(*node, key,
                      fmt::format("applies only to [model] contact = \"surface\", but contact = \"{}\"; remove it",
@@ -354,7 +357,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     read_model(*model, result.solver);
   }
   if (const toml::node* node = top.optional("solver")) {
-    std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric"};
+    std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric", "two_pass"};
     for (const auto& parameter : kSolverTolerances) keys.push_back(parameter.key);
     for (const auto& parameter : kSolverCounts) keys.push_back(parameter.key);
     read_solver(top.subsection(*node, "solver", keys), result);

@@ -125,6 +125,20 @@ TEST(IndentationCase, SolverSection) {
   EXPECT_EQ(c.solver.linear_solver, fem::LinearSolver::Cholesky);
   EXPECT_DOUBLE_EQ(c.solver.penalty_factor, 10.0);
   EXPECT_EQ(c.solver.threads, 1);
+  // Friction and the second pass of surface contact (docs/fem_solver.md): read, defaults 0 and off, a negative
+  // coefficient an error naming the key.
+  EXPECT_EQ(c.solver.friction, 0.0);
+  EXPECT_FALSE(c.solver.two_pass);
+  const auto surface = [&](std::string_view lines) {
+    return replaced(with_solver(lines), "contact = \"tip-nodes\"", "contact = \"surface\"");
+  };
+  const auto rough = parse(surface("friction = 0.3\ntwo_pass = true\n"));
+  EXPECT_DOUBLE_EQ(rough.solver.friction, 0.3);
+  EXPECT_TRUE(rough.solver.two_pass);
+  EXPECT_THAT(error_of(surface("friction = -0.1\n")),
+              HasSubstr("case.toml:35: key 'solver.friction': -0.1 is out of range, expected a number >= 0"));
+  EXPECT_THAT(error_of(with_solver("friction = 0.3\n")),
+              HasSubstr("key 'solver.friction': applies only to [model] contact = \"surface\""));
   EXPECT_THAT(error_of(with_solver("residual_tolerance = 1.5\n")),
               HasSubstr("case.toml:35: key 'solver.residual_tolerance': 1.5 is out of range, expected a number in (0, 1)"));
   EXPECT_THAT(error_of(with_solver("volumetric = \"mixed\"\n")),

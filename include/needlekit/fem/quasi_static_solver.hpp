@@ -70,6 +70,9 @@ struct StepResult {
   double assembly_seconds = 0;           // totals of this call
   double solve_seconds = 0;
   double total_seconds = 0;
+  std::vector<Eigen::Vector3d> contact_force;  // N, per needle: the tissue's resultant force on the needle (Surface:
+                                               // normal and friction forces of both passes; TipNodes: -indenter_force
+                                               // along the direction)
 };
 
 // Per-element outputs (one value per tetrahedron, averaged over its quadrature points) for VTU.

@@ -152,6 +152,10 @@ struct SolverOptions {
   double penetration_tolerance = 1e-3;   // (0, 1): augmented-Lagrangian updates until max penetration <= tol *
                                          // max(indenter displacement, smallest contact element size)
   int max_augmentations = 6;             // augmented-Lagrangian updates per step, >= 0 (0: pure penalty)
+  double friction = 0;                   // >= 0: Coulomb coefficient between needle and tissue, regularised (tangential
+                                         // penalty as the normal one; docs/fem_solver.md); 0: frictionless
+  bool two_pass = false;                 // also the needle's sharp edges and vertices against the tissue's faces
+                                         // (docs/fem_solver.md); off: the tissue's nodes against the needle only
 
   // Linear solves (LinearSolver). CholeskyCg: CG gets at most (estimated factorization cost / estimated CG
   // iteration cost) iterations on the last factor, from CHOLMOD's flop count and the factor's size (not timed: runs

@@ -28,7 +28,9 @@
 //              displacement_tolerance (1e-5), energy_tolerance (1e-8), penetration_tolerance (1e-3), all in (0, 1);
 //              max_iterations (0: 25, or 60 with surface contact), max_cutbacks (8); predictor (kPredictorNames below, default "secant");
 //              linear_solver (fem::kLinearSolverNames, default "auto"; "two-grid" with linear elements needs [mesh]
-//              split = true); penalty_factor (100, surface contact); volumetric_stabilization (1, the
+//              split = true); penalty_factor (100, surface contact); friction (0, surface contact: Coulomb's
+//              coefficient); two_pass (false, surface contact: the needle's sharp edges against the tissue's
+//              faces too); volumetric_stabilization (1, the
 //              nodal-averaged volume of linear tetrahedra at poisson_ratio >= 0.45); threads (0 = all cores)
 //   [puncture] critical_pressure (e.g. "0.663 MPa") and/or toughness (e.g. "100 J/m2", also "0.1 kJ/m2", "100 N/m")
 //              or toughness_from = { first = "first.csv", second = "second.csv", crack_area = "6661 um2",
@@ -57,6 +59,8 @@ inline constexpr Parameter<fem::SolverOptions, double> kSolverTolerances[] = {
      "surface contact: augmented-Lagrangian updates until the penetration is below this fraction"},
     {"penalty_factor", &fem::SolverOptions::penalty_factor, 0, kNoLimit, Bound::Open,
      Bound::Open, "surface contact: penalty stiffness per area = factor * E / h"},
+    {"friction", &fem::SolverOptions::friction, 0, kNoLimit, Bound::Closed, Bound::Open,
+     "surface contact: Coulomb friction coefficient between needle and tissue (0: frictionless)"},
     {"volumetric_stabilization", &fem::SolverOptions::volumetric_stabilization, 0, kNoLimit, Bound::Closed,
      Bound::Open, "nodal-averaged volume: the bulk modulus each tetrahedron keeps, in multiples of its shear modulus"},
 };
