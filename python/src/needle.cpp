@@ -76,7 +76,7 @@ void bind_needle(py::module_& m) {
   m.def("material_preset", &materials::material_preset, py::arg("name"), py::arg("what") = "material",
         "A needle material preset by name (case-insensitive).");
 
-  using mesh::TissueLayer;
+  using materials::TissueLayer;
   py::class_<TissueLayer> layer(m, "TissueLayer", "One tissue layer and its linear-elastic constants (SI).");
   def_keyword_init<TissueLayer>(layer);
   layer.def_readwrite("name", &TissueLayer::name);
