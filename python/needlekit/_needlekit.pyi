@@ -3382,6 +3382,11 @@ class SolverOptions:
     @energy_tolerance.setter
     def energy_tolerance(self, value: Any) -> None: ...
     @property
+    def friction(self) -> float:
+        """>= 0: Coulomb coefficient (surface contact)"""
+    @friction.setter
+    def friction(self, value: Any) -> None: ...
+    @property
     def law(self) -> MaterialLaw:
         ...
     @law.setter
@@ -3428,6 +3433,11 @@ class SolverOptions:
     def threads(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
+    @property
+    def two_pass(self) -> bool:
+        """surface contact: the needle's sharp edges against the tissue's faces too"""
+    @two_pass.setter
+    def two_pass(self, value: Any) -> None: ...
     @property
     def volumetric_stabilization(self) -> float:
         """>= 0: with the nodal-averaged volume, the bulk modulus each tetrahedron keeps, in multiples of its shear modulus"""
