@@ -153,6 +153,15 @@ set(NEEDLEKIT_GMSH_SOURCES
   src/mesh/gmsh/msh_read_gmsh.cpp
 )
 
+set(NEEDLEKIT_PETSC_SOURCES
+  src/fem/petsc/parallel_session.cpp
+  src/fem/petsc/petsc_linear_solve.cpp
+)
+
+set(NEEDLEKIT_SERIAL_SESSION_SOURCES
+  src/fem/serial_session.cpp
+)
+
 set(NEEDLEKIT_CLI_SOURCES
   apps/needlekit/blas_kernels.cpp
   apps/needlekit/child_process.cpp
@@ -286,6 +295,10 @@ set(NEEDLEKIT_EXAMPLE_TEST_SOURCES
   tests/example/test_uncertainty_cli.cpp
   tests/example/test_uncertainty_fe_cli.cpp
   tests/example/test_uncertainty_patch_cli.cpp
+)
+
+set(NEEDLEKIT_MPI_TEST_SOURCES
+  tests/mpi/test_petsc_backend.cpp
 )
 
 set(NEEDLEKIT_BENCH_SOURCES

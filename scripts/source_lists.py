@@ -11,15 +11,19 @@ import pathlib
 import re
 import sys
 
-# CMake variable -> (folder, recursive, files left out)
+# CMake variable -> (folder or single file, recursive, files left out)
 LISTS = {
-    "NEEDLEKIT_LIBRARY_SOURCES": ("src", True, ("src/mesh/gmsh/",)),
+    "NEEDLEKIT_LIBRARY_SOURCES": ("src", True, ("src/mesh/gmsh/", "src/fem/petsc/", "src/fem/serial_session.cpp")),
     "NEEDLEKIT_GMSH_SOURCES": ("src/mesh/gmsh", False, ()),
+    # The FE solver's PETSc backend (NEEDLEKIT_WITH_PETSC) or, without it, the one-process session.
+    "NEEDLEKIT_PETSC_SOURCES": ("src/fem/petsc", False, ()),
+    "NEEDLEKIT_SERIAL_SESSION_SOURCES": ("src/fem/serial_session.cpp", False, ()),
     "NEEDLEKIT_CLI_SOURCES": ("apps/needlekit", False, ()),
     "NEEDLEKIT_UNIT_TEST_SOURCES": ("tests/unit", True, ()),
     "NEEDLEKIT_VERIFICATION_TEST_SOURCES": ("tests/verification", True, ()),
     "NEEDLEKIT_REGRESSION_TEST_SOURCES": ("tests/regression", True, ()),
     "NEEDLEKIT_EXAMPLE_TEST_SOURCES": ("tests/example", True, ()),
+    "NEEDLEKIT_MPI_TEST_SOURCES": ("tests/mpi", True, ()),
     "NEEDLEKIT_BENCH_SOURCES": ("bench", False, ()),
     "NEEDLEKIT_FUZZ_TARGET_SOURCES": ("fuzz", False, ("fuzz/replay_main.cpp",)),
     "NEEDLEKIT_PYTHON_SOURCES": ("python/src", False, ()),
@@ -31,7 +35,10 @@ def on_disk(source_dir):
     lists = {}
     for name, (folder, recursive, left_out) in LISTS.items():
         root = source_dir / folder
-        found = root.rglob("*.cpp") if recursive else root.glob("*.cpp")
+        if root.is_file():
+            found = [root]
+        else:
+            found = root.rglob("*.cpp") if recursive else root.glob("*.cpp")
         files = sorted(p.relative_to(source_dir).as_posix() for p in found)
         lists[name] = [f for f in files if not any(f.startswith(x) for x in left_out)]
     return lists

@@ -14,6 +14,7 @@
 #include "file_format_help.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/fem/parallel_session.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/scale_warnings.hpp"
@@ -84,7 +85,8 @@ void run_indent(const IndentArguments& arguments) {
   print_warnings(io::indentation_scale_warnings(indentation_case));
 
   std::optional<io::IndentationWriter> writer;
-  if (!arguments.out_dir.empty()) {
+  // Under mpirun every rank runs the case; rank 0 alone writes the files.
+  if (!arguments.out_dir.empty() && fem::process_rank() == 0) {
     writer.emplace(arguments.out_dir, indentation_case);
     writer->write_view(viewer_sources());
   }

@@ -5,12 +5,14 @@
 // check with needlekit::Interrupted, every file it wrote complete), 1 an unexpected internal error.
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <exception>
 
 #include "blas_kernels.hpp"
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/fem/parallel_session.hpp"
 
 namespace {
 
@@ -27,11 +29,19 @@ int report_error(std::string_view kind, std::string_view message, int exit_code)
 
 int main(int argc, char** argv) {
   needlekit::cli::use_avx2_blas_kernels(argc, argv);  // may re-execute the program, so before anything else
+  // MPI under mpirun (before anything else that could run in parallel) and PETSc's -ksp_*/-pc_* options out of argv.
+  needlekit::fem::ParallelSession parallel_session(argc, argv);
+  if (needlekit::fem::process_rank() != 0) {  // every rank runs the same command: rank 0 alone prints
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+  }
   needlekit::install_interrupt_handlers();  // a signal from now on stops the command cleanly
   CLI::App app{"needlekit: design and analysis of microneedle arrays (P. Boonma, NC State 2012). Every dimensional "
                "input carries its unit (\"70 um\", \"169 GPa\").",
                "needlekit"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", fmt::format("needlekit {} (FE linear-solve backends: {})", NEEDLEKIT_VERSION,
+                                                needlekit::fem::compiled_backend_names()));
   needlekit::cli::add_evaluate_command(app);
   needlekit::cli::add_optimize_command(app);
   needlekit::cli::add_sweep_command(app);

@@ -1,13 +1,17 @@
 #include "linear_solve.hpp"
 
 #include "cholesky_solve.hpp"
+#if NEEDLEKIT_WITH_PETSC
+#include "petsc/petsc_backend.hpp"
+#endif
 #include "split_preconditioned_solve.hpp"
 #include "two_grid_solve.hpp"
 
 namespace needlekit::fem::detail {
 
-TangentLayout tangent_layout(LinearSolver solver, bool nodal_average) {
+TangentLayout tangent_layout(SolverBackend backend, LinearSolver solver, bool nodal_average) {
   TangentLayout layout;
+  if (backend == SolverBackend::Petsc) return layout;
   layout.patch_term_in_product = nodal_average && solver == LinearSolver::TwoGrid;
   layout.one_ring_preconditioner = nodal_average && solver == LinearSolver::CholeskyCg;
   return layout;
@@ -15,6 +19,9 @@ TangentLayout tangent_layout(LinearSolver solver, bool nodal_average) {
 
 std::unique_ptr<LinearSolve> make_linear_solve(LinearSolver solver, TangentMatrix& matrix, const TangentInputs& inputs,
                                                const SolverOptions& options, tbb::task_arena& arena) {
+#if NEEDLEKIT_WITH_PETSC
+  if (options.backend == SolverBackend::Petsc) return make_petsc_linear_solve(matrix, inputs, options);
+#endif
   if (solver == LinearSolver::TwoGrid) return std::make_unique<TwoGridSolve>(matrix, inputs, options, arena);
   if (matrix.splits_preconditioner()) return std::make_unique<SplitPreconditionedSolve>(matrix, options);
   return std::make_unique<CholeskySolve>(matrix, options, solver == LinearSolver::CholeskyCg);

@@ -29,11 +29,12 @@ public:
   virtual double factor_flops() const = 0;
 };
 
-// How the tangent must store the nodal average's patch term for `solver` (tangent_matrix.hpp).
-TangentLayout tangent_layout(LinearSolver solver, bool nodal_average);
+// How the tangent must store the nodal average's patch term for `solver` (tangent_matrix.hpp); the PETSc backend
+// takes K itself, patch term included.
+TangentLayout tangent_layout(SolverBackend backend, LinearSolver solver, bool nodal_average);
 
-// The strategy of `solver` (resolved: not Automatic) on `matrix`, laid out by tangent_layout(solver, ...).
-// TwoGrid needs inputs.coarse.
+// The strategy of options.backend and `solver` (resolved: not Automatic; the built-in backend's) on `matrix`, laid
+// out by tangent_layout(options.backend, solver, ...). TwoGrid needs inputs.coarse.
 std::unique_ptr<LinearSolve> make_linear_solve(LinearSolver solver, TangentMatrix& matrix, const TangentInputs& inputs,
                                                const SolverOptions& options, tbb::task_arena& arena);
 

@@ -335,11 +335,11 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   if (solver == LinearSolver::Automatic)
     solver = coarse || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;
   m.solver = solver;
-  const detail::TangentInputs inputs{m.space.connectivity, m.space.nodes_per_element, nnode, m.dofs.free_index,
-                                     m.space.colouring.elements, m.nodal.get(),
+  const detail::TangentInputs inputs{m.space.connectivity, m.space.nodes_per_element, nnode, m.space.nodes,
+                                     m.dofs.free_index, m.space.colouring.elements, m.nodal.get(),
                                      m.space.nodes_per_element == 10 ? &m.space.corners : coarse};
-  m.tangent =
-      std::make_unique<detail::TangentMatrix>(inputs, detail::tangent_layout(solver, m.nodal != nullptr), m.arena);
+  m.tangent = std::make_unique<detail::TangentMatrix>(
+      inputs, detail::tangent_layout(o.backend, solver, m.nodal != nullptr), m.arena);
   m.linear_solve = detail::make_linear_solve(solver, *m.tangent, inputs, m.opt, m.arena);
 
   m.u = Eigen::VectorXd::Zero(m.ndof);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/fem/parallel_session.hpp"
 #include "needlekit/fem/solver_options.hpp"
 
 namespace needlekit::fem {
@@ -13,6 +14,7 @@ std::string to_string(ContactModel contact) { return std::string(name_of(kContac
 std::string to_string(LinearSolver solver) { return std::string(name_of(kLinearSolverNames, solver)); }
 std::string to_string(BoundaryCondition c) { return std::string(name_of(kBoundaryConditionNames, c)); }
 std::string to_string(VolumetricFormulation f) { return std::string(name_of(kVolumetricFormulationNames, f)); }
+std::string to_string(SolverBackend b) { return std::string(name_of(kSolverBackendNames, b)); }
 
 MaterialLaw material_law_from_string(const std::string& t, const std::string& what) {
   if (t == "st-venant-kirchhoff") return MaterialLaw::StVenantKirchhoff;  // the long name, kept as an alias
@@ -75,6 +77,9 @@ void SolverOptions::validate() const {
   check(volumetric_stabilization >= 0 && std::isfinite(volumetric_stabilization), "volumetric_stabilization",
         volumetric_stabilization, ">= 0");
   check(two_grid_refresh_iterations >= 1, "two_grid_refresh_iterations", two_grid_refresh_iterations, ">= 1");
+  if (!backend_compiled(backend))
+    throw InvalidInput("solver backend = \"" + to_string(backend) + "\": this build has no such backend, expected " +
+                       compiled_backend_names() + " (PETSc: configure with -DNEEDLEKIT_WITH_PETSC=ON)");
   if (volumetric == VolumetricFormulation::NodalAverage) {
     if (law != MaterialLaw::NeoHookean)
       throw InvalidInput("solver volumetric = \"nodal-average\" averages the neo-Hookean law's volumetric term: "

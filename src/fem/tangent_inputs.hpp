@@ -2,6 +2,7 @@
 // their preconditioners are built from: the mesh's elements, the free-dof numbering, the nodal volume average and
 // the coarse level.
 #pragma once
+#include <Eigen/Core>
 #include <vector>
 
 #include "needlekit/mesh/coarse_level.hpp"
@@ -15,6 +16,7 @@ struct TangentInputs {
   const std::vector<int>& connectivity;    // nodes_per_element node indices per element
   int nodes_per_element = 4;               // 4 or 10
   int node_count = 0;
+  const std::vector<Eigen::Vector3d>& nodes;  // m, the reference positions (the PETSc backend's rigid-body modes)
   const std::vector<int>& free_index;      // per dof: its free index, or -1 if prescribed
   // Every element once, in the order the assembly visits them (ElementColouring::elements); the slot table is stored
   // in that order, so the assembly reads it front to back.

@@ -1,5 +1,6 @@
 #include "needlekit/io/indentation_case.hpp"
 
+#include "needlekit/fem/parallel_session.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
@@ -242,6 +243,15 @@ void read_solver(const Section& section, insertion::IndentationCase& c) {
   if (const toml::node* node = section.optional("volumetric")) {
     solver.volumetric = choice_of(section, *node, "volumetric", fem::kVolumetricFormulationNames);
   }
+  if (const toml::node* node = section.optional("backend")) {
+    solver.backend = choice_of(section, *node, "backend", fem::kSolverBackendNames);
+    if (!fem::backend_compiled(solver.backend)) {
+      section.fail(*node, "backend",
+                   fmt::format("\"{}\" is not in this build, expected {} (PETSc: configure with "
+                               "-DNEEDLEKIT_WITH_PETSC=ON)",
+                               fem::to_string(solver.backend), fem::compiled_backend_names()));
+    }
+  }
   if (const toml::node* node = section.optional("volumetric_stabilization")) {  // not silently ignored either
     if (!fem::nodal_average_possible(solver)) {
       section.fail(*node, "volumetric_stabilization",
@@ -357,7 +367,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     read_model(*model, result.solver);
   }
   if (const toml::node* node = top.optional("solver")) {
-    std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric", "two_pass"};
+    std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric", "two_pass", "backend"};
     for (const auto& parameter : kSolverTolerances) keys.push_back(parameter.key);
     for (const auto& parameter : kSolverCounts) keys.push_back(parameter.key);
     read_solver(top.subsection(*node, "solver", keys), result);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/fem/parallel_session.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/mesh/tet_count_estimate.hpp"
@@ -157,6 +158,21 @@ TEST(IndentationCase, SolverSection) {
               HasSubstr("expected one of: \"auto\" | \"two-grid\" | \"cholesky-cg\" | \"cholesky\""));
   EXPECT_THAT(error_of(with_solver("tolerance = 1e-6\n")),
               HasSubstr("unknown key 'solver.tolerance'"));
+}
+
+// [solver] backend: "builtin" always; "petsc" only in a build with the PETSc backend, else an error naming the key.
+TEST(IndentationCase, SolverBackend) {
+  const std::string with_backend = std::string(kCase) + "\n[solver]\nbackend = \"petsc\"\n";
+  if (fem::backend_compiled(fem::SolverBackend::Petsc)) {
+    EXPECT_EQ(parse(with_backend).solver.backend, fem::SolverBackend::Petsc);
+  } else {
+    EXPECT_THAT(error_of(with_backend),
+                HasSubstr("key 'solver.backend': \"petsc\" is not in this build, expected builtin"));
+  }
+  EXPECT_EQ(parse(std::string(kCase) + "\n[solver]\nbackend = \"builtin\"\n").solver.backend,
+            fem::SolverBackend::Builtin);
+  EXPECT_THAT(error_of(std::string(kCase) + "\n[solver]\nbackend = \"mpi\"\n"),
+              HasSubstr("expected one of: \"builtin\" | \"petsc\""));
 }
 
 // [solver] volumetric_stabilization applies to the nodal-averaged volume only: an error wherever it cannot act.

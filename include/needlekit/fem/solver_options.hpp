@@ -28,6 +28,11 @@ enum class LinearSolver {
                // level): memory and time per iteration linear in the mesh size. Linear elements need a coarse level;
                // quadratic ones use their corner nodes as the coarse level
 };
+// Where the linear solves run (docs/fem_solver.md, "PETSc backend").
+enum class SolverBackend {
+  Builtin,  // this library's solves (LinearSolver), one process with threads
+  Petsc,    // PETSc's CG with algebraic multigrid (GAMG) across MPI ranks; only in a build with NEEDLEKIT_WITH_PETSC
+};
 // How the volumetric part of the neo-Hookean law is integrated on linear tetrahedra.
 enum class VolumetricFormulation {
   Automatic,     // NodalAverage for linear tetrahedra of layers with poisson_ratio >= kNearlyIncompressible under the
@@ -67,6 +72,10 @@ inline constexpr EnumTable<LinearSolver, 4> kLinearSolverNames{{
     {LinearSolver::CholeskyCg, "cholesky-cg", "CG preconditioned by the last CHOLMOD factorization"},
     {LinearSolver::Cholesky, "cholesky", "a fresh CHOLMOD factorization per Newton iteration"},
 }};
+inline constexpr EnumTable<SolverBackend, 2> kSolverBackendNames{{
+    {SolverBackend::Builtin, "builtin", "this library's linear solves (linear_solver), one process"},
+    {SolverBackend::Petsc, "petsc", "PETSc's CG + GAMG across MPI ranks (mpirun -np N); -ksp_*/-pc_* options apply"},
+}};
 inline constexpr EnumTable<BoundaryCondition, 6> kBoundaryConditionNames{{
     {BoundaryCondition::SidesAndBottomFixed, "sides-and-bottom-fixed", "§3.4: the four sides and the bottom fixed"},
     {BoundaryCondition::BottomFixed, "bottom-fixed", "the bottom fixed, the sides free"},
@@ -92,6 +101,7 @@ std::string to_string(ContactModel contact);
 std::string to_string(LinearSolver solver);
 std::string to_string(BoundaryCondition condition);
 std::string to_string(VolumetricFormulation formulation);
+std::string to_string(SolverBackend backend);
 // Parse the names of the tables above; throw InvalidInput naming `what` and the accepted names.
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");
@@ -165,7 +175,8 @@ struct SolverOptions {
   // solution on the last 12 solutions (Krylov recycling). With the nodal-averaged volume, CholeskyCg factorizes a
   // one-ring matrix that bounds the tangent from above, not the two-ring tangent itself, and CG always runs
   // (docs/fem_solver.md); Cholesky factorizes the tangent itself.
-  LinearSolver linear_solver = LinearSolver::Automatic;
+  LinearSolver linear_solver = LinearSolver::Automatic;   // the built-in backend's strategy
+  SolverBackend backend = SolverBackend::Builtin;         // Petsc: linear_solver is not used
   int two_grid_refresh_iterations = 25;  // >= 1: see above
   int max_reuse_iterations = 40;         // >= 1: cap on the CG iterations of one solve
   double linear_tolerance = 1e-10;       // (0, 1): tightest CG relative residual. Inexact Newton: CG stops at the

@@ -1,0 +1,71 @@
+// The PETSc backend (docs/fem_solver.md, "PETSc backend") against the built-in one: the same load steps give the same
+// needle forces to 1e-6. tests/CMakeLists.txt runs this executable on one process and under mpirun -np 2; on two
+// ranks every rank runs both backends (the Newton loop is replicated) and checks.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "../verification/fem_test_support.hpp"
+#include "needlekit/core/errors.hpp"
+#include "needlekit/fem/parallel_session.hpp"
+#include "needlekit/fem/quasi_static_solver.hpp"
+
+namespace needlekit::fem {
+namespace {
+
+constexpr double kA = 100e-6;   // m, punch radius
+constexpr double kE = 10e3;     // Pa
+
+// Forces of a quarter flat punch pressed to 10 % of its radius in two steps.
+std::vector<double> punch_forces(SolverOptions options, double poisson_ratio) {
+  const auto mesh = test_support::quarter_punch_block(kA, 10 * kA, 2, kE, poisson_ratio);
+  options.boundary = BoundaryCondition::QuarterSymmetry;
+  options.threads = 1;  // two ranks share this machine's cores
+  options.residual_tolerance = 1e-9;  // both backends converge far below the compared digits
+  const auto needle = test_support::placed_needle(test_support::flat_cylinder(kA, 300e-6), -5 * kA, -5 * kA, 0, 64);
+  QuasiStaticSolver solver(mesh, {{needle, {0, 0, -1}}}, options);
+  std::vector<double> forces;
+  for (const double depth : {0.05 * kA, 0.1 * kA}) {
+    const StepResult step = solver.advance_to(depth);
+    EXPECT_TRUE(step.converged) << step.reason;
+    forces.push_back(step.indenter_force[0]);
+  }
+  return forces;
+}
+
+void expect_same_forces(const SolverOptions& options, double poisson_ratio) {
+  SolverOptions petsc = options;
+  petsc.backend = SolverBackend::Petsc;
+  const std::vector<double> builtin_forces = punch_forces(options, poisson_ratio);
+  const std::vector<double> petsc_forces = punch_forces(petsc, poisson_ratio);
+  ASSERT_EQ(builtin_forces.size(), petsc_forces.size());
+  for (size_t k = 0; k < builtin_forces.size(); ++k) {
+    EXPECT_GT(builtin_forces[k], 0);
+    EXPECT_NEAR(petsc_forces[k], builtin_forces[k], 1e-6 * builtin_forces[k])
+        << "step " << k << " on " << process_count() << " rank(s)";
+  }
+}
+
+TEST(PetscBackend, GivesTheBuiltInForcesWithLinearElements) {
+  expect_same_forces(SolverOptions{}, 0.4);  // St Venant-Kirchhoff
+}
+
+TEST(PetscBackend, GivesTheBuiltInForcesWithTheNodalAveragedVolume) {
+  SolverOptions options;  // neo-Hookean at nu = 0.49: the nodal average's two-ring tangent
+  options.law = MaterialLaw::NeoHookean;
+  expect_same_forces(options, 0.49);
+}
+
+TEST(PetscBackend, IsCompiledIn) {
+  EXPECT_TRUE(backend_compiled(SolverBackend::Petsc));
+  EXPECT_EQ(compiled_backend_names(), "builtin, petsc");
+}
+
+}  // namespace
+}  // namespace needlekit::fem
+
+int main(int argc, char** argv) {
+  needlekit::fem::ParallelSession session(argc, argv);  // MPI first under mpirun
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
