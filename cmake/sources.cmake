@@ -191,6 +191,7 @@ set(NEEDLEKIT_CLI_SOURCES
   apps/needlekit/reproduce_section_6_2_calibrated.cpp
   apps/needlekit/reproduce_section_6_3.cpp
   apps/needlekit/reproduce_section_6_4.cpp
+  apps/needlekit/reproduce_section_arrays.cpp
   apps/needlekit/reproduce_section_uncertainty.cpp
   apps/needlekit/resources_root.cpp
   apps/needlekit/serve_api.cpp
@@ -344,6 +345,7 @@ set(NEEDLEKIT_PYTHON_SOURCES
   python/src/mesh.cpp
   python/src/module.cpp
   python/src/needle.cpp
+  python/src/needle_array.cpp
   python/src/patch.cpp
   python/src/uncertainty.cpp
   python/src/uncertainty_patch_and_fe.cpp

@@ -200,6 +200,8 @@ void run_reproduce(const ReproduceArguments& arguments) {
     context.check_interrupt();
     sections.push_back(run_section("uncertainty", reproduce::section_uncertainty, context));
     context.check_interrupt();
+    sections.push_back(run_section("arrays", reproduce::section_arrays, context));
+    context.check_interrupt();
 
     nlohmann::json results = {
         {"title", "Dissertation Chapter 6 reproduced by needlekit"},

@@ -20,6 +20,8 @@ SectionReport section_6_3(const RunContext& context, const SectionProgress& prog
 SectionReport section_6_4(const RunContext& context, const SectionProgress& progress);  // reproduce_section_6_4.cpp
 // Beyond the dissertation: uncertainty and robust design (issue 15), reproduce_section_uncertainty.cpp.
 SectionReport section_uncertainty(const RunContext& context, const SectionProgress& progress);
+// Beyond the dissertation: a needle array (issue 36), reproduce_section_arrays.cpp.
+SectionReport section_arrays(const RunContext& context, const SectionProgress& progress);
 
 // The input files a section needs (checked before the run starts, so that a missing file fails at once).
 std::vector<std::filesystem::path> section_6_4_mesh_files(const RunContext& context);

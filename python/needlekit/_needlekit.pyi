@@ -45,6 +45,66 @@ class ArrayDesign:
     @width.setter
     def width(self, value: Any) -> None: ...
 
+class ArrayLayout:
+    """How the needles of an array are placed ([array] layout).
+
+Members:
+
+  Square
+
+  Hexagonal"""
+    Square: ClassVar[ArrayLayout]
+    Hexagonal: ClassVar[ArrayLayout]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
+class ArrayOutcome:
+    """The totals of an array run (Larrañeta et al. 2014's penetrated fraction)."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def first_puncture_travel(self) -> Optional[float]:
+        """m: the plate's travel when the first needle punctured, None if none did"""
+    @property
+    def inserted_depth_spread(self) -> float:
+        """m, standard deviation"""
+    @property
+    def mean_inserted_depth(self) -> float:
+        """m, over every needle, last step"""
+    @property
+    def mean_penetrated_fraction(self) -> float:
+        """[0, 1]: mean inserted depth / the needle's length"""
+    @property
+    def plate_travel(self) -> numpy.ndarray:
+        """m, per step: the needles' (and the plate's) common displacement"""
+    @property
+    def punctured_fraction(self) -> numpy.ndarray:
+        """[0, 1], per step: the needles punctured so far"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class ArraySymmetry:
+    """The reduced model an array's symmetry allows ([array] symmetry).
+
+Members:
+
+  None_
+
+  Half
+
+  Quarter"""
+    None_: ClassVar[ArraySymmetry]
+    Half: ClassVar[ArraySymmetry]
+    Quarter: ClassVar[ArraySymmetry]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class BoundaryCondition:
     """Members:
 
@@ -1495,6 +1555,11 @@ class IndentationCase:
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
+    def array(self) -> Optional[NeedleArray]:
+        """a NeedleArray: `needles` then holds the whole array"""
+    @array.setter
+    def array(self, value: Any) -> None: ...
+    @property
     def block(self) -> LayeredBlockOptions:
         ...
     @block.setter
@@ -1584,6 +1649,9 @@ class IndentationResult:
     def __init__(*args, **kwargs) -> Any:
         """Initialize self.  See help(type(self)) for accurate signature."""
     @property
+    def array(self) -> Optional[ArrayOutcome]:
+        """an ArrayOutcome for an array case, else None"""
+    @property
     def contact_pressure(self) -> numpy.ndarray:
         """Pa"""
     @property
@@ -1601,6 +1669,9 @@ class IndentationResult:
     @property
     def mesh_seconds(self) -> float:
         """s"""
+    @property
+    def needles(self) -> List[NeedleOutcome]:
+        """one NeedleOutcome per needle (of the whole array)"""
     @property
     def nodes(self) -> int:
         ...
@@ -1973,6 +2044,48 @@ class MeasuredPuncture:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class NeedleArray:
+    """A needle array: the case's needle repeated on a grid, all needles moving together (docs/arrays.md). Needle k = row * columns + column, centred on the block."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def backing_plate(self) -> bool:
+        """a rigid plate at the needles' base (the patch)"""
+    @backing_plate.setter
+    def backing_plate(self, value: Any) -> None: ...
+    @property
+    def columns(self) -> int:
+        """[1, 100]: needles along x"""
+    @columns.setter
+    def columns(self, value: Any) -> None: ...
+    @property
+    def layout(self) -> ArrayLayout:
+        ...
+    @layout.setter
+    def layout(self, value: Any) -> None: ...
+    @property
+    def margin(self) -> float:
+        """m, >= 0: tissue beyond the footprint on every side when the block's size is not given"""
+    @margin.setter
+    def margin(self, value: Any) -> None: ...
+    @property
+    def pitch(self) -> float:
+        """m, > 0: centre distance of neighbouring needles, at least the needle's base diameter"""
+    @pitch.setter
+    def pitch(self, value: Any) -> None: ...
+    @property
+    def rows(self) -> int:
+        """[1, 100]: needles along y"""
+    @rows.setter
+    def rows(self, value: Any) -> None: ...
+    @property
+    def symmetry(self) -> ArraySymmetry:
+        ...
+    @symmetry.setter
+    def symmetry(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class NeedleEvaluationOptions:
     ...
     def __init__(self, **kwargs) -> None:
@@ -2076,6 +2189,31 @@ class NeedleMeshOptions:
         """>= 8"""
     @circumferential_segments.setter
     def circumferential_segments(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
+class NeedleOutcome:
+    """One needle of an indentation run (of the whole array), per step."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def depth(self) -> numpy.ndarray:
+        """m, per step: the tip below the undeformed surface"""
+    @property
+    def force(self) -> numpy.ndarray:
+        """N, per step"""
+    @property
+    def inserted_depth(self) -> float:
+        """m: travel beyond its puncture depth at the last step (0 when not punctured)"""
+    @property
+    def position(self) -> numpy.ndarray:
+        """m, (x, y) of the tip's centre"""
+    @property
+    def puncture(self) -> Optional[PuncturePoint]:
+        """its own puncture point, None if it did not puncture"""
+    @property
+    def puncture_step(self) -> int:
+        """the step (from 1) it punctured in; 0: not"""
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
@@ -3929,6 +4067,9 @@ class WalkMethod:
 
 def _evaluate_many(shape: handle, needles_per_row: handle, tip_diameter: handle, base_diameter: handle, bore_diameter: handle, length: handle, width: handle, angle: handle, target_depth: handle, material: handle, tissue: handle, options: PerformanceIndexOptions) -> dict:
     """The compiled part of needlekit.evaluate_many (which documents the arguments)."""
+
+def array_positions(array: NeedleArray) -> List[numpy.ndarray]:
+    """m: the (x, y) of every needle's tip centre."""
 
 def brain_puncture_model() -> PunctureModel:
     ...

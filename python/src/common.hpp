@@ -31,6 +31,8 @@ void bind_analysis(py::module_& m);
 void bind_evaluate_many(py::module_& m);
 void bind_geometry(py::module_& m);
 void bind_mesh(py::module_& m);
+void bind_needle_array(py::module_& m);
+void bind_needle_outcomes(py::module_& m);  // after PuncturePoint, before IndentationResult (bind_insertion)
 void bind_insertion(py::module_& m);
 void bind_patch(py::module_& m);
 void bind_calibration(py::module_& m);

@@ -34,6 +34,7 @@ void bind_indentation(py::module_& m) {
   def_quantity(point, "depth", &PuncturePoint::depth, Dimension::Length, "m");
   def_quantity(point, "force", &PuncturePoint::force, Dimension::Force, "N");
   point.def_readwrite("criterion", &PuncturePoint::criterion);
+  bind_needle_outcomes(m);
   py::class_<ForceDepthCurve>(m, "ForceDepthCurve", "Samples of depth (m) and force (N).")
       .def(py::init([](py::handle depth, py::handle force) {
              return ForceDepthCurve{values_from(depth, "depth"), values_from(force, "force")};
@@ -111,6 +112,7 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("needle", &IndentationCase::needle)
       .def_readwrite("geometry", &IndentationCase::geometry)
       .def_readwrite("needles", &IndentationCase::needles)
+      .def_readwrite("array", &IndentationCase::array, "a NeedleArray: `needles` then holds the whole array")
       .def_readwrite("block", &IndentationCase::block)
       .def_readwrite("tissue_mesh", &IndentationCase::tissue_mesh)
       .def_readwrite("steps", &IndentationCase::steps)
@@ -154,6 +156,8 @@ void bind_indentation(py::module_& m) {
       .def_readonly("reason", &IndentationResult::reason)
       .def_readonly("steps", &IndentationResult::steps)
       .def_readonly("puncture", &IndentationResult::puncture)
+      .def_readonly("needles", &IndentationResult::needles, "one NeedleOutcome per needle (of the whole array)")
+      .def_readonly("array", &IndentationResult::array, "an ArrayOutcome for an array case, else None")
       .def_readonly("elements", &IndentationResult::elements)
       .def_readonly("nodes", &IndentationResult::nodes)
       .def_readonly("dofs", &IndentationResult::dofs)

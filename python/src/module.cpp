@@ -17,6 +17,7 @@ PYBIND11_MODULE(_needlekit, m) {
   nk::bind_analysis(m);
   nk::bind_evaluate_many(m);
   nk::bind_mesh(m);
+  nk::bind_needle_array(m);
   nk::bind_insertion(m);
   nk::bind_patch(m);
   nk::bind_calibration(m);

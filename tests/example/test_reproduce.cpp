@@ -60,6 +60,7 @@ protected:
   static void report_is_self_contained_with_every_figure();
   static void numbers_agree_to_the_printed_digits();
   static void table_6_3_shows_both_pitches();
+  static void array_section_shows_the_bed_of_nails();
 
   static fs::path* dir_;
   static CliRun* run_;
@@ -167,6 +168,30 @@ void Reproduce::table_6_3_shows_both_pitches() {
             1.5 * compat["best"]["performance_index_per_um"].get<double>());
 }
 
+// The array section (beyond the dissertation): every needle of the 3 x 3 patch in the table, all of them punctured
+// by the end, and the closer the needles the further the plate travels to the first puncture.
+void Reproduce::array_section_shows_the_bed_of_nails() {
+  const nlohmann::json run = results();
+  const nlohmann::json* arrays = nullptr;
+  for (const auto& section : run["sections"]) {
+    if (section["id"] == "arrays") arrays = &section;
+  }
+  ASSERT_NE(arrays, nullptr);
+  ASSERT_EQ((*arrays)["status"], "ok") << (*arrays).value("reason", "");
+  const nlohmann::json& needles = (*arrays)["tables"][0];
+  ASSERT_EQ(needles["rows"].size(), 9u);
+  for (const auto& row : needles["rows"]) EXPECT_GT(row[4].get<int>(), 0) << row;  // puncture_step
+  const nlohmann::json& sweep = (*arrays)["tables"][1];
+  ASSERT_EQ(sweep["columns"][1], "first_puncture_travel_um");
+  double previous = 0;
+  for (const auto& row : sweep["rows"]) {  // pitches from the widest to the closest
+    ASSERT_TRUE(row[1].is_number()) << row;
+    EXPECT_GE(row[1].get<double>(), previous) << row;
+    previous = row[1].get<double>();
+  }
+  EXPECT_GT(previous, sweep["rows"][0][1].get<double>());
+}
+
 // One test for the whole quick run (CTest runs every test in its own process: one run, not one per check).
 TEST_F(Reproduce, QuickRunWritesTheReportAndReproducesThePublishedNumbers) {
   ASSERT_EQ(run_->exit_code, 0) << run_->err;
@@ -181,6 +206,10 @@ TEST_F(Reproduce, QuickRunWritesTheReportAndReproducesThePublishedNumbers) {
   {
     SCOPED_TRACE("Table 6.3");
     table_6_3_shows_both_pitches();
+  }
+  {
+    SCOPED_TRACE("arrays");
+    array_section_shows_the_bed_of_nails();
   }
 }
 
