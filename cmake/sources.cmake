@@ -73,6 +73,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/insertion/puncture_criteria.cpp
   src/insertion/triangle_classification.cpp
   src/io/array_output.cpp
+  src/io/complete_insertion_output.cpp
   src/io/design_config.cpp
   src/io/design_evaluation.cpp
   src/io/fe_uncertainty_config.cpp

@@ -18,6 +18,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
+#include "needlekit/io/complete_insertion_output.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/insertion_output.hpp"
@@ -63,7 +64,8 @@ std::string plot_script() {
   return std::string(NEEDLEKIT_SCRIPTS_DIR) + "/plot_force_curve.py";
 }
 
-void run_insert(const InsertArguments& arguments) {
+// The case file with the command line's overrides of the mesh and the steps.
+io::InsertionCase read_case(const InsertArguments& arguments) {
   io::InsertionCase c = io::read_insertion_case(arguments.case_path);
   insertion::IndentationCase& indentation_case = c.indentation;
   if (!arguments.size_at_tip.empty()) {
@@ -76,6 +78,90 @@ void run_insert(const InsertArguments& arguments) {
   if (arguments.steps > 0) indentation_case.steps = arguments.steps;
   indentation_case.stop_at_puncture = true;
   insertion::validate(indentation_case);
+  return c;
+}
+
+// The outputs: the JSON always; the CSV and the plot when the curve has samples (the FE converged at least one step);
+// the 3D view when the FE ran. All are staged and renamed together: on a plot failure or an interrupt none is
+// written. Adds "files" and "view" to `json`; returns the view page's path, or empty without a view.
+std::filesystem::path write_outputs(const InsertArguments& arguments, const io::InsertionCase& c,
+                                    const insertion::CompleteInsertionResult& result,
+                                    const std::optional<io::IndentationView>& view, const io::ViewerFiles& viewer,
+                                    nlohmann::json& json) {
+  const std::string& name = c.indentation.name;
+  const insertion::InsertionCurve& curve = result.curve;
+  const std::filesystem::path dir(arguments.out_dir);
+  const std::filesystem::path csv_path = dir / (name + "_insertion.csv");
+  const std::filesystem::path json_path = dir / (name + "_insertion.json");
+  const std::filesystem::path png_path = dir / (name + "_insertion.png");
+  const bool has_curve = !curve.depth.empty();
+  std::vector<std::string> files;
+  if (has_curve) files.push_back(csv_path.string());
+  files.push_back(json_path.string());
+  if (has_curve && !arguments.no_plot) files.push_back(png_path.string());
+  const bool has_view = view && view->steps() > 0;
+  const std::string view_script = name + "_view.js";
+  const std::filesystem::path view_page = dir / (name + "_view.html");
+  json["files"] = files;
+  json["view"] = has_view ? nlohmann::json(view_page.string()) : nlohmann::json(nullptr);  // docs/views.md
+  StagedFiles outputs;
+  std::filesystem::path staged_csv;
+  if (has_curve) staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
+  outputs.write(json_path, io::json_text(json));
+  if (has_view) {
+    outputs.write(dir / view_script, io::view_script(view->json()));
+    io::stage_view_page(outputs, dir, name + "_view.html", name + ": 3D view", {view_script}, viewer);
+  }
+  if (has_curve && !arguments.no_plot) {
+    const std::string s = result.fit
+                              ? fmt::format("S = {:.4g} (fitted; case {:.4g})", result.scale, c.options.model.scale)
+                              : fmt::format("S = {:.4g}", result.scale);
+    std::vector<std::string> command{"/usr/bin/python3", plot_script(), staged_csv.string(),
+                                     outputs.stage(png_path).string(), "--title",
+                                     fmt::format("{}: K = {:.4g} N/mm2, {}", name, result.stiffness * 1e-6, s)};
+    if (c.measured) {
+      command.push_back("--measured");
+      command.push_back(c.measured->string());
+    }
+    if (run_program(command) != 0) {
+      throw IoError(fmt::format("{}: the plot script {} failed (is python3-matplotlib installed? --no-plot skips the "
+                                "plot)",
+                                png_path.string(), plot_script()));
+    }
+  }
+  outputs.commit();
+  return has_view ? view_page : std::filesystem::path();
+}
+
+void print_summary(const io::InsertionCase& c, const insertion::CompleteInsertionResult& result,
+                   const nlohmann::json& json, const std::filesystem::path& view_page) {
+  const insertion::IndentationCase& indentation_case = c.indentation;
+  const insertion::InsertionCurve& curve = result.curve;
+  const auto& classes = result.loads.classification;
+  fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
+             indentation_case.name, indentation_case.needles.size(), classes.alpha.size(), classes.beta.size(),
+             classes.side, classes.back, classes.channel, classes.occluded);
+  if (const auto& fe = result.indentation)
+    fmt::print("FE indentation ({}): {}: {}\n", io::fe_models_text(indentation_case), insertion::to_string(fe->status),
+               fe->reason);
+  for (const auto& event : curve.punctures)
+    fmt::print("needle {} punctures at {:.4g} um: force {:.5g} N before, {:.5g} N after (relaxation drop {:.5g} N)\n",
+               event.needle + 1, event.displacement * 1e6, event.force_before, event.force_after, event.drop);
+  if (curve.punctures.empty()) fmt::print("no puncture\n");
+  if (!curve.depth.empty()) fmt::print("end: {:.4g} um, {:.5g} N\n", curve.depth.back() * 1e6, curve.force.back());
+  fmt::print("{}: {}\n", insertion::to_string(result.status), result.reason);
+  if (const auto& fit = result.fit)
+    fmt::print("fit to {}: S = {:.5g} at K = {:.4g} N/mm2 (rms {:.3g} N, {:.1f} % of the measured rms); the curve "
+               "uses the fitted S (the case's S = {:.4g})\n",
+               c.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error, 100 * fit->relative_rms,
+               c.options.model.scale);
+  fmt::print("wrote {}\n", fmt::join(json["files"].get<std::vector<std::string>>(), ", "));
+  if (!view_page.empty()) fmt::print("3D view: {} (open it in a browser)\n", view_page.string());
+}
+
+void run_insert(const InsertArguments& arguments) {
+  io::InsertionCase c = read_case(arguments);
+  insertion::IndentationCase& indentation_case = c.indentation;
   const std::vector<std::string> notes = io::indentation_scale_warnings(indentation_case);
   print_warnings(notes);
   create_output_directory(arguments.out_dir);  // before the FE run: a directory that cannot be written fails fast
@@ -96,111 +182,15 @@ void run_insert(const InsertArguments& arguments) {
   }
   const insertion::CompleteInsertionResult result = insertion::complete_insertion(indentation_case, c.options);
   if (progress) progress->finish();
-  const std::optional<insertion::IndentationResult>& fe = result.indentation;
-  const insertion::InsertionCurve& curve = result.curve;
-  const bool failed = result.status == insertion::CompleteInsertionStatus::SolverFailed;
-  const std::size_t count = indentation_case.needles.size();
 
-  // Outputs: JSON always; CSV and the plot when the curve has samples (the FE converged at least one step). All are
-  // staged and renamed together: on a plot failure or an interrupt none is written.
-  nlohmann::json json = io::insertion_curve_json(curve);
-  json["status"] = insertion::to_string(result.status);
-  json["reason"] = result.reason;
-  json["name"] = indentation_case.name;
-  json["needles"] = count;
-  json["stiffness_N_per_mm2"] = result.stiffness * 1e-6;
-  json["scale"] = result.scale;
-  json["scale_source"] = result.fit ? "fitted" : "case";
-  json["case_scale"] = c.options.model.scale;
-  json["final_depth_um"] = c.options.curve.final_depth * 1e6;
-  json["pre_puncture_source"] = fe ? "fe" : "csv";
-  json["complete"] = !failed;  // false: the curve stops where the FE failed (exit code 3)
-  json["notes"] = notes;
-  if (fe) {
-    json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
-                  {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds},
-                  {"models", io::fe_models_json(indentation_case)}};
-  }
-  const auto& loads = result.loads;
-  const auto& classes = loads.classification;
-  json["classification"] = {{"alpha", classes.alpha.size()},   {"beta", classes.beta.size()},
-                            {"side", classes.side},            {"back", classes.back},
-                            {"channel", classes.channel},      {"occluded", classes.occluded},
-                            {"alpha_area_um2", classes.alpha_area * 1e12}, {"beta_area_um2", classes.beta_area * 1e12},
-                            {"loaded_subtriangles", loads.triangles.size()},
-                            {"reference_radius_um", loads.reference_radius * 1e6}};
-  const std::optional<insertion::PostPunctureFit>& fit = result.fit;
-  json["fit"] = nullptr;
-  if (fit)
-    json["fit"] = {{"scale", fit->scale}, {"stiffness_N_per_mm2", fit->stiffness * 1e-6},
-                   {"rms_error_N", fit->rms_error}, {"relative_rms", fit->relative_rms}, {"samples", fit->samples}};
-
-  const std::filesystem::path dir(arguments.out_dir);
-  const std::filesystem::path csv_path = dir / (indentation_case.name + "_insertion.csv");
-  const std::filesystem::path json_path = dir / (indentation_case.name + "_insertion.json");
-  const std::filesystem::path png_path = dir / (indentation_case.name + "_insertion.png");
-  const bool has_curve = !curve.depth.empty();
-  std::vector<std::string> files;
-  if (has_curve) files.push_back(csv_path.string());
-  files.push_back(json_path.string());
-  if (has_curve && !arguments.no_plot) files.push_back(png_path.string());
-  const bool has_view = view && view->steps() > 0;
-  const std::string view_script = indentation_case.name + "_view.js";
-  const std::filesystem::path view_page = dir / (indentation_case.name + "_view.html");
-  json["files"] = files;
-  json["view"] = has_view ? nlohmann::json(view_page.string()) : nlohmann::json(nullptr);  // docs/views.md
-  StagedFiles outputs;
-  std::filesystem::path staged_csv;
-  if (has_curve) staged_csv = outputs.write(csv_path, io::insertion_curve_csv(curve));
-  outputs.write(json_path, io::json_text(json));
-  if (has_view) {
-    outputs.write(dir / view_script, io::view_script(view->json()));
-    io::stage_view_page(outputs, dir, indentation_case.name + "_view.html", indentation_case.name + ": 3D view",
-                        {view_script}, viewer);
-  }
-  if (has_curve && !arguments.no_plot) {
-    const std::string s = fit ? fmt::format("S = {:.4g} (fitted; case {:.4g})", result.scale, c.options.model.scale)
-                              : fmt::format("S = {:.4g}", result.scale);
-    std::vector<std::string> command{"/usr/bin/python3", plot_script(), staged_csv.string(),
-                                     outputs.stage(png_path).string(), "--title",
-                                     fmt::format("{}: K = {:.4g} N/mm2, {}", indentation_case.name,
-                                                 result.stiffness * 1e-6, s)};
-    if (c.measured) {
-      command.push_back("--measured");
-      command.push_back(c.measured->string());
-    }
-    if (run_program(command) != 0) {
-      throw IoError(fmt::format("{}: the plot script {} failed (is python3-matplotlib installed? --no-plot skips the "
-                                "plot)",
-                                png_path.string(), plot_script()));
-    }
-  }
-  outputs.commit();
-
+  nlohmann::json json = io::complete_insertion_json(c, result, notes);
+  const std::filesystem::path view_page = write_outputs(arguments, c, result, view, viewer, json);
   if (arguments.json) {
     fmt::print("{}", io::json_text(json));
   } else {
-    fmt::print("{}: {} needle(s); {} α- and {} β-triangles ({} side, {} back, {} channel, {} occluded)\n",
-               indentation_case.name, count, classes.alpha.size(), classes.beta.size(), classes.side, classes.back,
-               classes.channel, classes.occluded);
-    if (fe)
-      fmt::print("FE indentation ({}): {}: {}\n", io::fe_models_text(indentation_case),
-                 insertion::to_string(fe->status), fe->reason);
-    for (const auto& event : curve.punctures)
-      fmt::print("needle {} punctures at {:.4g} um: force {:.5g} N before, {:.5g} N after (relaxation drop {:.5g} N)\n",
-                 event.needle + 1, event.displacement * 1e6, event.force_before, event.force_after, event.drop);
-    if (curve.punctures.empty()) fmt::print("no puncture\n");
-    if (has_curve) fmt::print("end: {:.4g} um, {:.5g} N\n", curve.depth.back() * 1e6, curve.force.back());
-    fmt::print("{}: {}\n", insertion::to_string(result.status), result.reason);
-    if (fit)
-      fmt::print("fit to {}: S = {:.5g} at K = {:.4g} N/mm2 (rms {:.3g} N, {:.1f} % of the measured rms); the curve "
-                 "uses the fitted S (the case's S = {:.4g})\n",
-                 c.measured->string(), fit->scale, fit->stiffness * 1e-6, fit->rms_error, 100 * fit->relative_rms,
-                 c.options.model.scale);
-    fmt::print("wrote {}\n", fmt::join(files, ", "));
-    if (has_view) fmt::print("3D view: {} (open it in a browser)\n", view_page.string());
+    print_summary(c, result, json, view_page);
   }
-  if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
+  if (result.status == insertion::CompleteInsertionStatus::SolverFailed) throw CommandOutcome{ExitCode::NumericalFailure};
 }
 
 }  // namespace
