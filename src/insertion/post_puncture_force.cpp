@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numeric>
+#include <optional>
 
 #include "needlekit/core/errors.hpp"
 
@@ -126,9 +127,9 @@ double load_prism_volume(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, c
   return tetrahedron(p1, p2, p3, q1) + tetrahedron(p2, p3, q1, q2) + tetrahedron(p3, q1, q2, q3);
 }
 
-PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
-                                      const TriangleClassificationOptions& classification,
-                                      const PostPunctureOptions& options, const geometry::SurfaceMesh* surface) {
+namespace {
+
+void validate(const PostPunctureOptions& options) {
   if (!(options.tip_tolerance >= 0 && options.tip_tolerance <= 1e-2))
     throw InvalidInput(fmt::format("tip_tolerance: {}, expected a relative tolerance in [0, 0.01]",
                                    options.tip_tolerance));
@@ -138,84 +139,87 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
   if (!(options.reference_radius >= 0) || !std::isfinite(options.reference_radius))
     throw InvalidInput(fmt::format("reference_radius: {} m, expected a finite length >= 0 (0: automatic)",
                                    options.reference_radius));
+}
 
-  PostPunctureLoads loads;
-  loads.classification = classify_triangles(needle, classification, surface);
-  const Eigen::Vector3d d = loads.classification.insertion_direction;
+using Corners = std::array<Eigen::Vector3d, 3>;
 
-  // Axial positions: a(P) = distance behind the tip plane.
-  const std::size_t nv = needle.vertices.size();
-  std::vector<double> along(nv);
-  for (std::size_t i = 0; i < nv; ++i) along[i] = needle.vertices[i].dot(d);
-  const double top = *std::max_element(along.begin(), along.end());
-  const double bottom = *std::min_element(along.begin(), along.end());
-  loads.needle_length = top - bottom;
-  const double tip_band = options.tip_tolerance * loads.needle_length;
-  std::vector<double> depth(nv);
-  std::vector<int> tip_vertices;
-  for (std::size_t i = 0; i < nv; ++i) {
-    depth[i] = top - along[i];
-    if (depth[i] <= tip_band) tip_vertices.push_back(static_cast<int>(i));
+// The needle's frame for Algorithm 3.1: the insertion direction d, the tip plane, the channel axis through the
+// centre of the tip, the tip's footprint and the reference radius R.
+class NeedleFrame {
+public:
+  NeedleFrame(const geometry::TriangleMesh& needle, const Eigen::Vector3d& d, const PostPunctureOptions& options)
+      : d_(d), options_(options) {
+    // Axial positions: a(P) = distance behind the tip plane.
+    const std::size_t nv = needle.vertices.size();
+    std::vector<double> along(nv);
+    for (std::size_t i = 0; i < nv; ++i) along[i] = needle.vertices[i].dot(d);
+    top_ = *std::max_element(along.begin(), along.end());
+    length_ = top_ - *std::min_element(along.begin(), along.end());
+    tip_band_ = options.tip_tolerance * length_;
+    std::vector<int> tip_vertices;
+    for (std::size_t i = 0; i < nv; ++i) {
+      if (top_ - along[i] <= tip_band_) tip_vertices.push_back(static_cast<int>(i));
+    }
+    axis_point_ = options.axis_point;
+    if (!axis_point_.allFinite()) {
+      axis_point_.setZero();
+      for (int i : tip_vertices) axis_point_ += vertex(needle, i);
+      axis_point_ /= static_cast<double>(tip_vertices.size());
+    }
+    std::vector<Eigen::Vector3d> tip_radial;
+    tip_radial.reserve(tip_vertices.size());
+    for (int i : tip_vertices) tip_radial.push_back(radial(vertex(needle, i)));
+    x_open_.emplace(tip_radial, d);
+    radius_ = options.reference_radius;
+    if (radius_ == 0)
+      for (const auto& p : needle.vertices) radius_ = std::max(radius_, radial(p).norm());
+    if (!(radius_ > 0))
+      throw InvalidInput("needle mesh: every vertex lies on the channel axis; expected a needle of non-zero width");
   }
 
-  // The channel axis through the centre of the tip.
-  Eigen::Vector3d axis_point = options.axis_point;
-  if (!axis_point.allFinite()) {
-    axis_point.setZero();
-    for (int i : tip_vertices) axis_point += vertex(needle, i);
-    axis_point /= static_cast<double>(tip_vertices.size());
+  // The part of p - axis point normal to d.
+  Eigen::Vector3d radial(const Eigen::Vector3d& p) const {
+    Eigen::Vector3d r = p - axis_point_;
+    return Eigen::Vector3d(r - r.dot(d_) * d_);
   }
-  loads.axis_point = axis_point;
-  auto radial_of = [&](const Eigen::Vector3d& p) {
-    Eigen::Vector3d r = p - axis_point;
-    return Eigen::Vector3d(r - r.dot(d) * d);
-  };
-  std::vector<Eigen::Vector3d> tip_radial;
-  tip_radial.reserve(tip_vertices.size());
-  for (int i : tip_vertices) tip_radial.push_back(radial_of(vertex(needle, i)));
-  const TipFootprint x_open_of(tip_radial, d);
-
-  double radius = options.reference_radius;
-  if (radius == 0)
-    for (const auto& p : needle.vertices) radius = std::max(radius, radial_of(p).norm());
-  if (!(radius > 0))
-    throw InvalidInput("needle mesh: every vertex lies on the channel axis; expected a needle of non-zero width");
-  loads.reference_radius = radius;
-
-  const auto& classes = loads.classification;
-  loads.triangles.reserve(classes.alpha.size() + classes.beta.size());
-  const double degenerate_axial = 1e-9 * loads.needle_length;
-  using Corners = std::array<Eigen::Vector3d, 3>;
+  double length() const { return length_; }
+  double radius() const { return radius_; }
+  const Eigen::Vector3d& axis_point() const { return axis_point_; }
 
   // One loaded (sub-)triangle with corners p of mesh triangle `parent`.
-  auto add_triangle = [&](int parent, const Corners& p, bool alpha) {
+  LoadedTriangle loaded(int parent, const Corners& p, bool alpha) const {
     LoadedTriangle loaded;
     const Eigen::Vector3d normal_area = (p[1] - p[0]).cross(p[2] - p[0]);
     const Eigen::Vector3d n = normal_area.normalized();
     loaded.triangle = parent;
     loaded.alpha = alpha;
     loaded.area = 0.5 * normal_area.norm();
-    loaded.weight = options.axial_component ? n.dot(d) : 1.0;
-    for (int k = 0; k < 3; ++k) loaded.depth[k] = top - p[static_cast<std::size_t>(k)].dot(d);
-    if (alpha) {  // Eq 3.18: uniform pressure K·S
-      loaded.load = {1.0, 1.0, 1.0};
-      loads.alpha_area += loaded.area;
-      loads.triangles.push_back(loaded);
-      return;
+    loaded.weight = options_.axial_component ? n.dot(d_) : 1.0;
+    for (int k = 0; k < 3; ++k) loaded.depth[k] = top_ - p[static_cast<std::size_t>(k)].dot(d_);
+    if (alpha) {
+      loaded.load = {1.0, 1.0, 1.0};  // Eq 3.18: uniform pressure K·S
+    } else {
+      beta_loads(p, n, loaded);
     }
-    // Algorithm 3.1. Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
+    return loaded;
+  }
+
+private:
+  // Algorithm 3.1 on a β-triangle: the load f_T/(K·S) at its corners and its case.
+  void beta_loads(const Corners& p, const Eigen::Vector3d& n, LoadedTriangle& loaded) const {
+    // Reference plane through the axis and the centroid CG_i: in-plane unit e toward CG_i.
     const Eigen::Vector3d centroid = (p[0] + p[1] + p[2]) / 3.0;
-    Eigen::Vector3d e = radial_of(centroid);
-    if (e.norm() <= 1e-12 * radius) e = n - n.dot(d) * d;  // centroid on the axis: the normal's radial part
-    e = e.norm() > 0 ? Eigen::Vector3d(e.normalized()) : any_perpendicular(d);
+    Eigen::Vector3d e = radial(centroid);
+    if (e.norm() <= 1e-12 * radius_) e = n - n.dot(d_) * d_;  // centroid on the axis: the normal's radial part
+    e = e.norm() > 0 ? Eigen::Vector3d(e.normalized()) : any_perpendicular(d_);
     // Projections Q_k: a (behind the tip) and x (from the axis, toward CG_i).
     std::array<double, 3> a{}, x{};
     std::array<bool, 3> on_tip{};
     int tip_count = 0;
     for (int k = 0; k < 3; ++k) {
       a[k] = loaded.depth[k];
-      x[k] = radial_of(p[static_cast<std::size_t>(k)]).dot(e);
-      on_tip[k] = a[k] <= tip_band;
+      x[k] = radial(p[static_cast<std::size_t>(k)]).dot(e);
+      on_tip[k] = a[k] <= tip_band_;
       tip_count += on_tip[k] ? 1 : 0;
     }
     loaded.beta_case = tip_count == 1 ? BetaCase::OneVertexOnTip
@@ -226,10 +230,11 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     for (int k = 1; k < 3; ++k)
       if (a[k] < a[q1] || (a[k] == a[q1] && x[k] < x[q1])) q1 = k;
     // The opening line: the edge of the tip in this plane.
-    const double b = std::max(0.0, x[q1] - x_open_of(e));
+    const double b = std::max(0.0, x[q1] - (*x_open_)(e));
     // The meridian slope of the triangle itself (for edges across the meridian, where an edge angle means nothing):
     // tan θ_T = (n·d)/(n·e).
-    const double theta_triangle = std::atan2(std::max(n.dot(d), 0.0), std::abs(n.dot(e)));
+    const double theta_triangle = std::atan2(std::max(n.dot(d_), 0.0), std::abs(n.dot(e)));
+    const double degenerate_axial = 1e-9 * length_;
     std::array<double, 3> theta{}, widening{};
     for (int k = 0; k < 3; ++k) {
       if (k == q1) continue;
@@ -247,38 +252,46 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     delta[q1] = b / std::cos(0.5 * (theta[k2] + theta[k3]));  // f_T(P1) = K·S·b/cos((θ2 + θ3)/2)
     for (int k : {k2, k3}) delta[k] = widening[k] + b / std::cos(theta[k]);  // f_T(P_k) = K·S·(a·tanθ + b/cosθ)
     for (int k = 0; k < 3; ++k) {
-      double load = on_tip[k] ? 0.0 : std::max(0.0, delta[k]) / radius;  // f_T = 0 on the needle's tip
-      if (!std::isfinite(load)) load = options.cap_at_cutting_pressure ? 1.0 : 0.0;
-      if (options.cap_at_cutting_pressure) load = std::min(load, 1.0);
+      double load = on_tip[k] ? 0.0 : std::max(0.0, delta[k]) / radius_;  // f_T = 0 on the needle's tip
+      if (!std::isfinite(load)) load = options_.cap_at_cutting_pressure ? 1.0 : 0.0;
+      if (options_.cap_at_cutting_pressure) load = std::min(load, 1.0);
       loaded.load[k] = load;
     }
-    ++loads.case_counts[static_cast<int>(loaded.beta_case)];
-    loads.triangles.push_back(loaded);
-  };
+  }
 
-  // Long triangles (a bevel face triangulated edge to edge) are bisected at the midpoint of their longest edge until
-  // no edge exceeds max_edge, so that Algorithm 3.1 sees triangles small against the load's variation.
-  const double max_edge = options.max_edge_fraction * loads.needle_length;
-  auto add_subdivided = [&](auto&& self, int parent, const Corners& p, bool alpha, int level) -> void {
-    const std::array<double, 3> edge{(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()};
-    const int k = static_cast<int>(std::max_element(edge.begin(), edge.end()) - edge.begin());
-    if (max_edge <= 0 || edge[static_cast<std::size_t>(k)] <= max_edge || level >= 48)
-      return add_triangle(parent, p, alpha);
-    // Split edge k (corners k, k+1) at its midpoint m: (k, m, k+2) and (m, k+1, k+2), orientation kept.
-    const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % 3),
-               l = static_cast<std::size_t>((k + 2) % 3);
-    const Eigen::Vector3d m = 0.5 * (p[i] + p[j]);
-    self(self, parent, Corners{p[i], m, p[l]}, alpha, level + 1);
-    self(self, parent, Corners{m, p[j], p[l]}, alpha, level + 1);
-  };
-  for (bool alpha : {true, false})
-    for (int t : alpha ? classes.alpha : classes.beta) {
-      const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
-      add_subdivided(add_subdivided, t, Corners{vertex(needle, tri[0]), vertex(needle, tri[1]), vertex(needle, tri[2])},
-                     alpha, 0);
+  Eigen::Vector3d d_;
+  const PostPunctureOptions& options_;
+  double top_ = 0, length_ = 0, tip_band_ = 0, radius_ = 0;
+  Eigen::Vector3d axis_point_;
+  std::optional<TipFootprint> x_open_;  // the support function of the tip's footprint
+};
+
+// Long triangles (a bevel face triangulated edge to edge) are bisected at the midpoint of their longest edge until
+// no edge exceeds max_edge, so that Algorithm 3.1 sees triangles small against the load's variation.
+void add_subdivided(const NeedleFrame& frame, double max_edge, int parent, const Corners& p, bool alpha, int level,
+                    PostPunctureLoads& loads) {
+  const std::array<double, 3> edge{(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()};
+  const int k = static_cast<int>(std::max_element(edge.begin(), edge.end()) - edge.begin());
+  if (max_edge <= 0 || edge[static_cast<std::size_t>(k)] <= max_edge || level >= 48) {
+    const LoadedTriangle loaded = frame.loaded(parent, p, alpha);
+    if (alpha) {
+      loads.alpha_area += loaded.area;
+    } else {
+      ++loads.case_counts[static_cast<int>(loaded.beta_case)];
     }
+    loads.triangles.push_back(loaded);
+    return;
+  }
+  // Split edge k (corners k, k+1) at its midpoint m: (k, m, k+2) and (m, k+1, k+2), orientation kept.
+  const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % 3),
+             l = static_cast<std::size_t>((k + 2) % 3);
+  const Eigen::Vector3d m = 0.5 * (p[i] + p[j]);
+  add_subdivided(frame, max_edge, parent, Corners{p[i], m, p[l]}, alpha, level + 1, loads);
+  add_subdivided(frame, max_edge, parent, Corners{m, p[j], p[l]}, alpha, level + 1, loads);
+}
 
-  // Tables for evaluation at many depths: triangles by their first and by their last depth.
+// Tables for evaluation at many depths: triangles by their first and by their last depth.
+void build_depth_tables(PostPunctureLoads& loads) {
   const std::size_t n = loads.triangles.size();
   std::vector<std::pair<double, int>> first(n), last(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -295,6 +308,30 @@ PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
     loads.last_depth_sorted[i] = last[i].first;
     loads.full_prefix[i + 1] = loads.full_prefix[i] + full_load(loads.triangles[static_cast<std::size_t>(last[i].second)]);
   }
+}
+
+}  // namespace
+
+PostPunctureLoads post_puncture_loads(const geometry::TriangleMesh& needle,
+                                      const TriangleClassificationOptions& classification,
+                                      const PostPunctureOptions& options, const geometry::SurfaceMesh* surface) {
+  validate(options);
+  PostPunctureLoads loads;
+  loads.classification = classify_triangles(needle, classification, surface);
+  const NeedleFrame frame(needle, loads.classification.insertion_direction, options);
+  loads.needle_length = frame.length();
+  loads.axis_point = frame.axis_point();
+  loads.reference_radius = frame.radius();
+  const auto& classes = loads.classification;
+  loads.triangles.reserve(classes.alpha.size() + classes.beta.size());
+  const double max_edge = options.max_edge_fraction * loads.needle_length;
+  for (bool alpha : {true, false})
+    for (int t : alpha ? classes.alpha : classes.beta) {
+      const auto& tri = needle.triangles[static_cast<std::size_t>(t)];
+      add_subdivided(frame, max_edge, t, Corners{vertex(needle, tri[0]), vertex(needle, tri[1]), vertex(needle, tri[2])},
+                     alpha, 0, loads);
+    }
+  build_depth_tables(loads);
   return loads;
 }
 
