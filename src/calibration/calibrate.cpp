@@ -236,6 +236,150 @@ double rms_of(const std::vector<double>& r) {
   return r.empty() ? 0.0 : std::sqrt(sum / r.size());
 }
 
+// The statistics of the fit at `at` (parameter_statistics.hpp) and, when asked, the FE discretisation error that
+// widens the intervals (discretisation_error.hpp); their warnings go to result.
+struct OptimumStatistics {
+  bool have_jacobian = false;
+  ParameterStatistics stats;
+  DiscretisationError mesh_error;
+};
+
+OptimumStatistics optimum_statistics(const CalibrationProblem& problem, const std::vector<ExperimentModel>& models,
+                                     Evaluator& evaluator, const std::vector<double>& at, const Point& p,
+                                     CalibrationResult& result) {
+  const std::size_t n = problem.parameters.size();
+  OptimumStatistics statistics;
+  const std::optional<Eigen::MatrixXd> jac = p.ok ? evaluator.jacobian(at) : std::nullopt;
+  if (!jac) {
+    result.correlation = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), NAN);
+    return statistics;
+  }
+  statistics.have_jacobian = true;
+  const std::vector<double> theta = evaluator.values(at);
+  std::vector<std::string> names;
+  for (const ParameterSpec& spec : problem.parameters) names.push_back(spec.path);
+  Eigen::MatrixXd per_unit = *jac;  // dr/dθ_j = dr/dx_j / scale_j
+  for (std::size_t j = 0; j < n; ++j) per_unit.col(static_cast<Eigen::Index>(j)) /= evaluator.scale()[j];
+  statistics.stats = parameter_statistics(per_unit, p.residuals, theta, names);
+  result.correlation = statistics.stats.correlation;
+  result.warnings.insert(result.warnings.end(), statistics.stats.warnings.begin(), statistics.stats.warnings.end());
+  if (!problem.solver.mesh_error) return statistics;
+  DiscretisationError& mesh_error = statistics.mesh_error;
+  mesh_error = discretisation_error(problem, models, theta, per_unit, p.residuals, problem.solver.mesh_error_refinement);
+  if (!mesh_error.ok) {
+    result.warnings.push_back(fmt::format("the discretisation error was not estimated: {}", mesh_error.failure));
+  } else if (!mesh_error.refined.empty()) {
+    result.warnings.push_back(fmt::format(
+        "the 95 % intervals include the estimated FE discretisation error (the fit re-run at the optimum on "
+        "meshes {:g} times finer: {}; first-order Richardson)",
+        problem.solver.mesh_error_refinement, fmt::join(mesh_error.refined, ", ")));
+  }
+  for (const std::string& name : mesh_error.not_refined)
+    result.warnings.push_back(fmt::format("{}: its mesh is given (or its curve), so its discretisation error is "
+                                          "not in the intervals", name));
+  return statistics;
+}
+
+// Every parameter's value, standard error and interval (widened by the discretisation error), flagged on a bound.
+void add_fitted_parameters(const CalibrationProblem& problem, const std::vector<double>& theta,
+                           const OptimumStatistics& statistics, CalibrationResult& result) {
+  const DiscretisationError& mesh_error = statistics.mesh_error;
+  for (std::size_t j = 0; j < problem.parameters.size(); ++j) {
+    FittedParameter fitted;
+    fitted.spec = problem.parameters[j];
+    fitted.value = theta[j];
+    fitted.standard_error = statistics.have_jacobian ? statistics.stats.standard_error[j] : NAN;
+    if (statistics.have_jacobian) fitted.ci95 = statistics.stats.ci95[j];
+    if (mesh_error.ok && !mesh_error.parameter_error.empty()) {
+      fitted.discretisation_error = mesh_error.parameter_error[j];
+      if (fitted.ci95) {
+        fitted.ci95->first -= fitted.discretisation_error;
+        fitted.ci95->second += fitted.discretisation_error;
+      }
+    }
+    const double tolerance = 1e-9 * (fitted.spec.upper - fitted.spec.lower);
+    fitted.at_bound = theta[j] <= fitted.spec.lower + tolerance || theta[j] >= fitted.spec.upper - tolerance;
+    if (fitted.at_bound) {
+      result.warnings.push_back(fmt::format(
+          "{}: the optimum lies on a bound ({}); its interval ignores the bound", fitted.spec.path,
+          units::format(theta[j], fitted.spec.unit.empty() ? units::si_symbol(fitted.spec.dimension) : fitted.spec.unit)));
+    }
+    result.parameters.push_back(std::move(fitted));
+  }
+}
+
+// Every experiment's prediction and residuals at `at` (a prediction-only experiment is run there), and the overall
+// relative rms.
+void add_experiment_fits(const CalibrationProblem& problem, const std::vector<ExperimentModel>& models,
+                         Evaluator& evaluator, const std::vector<double>& at, const Point& p,
+                         CalibrationResult& result) {
+  std::vector<double> all;
+  for (std::size_t e = 0; e < models.size(); ++e) {
+    ExperimentFit fit;
+    fit.name = problem.experiments[e].name;
+    fit.kind = problem.experiments[e].kind;
+    fit.predicted_only = !evaluator.fitted(e);
+    if (fit.predicted_only) {
+      fit.prediction = evaluator.prediction(e, at);
+      if (!fit.prediction.ok) result.warnings.push_back(fmt::format("{}: {}", fit.name, fit.prediction.failure));
+      for (const std::string& note : fit.prediction.notes) result.warnings.push_back(fit.name + ": " + note);
+    } else if (p.ok) {
+      fit.prediction = p.predictions[e];
+      fit.residuals = models[e].residuals(fit.prediction);
+      fit.rms_relative = rms_of(fit.residuals);
+      for (const std::string& note : fit.prediction.notes) result.warnings.push_back(fit.name + ": " + note);
+    }
+    all.insert(all.end(), fit.residuals.begin(), fit.residuals.end());
+    result.experiments.push_back(std::move(fit));
+  }
+  result.rms_relative = rms_of(all);
+}
+
+// Ceres' bounded Levenberg-Marquardt from x (updated in place); the result's iterations, status and reason.
+void solve_least_squares(const CalibrationProblem& problem, const CalibrationOptions& options, Evaluator& evaluator,
+                         std::vector<double>& x, Clock::time_point start, CalibrationResult& result) {
+  const std::size_t n = x.size();
+  ceres::Problem least_squares;
+  least_squares.AddResidualBlock(new ResidualCost(evaluator, static_cast<int>(n)), nullptr, x.data());
+  for (std::size_t j = 0; j < n; ++j) {
+    least_squares.SetParameterLowerBound(x.data(), static_cast<int>(j), evaluator.lower()[j]);
+    least_squares.SetParameterUpperBound(x.data(), static_cast<int>(j), evaluator.upper()[j]);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  solver.max_num_iterations = problem.solver.max_iterations;
+  solver.function_tolerance = problem.solver.function_tolerance;
+  solver.parameter_tolerance = problem.solver.parameter_tolerance;
+  solver.gradient_tolerance = 1e-14;
+  solver.logging_type = ceres::SILENT;
+  solver.minimizer_progress_to_stdout = false;
+  solver.update_state_every_iteration = true;
+  ProgressCallback callback(options, evaluator, x, evaluator.residual_count(), start);
+  solver.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &least_squares, &summary);
+
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  switch (summary.termination_type) {
+    case ceres::CONVERGENCE: result.status = CalibrationStatus::Converged; break;
+    case ceres::NO_CONVERGENCE: result.status = CalibrationStatus::NotConverged; break;
+    default: result.status = CalibrationStatus::Failed; break;
+  }
+  result.reason = summary.message;
+  if (callback.stopped()) {
+    result.status = CalibrationStatus::Stopped;
+    result.reason = fmt::format("stopped on request after iteration {}; the best point so far is kept",
+                                result.iterations);
+  }
+}
+
+void stopped_in_a_run(CalibrationResult& result) {
+  result.status = CalibrationStatus::Stopped;
+  result.reason = fmt::format("stopped on request during an FE run of iteration {}; the best point so far is kept",
+                              std::max(result.iterations, 0));
+}
+
 }  // namespace
 
 std::string_view to_string(CalibrationStatus status) {
@@ -289,94 +433,19 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
   CalibrationResult result;
   const auto finish = [&](const std::vector<double>& at) {
     const Point p = evaluator.point(at);
-    const std::vector<double> theta = evaluator.values(at);
-    std::vector<std::string> names;
-    for (const ParameterSpec& spec : problem.parameters) names.push_back(spec.path);
-    std::optional<Eigen::MatrixXd> jac = p.ok ? evaluator.jacobian(at) : std::nullopt;
-    ParameterStatistics stats;
-    DiscretisationError mesh_error;
-    int extra_runs = 0;
-    if (jac) {
-      Eigen::MatrixXd per_unit = *jac;  // dr/dθ_j = dr/dx_j / scale_j
-      for (std::size_t j = 0; j < n; ++j) per_unit.col(static_cast<Eigen::Index>(j)) /= evaluator.scale()[j];
-      stats = parameter_statistics(per_unit, p.residuals, theta, names);
-      result.correlation = stats.correlation;
-      result.warnings.insert(result.warnings.end(), stats.warnings.begin(), stats.warnings.end());
-      if (problem.solver.mesh_error) {
-        mesh_error = discretisation_error(problem, models, theta, per_unit, p.residuals,
-                                          problem.solver.mesh_error_refinement);
-        extra_runs = mesh_error.model_runs;
-        if (!mesh_error.ok) {
-          result.warnings.push_back(fmt::format("the discretisation error was not estimated: {}", mesh_error.failure));
-        } else if (!mesh_error.refined.empty()) {
-          result.warnings.push_back(fmt::format(
-              "the 95 % intervals include the estimated FE discretisation error (the fit re-run at the optimum on "
-              "meshes {:g} times finer: {}; first-order Richardson)",
-              problem.solver.mesh_error_refinement, fmt::join(mesh_error.refined, ", ")));
-        }
-        for (const std::string& name : mesh_error.not_refined)
-          result.warnings.push_back(fmt::format("{}: its mesh is given (or its curve), so its discretisation error is "
-                                                "not in the intervals", name));
-      }
-    } else {
-      result.correlation = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), NAN);
-    }
-    for (std::size_t j = 0; j < n; ++j) {
-      FittedParameter fitted;
-      fitted.spec = problem.parameters[j];
-      fitted.value = theta[j];
-      fitted.standard_error = jac ? stats.standard_error[j] : NAN;
-      if (jac) fitted.ci95 = stats.ci95[j];
-      if (mesh_error.ok && !mesh_error.parameter_error.empty()) {
-        fitted.discretisation_error = mesh_error.parameter_error[j];
-        if (fitted.ci95) {
-          fitted.ci95->first -= fitted.discretisation_error;
-          fitted.ci95->second += fitted.discretisation_error;
-        }
-      }
-      const double tolerance = 1e-9 * (fitted.spec.upper - fitted.spec.lower);
-      fitted.at_bound = theta[j] <= fitted.spec.lower + tolerance || theta[j] >= fitted.spec.upper - tolerance;
-      if (fitted.at_bound) {
-        result.warnings.push_back(fmt::format("{}: the optimum lies on a bound ({}); its interval ignores the bound",
-                                              fitted.spec.path, units::format(theta[j], fitted.spec.unit.empty() ? units::si_symbol(fitted.spec.dimension) : fitted.spec.unit)));
-      }
-      result.parameters.push_back(std::move(fitted));
-    }
-    std::vector<double> all;
-    for (std::size_t e = 0; e < models.size(); ++e) {
-      ExperimentFit fit;
-      fit.name = problem.experiments[e].name;
-      fit.kind = problem.experiments[e].kind;
-      fit.predicted_only = !evaluator.fitted(e);
-      if (fit.predicted_only) {
-        fit.prediction = evaluator.prediction(e, at);
-        if (!fit.prediction.ok) result.warnings.push_back(fmt::format("{}: {}", fit.name, fit.prediction.failure));
-        for (const std::string& note : fit.prediction.notes) result.warnings.push_back(fit.name + ": " + note);
-      } else if (p.ok) {
-        fit.prediction = p.predictions[e];
-        fit.residuals = models[e].residuals(fit.prediction);
-        fit.rms_relative = rms_of(fit.residuals);
-        for (const std::string& note : fit.prediction.notes) result.warnings.push_back(fit.name + ": " + note);
-      }
-      all.insert(all.end(), fit.residuals.begin(), fit.residuals.end());
-      result.experiments.push_back(std::move(fit));
-    }
-    result.rms_relative = rms_of(all);
-    result.model_runs = evaluator.model_runs() + extra_runs;
+    const OptimumStatistics statistics = optimum_statistics(problem, models, evaluator, at, p, result);
+    add_fitted_parameters(problem, evaluator.values(at), statistics, result);
+    add_experiment_fits(problem, models, evaluator, at, p, result);
+    result.model_runs = evaluator.model_runs() + statistics.mesh_error.model_runs;
     result.warm_started_steps = evaluator.warm_started_steps();
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   };
 
   // The initial point and its Jacobian: a parameter no experiment depends on is bad input.
-  const auto stopped_in_a_run = [&] {
-    result.status = CalibrationStatus::Stopped;
-    result.reason = fmt::format("stopped on request during an FE run of iteration {}; the best point so far is kept",
-                                std::max(result.iterations, 0));
-  };
   const Point initial = evaluator.point(x);
   if (!initial.ok) {
     if (evaluator.stopped()) {
-      stopped_in_a_run();
+      stopped_in_a_run(result);
     } else {
       result.status = CalibrationStatus::Failed;
       result.reason = fmt::format("the model fails at the initial values: {}", initial.failure);
@@ -393,42 +462,8 @@ CalibrationResult calibrate(const CalibrationProblem& problem, const Calibration
       }
     }
   }
-
-  ceres::Problem least_squares;
-  least_squares.AddResidualBlock(new ResidualCost(evaluator, static_cast<int>(n)), nullptr, x.data());
-  for (std::size_t j = 0; j < n; ++j) {
-    least_squares.SetParameterLowerBound(x.data(), static_cast<int>(j), evaluator.lower()[j]);
-    least_squares.SetParameterUpperBound(x.data(), static_cast<int>(j), evaluator.upper()[j]);
-  }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  solver.max_num_iterations = problem.solver.max_iterations;
-  solver.function_tolerance = problem.solver.function_tolerance;
-  solver.parameter_tolerance = problem.solver.parameter_tolerance;
-  solver.gradient_tolerance = 1e-14;
-  solver.logging_type = ceres::SILENT;
-  solver.minimizer_progress_to_stdout = false;
-  solver.update_state_every_iteration = true;
-  ProgressCallback callback(options, evaluator, x, evaluator.residual_count(), start);
-  solver.callbacks.push_back(&callback);
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &least_squares, &summary);
-
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  switch (summary.termination_type) {
-    case ceres::CONVERGENCE: result.status = CalibrationStatus::Converged; break;
-    case ceres::NO_CONVERGENCE: result.status = CalibrationStatus::NotConverged; break;
-    default: result.status = CalibrationStatus::Failed; break;
-  }
-  result.reason = summary.message;
-  if (callback.stopped()) {
-    result.status = CalibrationStatus::Stopped;
-    result.reason = fmt::format("stopped on request after iteration {}; the best point so far is kept",
-                                result.iterations);
-  } else if (evaluator.stopped()) {
-    stopped_in_a_run();
-  }
+  solve_least_squares(problem, options, evaluator, x, start, result);
+  if (result.status != CalibrationStatus::Stopped && evaluator.stopped()) stopped_in_a_run(result);
   finish(x);
   return result;
 }
