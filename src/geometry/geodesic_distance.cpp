@@ -134,54 +134,60 @@ GeodesicDistance geodesic_distance(const SurfaceMesh& surface, const SurfaceLoca
 
 namespace {
 
-GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLocation& from, const SurfaceLocation& to,
-                                   const GeodesicDistanceOptions& options, std::int64_t& budget) {
+void validate(const GeodesicDistanceOptions& options) {
   if (options.max_iterations < 1 || options.max_iterations > 1000 || !(options.tolerance > 0) ||
       options.tolerance > 1e-3 || options.extra_shots < 0 || options.extra_shots > 20) {
     throw InvalidInput(fmt::format("geodesic_distance: options max_iterations {} (expected [1, 1000]), tolerance {} "
                                    "(expected (0, 1e-3]), extra_shots {} (expected [0, 20])",
                                    options.max_iterations, options.tolerance, options.extra_shots));
   }
-  const SurfaceLocation a = detail::checked_location(surface, from, "geodesic_distance (from)");
-  const SurfaceLocation b = detail::checked_location(surface, to, "geodesic_distance (to)");
-  const Eigen::Vector3d p = position(surface, a);
-  const Eigen::Vector3d q = position(surface, b);
-  GeodesicDistance result;
-  result.euclidean = (q - p).norm();
-  const double rounding = 256 * std::numeric_limits<double>::epsilon() * std::max(p.cwiseAbs().maxCoeff(),
-                                                                                  q.cwiseAbs().maxCoeff());
-  const double tolerance = std::max(options.tolerance * result.euclidean, rounding);
-  if (result.euclidean <= rounding) {
-    result.status = DistanceStatus::Converged;
-    result.miss = result.euclidean;
-    result.path.end = a;
-    result.path.end_point = p;
-    result.path.points = {p};
-    return result;
+}
+
+// The search for the shortest geodesic from p (location a) to q (location b) by shooting straightest geodesics from
+// p (Newton on the shot's angle and length), aimed first at q, then along the shortest edge path, and last through
+// saddle vertices (two legs that meet at the vertex). Every trace spends `budget` (triangle crossings).
+class GeodesicSearch {
+public:
+  GeodesicSearch(const SurfaceMesh& surface, const SurfaceLocation& a, const SurfaceLocation& b,
+                 const GeodesicDistanceOptions& options, std::int64_t& budget, GeodesicDistance& result)
+      : surface_(surface), a_(a), b_(b), p_(position(surface, a)), q_(position(surface, b)), options_(options),
+        budget_(budget), result_(result), n0_(surface.face_normal(a.triangle)) {
+    // The tangent frame of the start triangle, e1 towards the target.
+    Eigen::Vector3d e1 = (q_ - p_) - (q_ - p_).dot(n0_) * n0_;
+    if (!(e1.norm() > 1e-9 * result_.euclidean)) {
+      const auto& t = surface.mesh().triangles[a.triangle];
+      e1 = surface.mesh().vertices[t[1]] - surface.mesh().vertices[t[0]];
+    }
+    e1_ = e1.normalized();
+    e2_ = n0_.cross(e1_);
+    const double rounding = 256 * std::numeric_limits<double>::epsilon() *
+                            std::max(p_.cwiseAbs().maxCoeff(), q_.cwiseAbs().maxCoeff());
+    tolerance_ = std::max(options.tolerance * result_.euclidean, rounding);
+    // A shortest path crosses each triangle at most once: a longer trace cannot be one.
+    trace_ = options.trace;
+    trace_.max_steps = static_cast<int>(std::min<std::int64_t>(trace_.max_steps, surface.triangle_count() + 16));
   }
 
-  // The tangent frame of the start triangle, e1 towards the target.
-  const Eigen::Vector3d& n0 = surface.face_normal(a.triangle);
-  Eigen::Vector3d e1 = (q - p) - (q - p).dot(n0) * n0;
-  if (!(e1.norm() > 1e-9 * result.euclidean)) {
-    const auto& t = surface.mesh().triangles[a.triangle];
-    e1 = surface.mesh().vertices[t[1]] - surface.mesh().vertices[t[0]];
+  Shot run() {
+    fire(0.0, result_.euclidean, 1 + options_.extra_shots);
+    if ((!best_.converged || through_cone_vertex(best_.path)) && options_.graph_fallback && budget_ > 0) {
+      aim_along_edge_path();
+    }
+    if (!best_.converged && options_.saddle_detour && budget_ > 0) detour_through_saddles();
+    return std::move(best_);
   }
-  e1.normalize();
-  const Eigen::Vector3d e2 = n0.cross(e1);
 
-  // A shortest path crosses each triangle at most once: a longer trace cannot be one.
-  TraceOptions trace = options.trace;
-  trace.max_steps = static_cast<int>(std::min<std::int64_t>(trace.max_steps, surface.triangle_count() + 16));
-  const auto shoot = [&](double angle, double length) {
+private:
+  // Newton from (angle, length) until the shot ends within the tolerance of q, stalls or runs out of iterations.
+  Shot shoot(double angle, double length) {
     Shot shot;
     int stalled = 0;
-    for (int it = 0; it < options.max_iterations && budget > 0; ++it) {
+    for (int it = 0; it < options_.max_iterations && budget_ > 0; ++it) {
       ++shot.iterations;
-      SurfacePath path = straightest_geodesic(surface, a, std::cos(angle) * e1 + std::sin(angle) * e2, length,
-                                              trace);
-      budget -= static_cast<std::int64_t>(path.triangles.size()) + 1;
-      const Eigen::Vector3d r = q - path.end_point;
+      SurfacePath path = straightest_geodesic(surface_, a_, std::cos(angle) * e1_ + std::sin(angle) * e2_, length,
+                                              trace_);
+      budget_ -= static_cast<std::int64_t>(path.triangles.size()) + 1;
+      const Eigen::Vector3d r = q_ - path.end_point;
       const double miss = r.norm();
       if (miss < shot.miss) {
         shot.miss = miss;
@@ -190,7 +196,7 @@ GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLoca
       } else if (++stalled > kStall) {
         break;
       }
-      if (miss <= tolerance && path.status == PathStatus::Completed) {
+      if (miss <= tolerance_ && path.status == PathStatus::Completed) {
         shot.converged = true;
         shot.path = std::move(path);
         shot.miss = miss;
@@ -198,10 +204,10 @@ GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLoca
       }
       // Newton in the end triangle's tangent plane. In the unfolded strip the family of straight paths from p
       // turns about p: d(end)/d(length) = t, d(end)/d(angle) = length * (n x t).
-      const Eigen::Vector3d& n = surface.face_normal(path.end.triangle);
+      const Eigen::Vector3d& n = surface_.face_normal(path.end.triangle);
       const Eigen::Vector3d& t = path.end_direction;
       const Eigen::Vector3d r_t = r - r.dot(n) * n;
-      const double travelled = std::max(path.length, 1e-3 * result.euclidean);
+      const double travelled = std::max(path.length, 1e-3 * result_.euclidean);
       const double d_length = r_t.dot(t);
       const double d_angle = std::clamp(r_t.dot(n.cross(t)) / travelled, -kMaxAngleStep, kMaxAngleStep);
       angle += d_angle;
@@ -209,85 +215,119 @@ GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLoca
       if (!(length > 0)) length = 0.5 * travelled;
     }
     return shot;
-  };
+  }
 
-  Shot best;
-  const auto fire = [&](double angle0, double length0, int planned) {
-    for (int k = 0; k < std::max(planned, 7) && budget > 0; ++k) {
-      if (k >= planned && best.converged && !through_cone_vertex(best.path)) break;
+  // `planned` shots (at least 7 while none converged off a cone vertex) fanned out around angle0; keeps the best.
+  void fire(double angle0, double length0, int planned) {
+    for (int k = 0; k < std::max(planned, 7) && budget_ > 0; ++k) {
+      if (k >= planned && best_.converged && !through_cone_vertex(best_.path)) break;
       const double offset = (k == 0) ? 0.0 : ((k + 1) / 2) * 0.3 * (k % 2 ? 1.0 : -1.0);
       Shot shot = shoot(angle0 + offset, length0);
-      result.iterations += shot.iterations;
-      const bool better = (shot.converged && (!best.converged || shot.path.length < best.path.length)) ||
-                          (!best.converged && !shot.converged && shot.miss < best.miss);
-      if (better) best = std::move(shot);
-    }
-  };
-  fire(0.0, result.euclidean, 1 + options.extra_shots);
-  if ((!best.converged || through_cone_vertex(best.path)) && options.graph_fallback && budget > 0) {
-    // Aim along the shortest edge path: at its point a quarter of the way along, with its length (an upper
-    // bound) shortened by the typical excess of edge paths.
-    const EdgePath edges = shortest_edge_path(surface, a.triangle, p, b.triangle, q);
-    result.graph_distance = std::isfinite(edges.length) ? edges.length : 0;
-    if (std::isfinite(edges.length)) {
-      double walked = 0;
-      Eigen::Vector3d aim = edges.points.back();
-      for (std::size_t i = 1; i < edges.points.size(); ++i) {
-        walked += (edges.points[i] - edges.points[i - 1]).norm();
-        aim = edges.points[i];
-        if (walked >= 0.25 * edges.length) break;
-      }
-      Eigen::Vector3d towards = aim - p;
-      towards -= towards.dot(n0) * n0;
-      if (towards.norm() > 0) fire(std::atan2(towards.dot(e2), towards.dot(e1)), 0.95 * edges.length, 1);
+      result_.iterations += shot.iterations;
+      const bool better = (shot.converged && (!best_.converged || shot.path.length < best_.path.length)) ||
+                          (!best_.converged && !shot.converged && shot.miss < best_.miss);
+      if (better) best_ = std::move(shot);
     }
   }
-  if (!best.converged && options.saddle_detour && budget > 0) {
-    // Vertices of the triangles the best shot crossed, and of the edge path: those where a shortest path may bend.
+
+  // Aim along the shortest edge path: at its point a quarter of the way along, with its length (an upper bound)
+  // shortened by the typical excess of edge paths.
+  void aim_along_edge_path() {
+    const EdgePath edges = shortest_edge_path(surface_, a_.triangle, p_, b_.triangle, q_);
+    result_.graph_distance = std::isfinite(edges.length) ? edges.length : 0;
+    if (!std::isfinite(edges.length)) return;
+    double walked = 0;
+    Eigen::Vector3d aim = edges.points.back();
+    for (std::size_t i = 1; i < edges.points.size(); ++i) {
+      walked += (edges.points[i] - edges.points[i - 1]).norm();
+      aim = edges.points[i];
+      if (walked >= 0.25 * edges.length) break;
+    }
+    Eigen::Vector3d towards = aim - p_;
+    towards -= towards.dot(n0_) * n0_;
+    if (towards.norm() > 0) fire(std::atan2(towards.dot(e2_), towards.dot(e1_)), 0.95 * edges.length, 1);
+  }
+
+  // Through the saddle vertices of the triangles the best shot crossed: two converged legs p -> V and q -> V.
+  void detour_through_saddles() {
     std::vector<std::pair<int, int>> corners;  // (triangle, corner)
-    for (int t : best.path.triangles) {
+    for (int t : best_.path.triangles) {
       for (int c = 0; c < 3; ++c) corners.push_back({t, c});
     }
     std::vector<int> seen;
-    GeodesicDistanceOptions leg_options = options;
+    GeodesicDistanceOptions leg_options = options_;
     leg_options.graph_fallback = false;
     leg_options.saddle_detour = false;
     constexpr int kMaxDetours = 64;
     for (const auto& [t, c] : corners) {
-      const int vertex = surface.mesh().triangles[t][c];
+      const int vertex = surface_.mesh().triangles[t][c];
       if (std::find(seen.begin(), seen.end(), vertex) != seen.end()) continue;
       seen.push_back(vertex);
       if (static_cast<int>(seen.size()) > kMaxDetours) break;
-      const detail::Fan fan = detail::fan_around(surface, t, c);
+      const detail::Fan fan = detail::fan_around(surface_, t, c);
       if (fan.closed && fan.total_angle <= 2 * std::numbers::pi + 1e-9) continue;  // not a saddle
       Eigen::Vector3d corner = Eigen::Vector3d::Zero();
       corner[c] = 1;
       const SurfaceLocation via{t, corner};
-      if (budget <= 0) break;
-      GeodesicDistance first = budgeted_distance(surface, a, via, leg_options, budget);
-      result.iterations += first.iterations;
+      if (budget_ <= 0) break;
+      GeodesicDistance first = budgeted_distance(surface_, a_, via, leg_options, budget_);
+      result_.iterations += first.iterations;
       if (first.status != DistanceStatus::Converged) continue;
       // The second leg is shot from q back to V: shots from a point reach a vertex more reliably than shots from it.
-      GeodesicDistance second = budgeted_distance(surface, b, via, leg_options, budget);
-      result.iterations += second.iterations;
+      GeodesicDistance second = budgeted_distance(surface_, b_, via, leg_options, budget_);
+      result_.iterations += second.iterations;
       if (second.status != DistanceStatus::Converged) continue;
       const double length = first.distance + second.distance;
-      if (best.converged && length >= best.path.length) continue;
-      best.converged = true;
-      best.miss = second.miss;
-      best.path = std::move(first.path);
-      best.path.length = length;
-      best.path.points.insert(best.path.points.end(), second.path.points.rbegin() + 1, second.path.points.rend());
-      best.path.triangles.insert(best.path.triangles.end(), second.path.triangles.rbegin(),
-                                 second.path.triangles.rend());
-      best.path.end = b;
-      best.path.end_point = q;
+      if (best_.converged && length >= best_.path.length) continue;
+      best_.converged = true;
+      best_.miss = second.miss;
+      best_.path = std::move(first.path);
+      best_.path.length = length;
+      best_.path.points.insert(best_.path.points.end(), second.path.points.rbegin() + 1, second.path.points.rend());
+      best_.path.triangles.insert(best_.path.triangles.end(), second.path.triangles.rbegin(),
+                                  second.path.triangles.rend());
+      best_.path.end = b_;
+      best_.path.end_point = q_;
       const auto& back = second.path.points;
-      best.path.end_direction = back.size() > 1 ? Eigen::Vector3d((back[0] - back[1]).normalized())
-                                                : Eigen::Vector3d::Zero();
-      result.via_vertex = vertex;
+      best_.path.end_direction = back.size() > 1 ? Eigen::Vector3d((back[0] - back[1]).normalized())
+                                                 : Eigen::Vector3d::Zero();
+      result_.via_vertex = vertex;
     }
   }
+
+  const SurfaceMesh& surface_;
+  const SurfaceLocation a_, b_;
+  const Eigen::Vector3d p_, q_;
+  const GeodesicDistanceOptions& options_;
+  std::int64_t& budget_;
+  GeodesicDistance& result_;
+  const Eigen::Vector3d n0_;
+  Eigen::Vector3d e1_, e2_;
+  double tolerance_ = 0;
+  TraceOptions trace_;
+  Shot best_;
+};
+
+GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLocation& from, const SurfaceLocation& to,
+                                   const GeodesicDistanceOptions& options, std::int64_t& budget) {
+  validate(options);
+  const SurfaceLocation a = detail::checked_location(surface, from, "geodesic_distance (from)");
+  const SurfaceLocation b = detail::checked_location(surface, to, "geodesic_distance (to)");
+  const Eigen::Vector3d p = position(surface, a);
+  const Eigen::Vector3d q = position(surface, b);
+  GeodesicDistance result;
+  result.euclidean = (q - p).norm();
+  const double rounding = 256 * std::numeric_limits<double>::epsilon() * std::max(p.cwiseAbs().maxCoeff(),
+                                                                                  q.cwiseAbs().maxCoeff());
+  if (result.euclidean <= rounding) {
+    result.status = DistanceStatus::Converged;
+    result.miss = result.euclidean;
+    result.path.end = a;
+    result.path.end_point = p;
+    result.path.points = {p};
+    return result;
+  }
+  Shot best = GeodesicSearch(surface, a, b, options, budget, result).run();
   result.status = best.converged ? DistanceStatus::Converged : DistanceStatus::NotConverged;
   result.miss = best.miss;
   result.distance = best.path.length;
