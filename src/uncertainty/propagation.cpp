@@ -150,19 +150,9 @@ void describe_distribution(const std::vector<double>& values, int bins, OutputSu
   }
 }
 
-}  // namespace
-
-PropagationResult propagate(const InputTransform& inputs, const Model& model, const PropagationOptions& options) {
-  validate(inputs, model, options);
-  const std::size_t k = inputs.size();
-  const std::vector<OutputSpec>& specs = model.outputs();
-  const std::size_t outputs = specs.size();
-  const std::size_t n = options.samples;
-  const std::size_t groups = std::min(kMaxGroups, n);
-
-  // Groups of n/G rows (the first n % G groups one more), each cut into blocks.
+// Groups of n/G rows (the first n % G groups one more), each cut into blocks.
+std::vector<Task> sample_tasks(std::size_t n, std::size_t groups) {
   std::vector<Task> tasks;
-  std::vector<std::size_t> group_of_task;
   std::size_t row = 0;
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t rows = n / groups + (g < n % groups ? 1 : 0);
@@ -172,6 +162,91 @@ PropagationResult propagate(const InputTransform& inputs, const Model& model, co
       row += block_rows;
     }
   }
+  return tasks;
+}
+
+TaskSums empty_sums(std::size_t outputs, std::size_t sobol_terms) {
+  TaskSums sums;
+  sums.moments.assign(outputs, {});
+  sums.sobol.assign(sobol_terms, {});
+  return sums;
+}
+
+void add_sums(TaskSums& to, const TaskSums& from) {
+  for (std::size_t o = 0; o < to.moments.size(); ++o) to.moments[o].add(from.moments[o]);
+  for (std::size_t s = 0; s < to.sobol.size(); ++s) to.sobol[s].add(from.sobol[s]);
+}
+
+// Mean, standard deviation and the 95 % interval of output o: Wilson's for an indicator under Monte Carlo (or when
+// every or no sample succeeded), the normal one for Monte Carlo, else from the replicates (the groups' means).
+void describe_moments(const Sampler& sampler, std::size_t o, const OutputSpec& spec, const TaskSums& total,
+                      const std::vector<TaskSums>& per_group, const PropagationOptions& options,
+                      OutputSummary& summary) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const MomentSums& m = total.moments[o];
+  summary.defined = m.rows;
+  if (m.rows == 0) {
+    summary.mean = summary.sd = nan;
+    summary.ci95 = {nan, nan};
+    return;
+  }
+  const double rows = static_cast<double>(m.rows);
+  const double shifted_mean = m.sum / rows;
+  summary.mean = sampler.shift(o) + shifted_mean;
+  summary.sd = m.rows > 1 ? std::sqrt(std::max(0.0, (m.sum2 - rows * shifted_mean * shifted_mean) / (rows - 1))) : 0.0;
+  std::vector<double> replicate_means;
+  for (const TaskSums& g : per_group) {
+    if (g.moments[o].rows > 0) {
+      replicate_means.push_back(sampler.shift(o) + g.moments[o].sum / static_cast<double>(g.moments[o].rows));
+    }
+  }
+  const bool indicator = spec.kind == OutputKind::Indicator;
+  const auto successes = static_cast<std::size_t>(std::llround(summary.mean * rows));
+  if (indicator && (options.method == SamplingMethod::MonteCarlo || successes == 0 || successes == m.rows)) {
+    summary.ci95 = wilson_interval(successes, m.rows);
+  } else if (options.method == SamplingMethod::MonteCarlo) {
+    const double half = 1.959963984540054 * summary.sd / std::sqrt(rows);
+    summary.ci95 = {summary.mean - half, summary.mean + half};
+  } else {
+    summary.ci95 = replicate_interval(summary.mean, replicate_means);
+    if (indicator) {
+      // A replicate's estimate is a multiple of 1/n_g: identical replicates only show an error below that
+      // resolution, so the interval is never narrower than ±1/n_g.
+      const double resolution = static_cast<double>(per_group.size()) / rows;
+      summary.ci95 = {std::max(0.0, std::min(summary.ci95.lo, summary.mean - resolution)),
+                      std::min(1.0, std::max(summary.ci95.hi, summary.mean + resolution))};
+    }
+  }
+}
+
+// The first-order and total Sobol' indices of output o for each of the k inputs, with intervals from the replicates.
+void describe_sobol_indices(std::size_t o, std::size_t k, const TaskSums& total, const std::vector<TaskSums>& per_group,
+                            OutputSummary& summary) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 0; i < k; ++i) {
+    const SobolSums& s = total.sobol[o * k + i];
+    std::vector<double> first_replicates, total_replicates;
+    for (const TaskSums& g : per_group) {
+      const double f = first_order_index(g.sobol[o * k + i]), t = total_index(g.sobol[o * k + i]);
+      if (std::isfinite(f)) first_replicates.push_back(f);
+      if (std::isfinite(t)) total_replicates.push_back(t);
+    }
+    const double f = first_order_index(s), t = total_index(s);
+    summary.first.push_back({f, std::isfinite(f) ? replicate_interval(f, first_replicates) : Interval{nan, nan}});
+    summary.total.push_back({t, std::isfinite(t) ? replicate_interval(t, total_replicates) : Interval{nan, nan}});
+  }
+}
+
+}  // namespace
+
+PropagationResult propagate(const InputTransform& inputs, const Model& model, const PropagationOptions& options) {
+  validate(inputs, model, options);
+  const std::size_t k = inputs.size();
+  const std::vector<OutputSpec>& specs = model.outputs();
+  const std::size_t outputs = specs.size();
+  const std::size_t n = options.samples;
+  const std::size_t groups = std::min(kMaxGroups, n);
+  const std::vector<Task> tasks = sample_tasks(n, groups);
 
   PropagationResult result;
   result.samples = n;
@@ -202,24 +277,12 @@ PropagationResult propagate(const InputTransform& inputs, const Model& model, co
   });
   if (stopped) throw Interrupted();
 
-  // Reduce in task order: per group, then the total.
-  std::vector<TaskSums> per_group(groups);
-  for (TaskSums& g : per_group) {
-    g.moments.assign(outputs, {});
-    g.sobol.assign(options.sobol_indices ? outputs * k : 0, {});
-  }
-  for (std::size_t t = 0; t < tasks.size(); ++t) {
-    TaskSums& g = per_group[tasks[t].group];
-    for (std::size_t o = 0; o < outputs; ++o) g.moments[o].add(sums[t].moments[o]);
-    for (std::size_t s = 0; s < g.sobol.size(); ++s) g.sobol[s].add(sums[t].sobol[s]);
-  }
-  TaskSums total;
-  total.moments.assign(outputs, {});
-  total.sobol.assign(options.sobol_indices ? outputs * k : 0, {});
-  for (const TaskSums& g : per_group) {
-    for (std::size_t o = 0; o < outputs; ++o) total.moments[o].add(g.moments[o]);
-    for (std::size_t s = 0; s < g.sobol.size(); ++s) total.sobol[s].add(g.sobol[s]);
-  }
+  // Reduce in task order: per group, then the total (the same sums on any number of threads).
+  const std::size_t sobol_terms = options.sobol_indices ? outputs * k : 0;
+  std::vector<TaskSums> per_group(groups, empty_sums(outputs, sobol_terms));
+  for (std::size_t t = 0; t < tasks.size(); ++t) add_sums(per_group[tasks[t].group], sums[t]);
+  TaskSums total = empty_sums(outputs, sobol_terms);
+  for (const TaskSums& g : per_group) add_sums(total, g);
 
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::size_t stored_index = 0;
@@ -227,57 +290,12 @@ PropagationResult propagate(const InputTransform& inputs, const Model& model, co
     OutputSummary summary;
     summary.name = specs[o].name;
     summary.kind = specs[o].kind;
-    const MomentSums& m = total.moments[o];
-    summary.defined = m.rows;
-    if (m.rows > 0) {
-      const double rows = static_cast<double>(m.rows);
-      const double shifted_mean = m.sum / rows;
-      summary.mean = sampler.shift(o) + shifted_mean;
-      summary.sd = m.rows > 1 ? std::sqrt(std::max(0.0, (m.sum2 - rows * shifted_mean * shifted_mean) / (rows - 1)))
-                              : 0.0;
-      std::vector<double> replicate_means;
-      for (const TaskSums& g : per_group) {
-        if (g.moments[o].rows > 0) {
-          replicate_means.push_back(sampler.shift(o) + g.moments[o].sum / static_cast<double>(g.moments[o].rows));
-        }
-      }
-      const bool indicator = specs[o].kind == OutputKind::Indicator;
-      const auto successes = static_cast<std::size_t>(std::llround(summary.mean * rows));
-      if (indicator && (options.method == SamplingMethod::MonteCarlo || successes == 0 || successes == m.rows)) {
-        summary.ci95 = wilson_interval(successes, m.rows);
-      } else if (options.method == SamplingMethod::MonteCarlo) {
-        const double half = 1.959963984540054 * summary.sd / std::sqrt(rows);
-        summary.ci95 = {summary.mean - half, summary.mean + half};
-      } else {
-        summary.ci95 = replicate_interval(summary.mean, replicate_means);
-        if (indicator) {
-          // A replicate's estimate is a multiple of 1/n_g: identical replicates only show an error below that
-          // resolution, so the interval is never narrower than ±1/n_g.
-          const double resolution = static_cast<double>(groups) / rows;
-          summary.ci95 = {std::max(0.0, std::min(summary.ci95.lo, summary.mean - resolution)),
-                          std::min(1.0, std::max(summary.ci95.hi, summary.mean + resolution))};
-        }
-      }
-    } else {
-      summary.mean = summary.sd = nan;
-      summary.ci95 = {nan, nan};
-    }
+    describe_moments(sampler, o, specs[o], total, per_group, options, summary);
     if (specs[o].kind == OutputKind::Continuous) {
       summary.q05 = summary.q50 = summary.q95 = nan;
       describe_distribution(result.samples_of_output[stored_index++], options.histogram_bins, summary);
     }
-    for (std::size_t i = 0; options.sobol_indices && i < k; ++i) {
-      const SobolSums& s = total.sobol[o * k + i];
-      std::vector<double> first_replicates, total_replicates;
-      for (const TaskSums& g : per_group) {
-        const double f = first_order_index(g.sobol[o * k + i]), t = total_index(g.sobol[o * k + i]);
-        if (std::isfinite(f)) first_replicates.push_back(f);
-        if (std::isfinite(t)) total_replicates.push_back(t);
-      }
-      const double f = first_order_index(s), t = total_index(s);
-      summary.first.push_back({f, std::isfinite(f) ? replicate_interval(f, first_replicates) : Interval{nan, nan}});
-      summary.total.push_back({t, std::isfinite(t) ? replicate_interval(t, total_replicates) : Interval{nan, nan}});
-    }
+    if (options.sobol_indices) describe_sobol_indices(o, k, total, per_group, summary);
     result.outputs.push_back(std::move(summary));
   }
   return result;
