@@ -44,6 +44,93 @@ std::string to_string(InsertionStatus status) {
   return status == InsertionStatus::Complete ? "complete" : "no-puncture";
 }
 
+namespace {
+
+void validate_needle(const NeedleInsertion& needle, std::size_t i) {
+  const std::string what = fmt::format("needle {} pre-puncture curve", i + 1);
+  validate_force_curve(needle.pre_puncture.curve, what);
+  if (needle.pre_puncture.curve.depth.front() < 0)
+    throw InvalidInput(fmt::format("{}: first depth {:.6g} m, expected depths >= 0", what,
+                                   needle.pre_puncture.curve.depth.front()));
+  if (needle.loads == nullptr) throw InvalidInput(fmt::format("needle {}: no post-puncture loads given", i + 1));
+  if (!(needle.stiffness > 0) || !std::isfinite(needle.stiffness))
+    throw InvalidInput(fmt::format("needle {} stiffness: {} N/m^2, expected a finite value > 0", i + 1,
+                                   needle.stiffness));
+  if (!(needle.scale > 0) || !std::isfinite(needle.scale))
+    throw InvalidInput(fmt::format("needle {} scale: {}, expected a finite value > 0", i + 1, needle.scale));
+  if (!(needle.contact_offset >= 0) || !std::isfinite(needle.contact_offset))
+    throw InvalidInput(fmt::format("needle {} contact_offset: {} m, expected a finite length >= 0", i + 1,
+                                   needle.contact_offset));
+  const double last = needle.pre_puncture.curve.depth.back();
+  if (needle.pre_puncture.puncture) {
+    const double x = needle.pre_puncture.puncture->depth;
+    if (!(x > 0) || x > last * (1 + 1e-12))
+      throw InvalidInput(fmt::format("{}: puncture depth {:.6g} m, expected a depth in (0, {:.6g}] m (within the "
+                                     "curve)",
+                                     what, x, last));
+  }
+}
+
+// Samples: every pre-puncture sample until its needle punctures, both sides of every puncture, and an equally
+// spaced cutting grid from the first puncture to the end; sorted, without repeats.
+std::vector<Sample> curve_samples(const std::vector<NeedleInsertion>& needles,
+                                  const std::vector<double>& puncture_displacement, double end, int cutting_samples) {
+  std::vector<Sample> samples{{0.0, false}};
+  double first_puncture = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < needles.size(); ++i) {
+    const double offset = needles[i].contact_offset;
+    for (double x : needles[i].pre_puncture.curve.depth) {
+      const double u = offset + x;
+      if (u <= end && u <= puncture_displacement[i]) samples.push_back({u, false});
+    }
+    if (puncture_displacement[i] <= end) {
+      samples.push_back({puncture_displacement[i], false});
+      samples.push_back({puncture_displacement[i], true});
+      first_puncture = std::min(first_puncture, puncture_displacement[i]);
+    }
+  }
+  if (first_puncture <= end)
+    for (int k = 1; k <= cutting_samples; ++k)
+      samples.push_back({first_puncture + (end - first_puncture) * k / static_cast<double>(cutting_samples), false});
+  std::sort(samples.begin(), samples.end());
+  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
+  return samples;
+}
+
+// Needle i's force at every sample (pre-puncture curve before its puncture, Eq 3.20's cutting force after it) added
+// to result.force, and its puncture event.
+void add_needle(const NeedleInsertion& needle, std::size_t i, double puncture_displacement, double end,
+                const std::vector<Sample>& samples, InsertionCurve& result) {
+  std::vector<std::size_t> cutting;
+  std::vector<double> cutting_depth;
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    const double x = samples[s].displacement - needle.contact_offset;
+    const bool punctured = samples[s].displacement > puncture_displacement ||
+                           (samples[s].displacement == puncture_displacement && samples[s].after_punctures);
+    if (punctured) {
+      cutting.push_back(s);
+      cutting_depth.push_back(x);
+      ++result.punctured_needles[s];
+    } else {
+      result.force[s] += pre_puncture_force_at(needle.pre_puncture.curve, x);
+    }
+  }
+  const std::vector<double> cut = post_puncture_forces(*needle.loads, cutting_depth, needle.stiffness, needle.scale);
+  for (std::size_t k = 0; k < cutting.size(); ++k) result.force[cutting[k]] += cut[k];
+  if (puncture_displacement <= end) {
+    PunctureEvent event;
+    event.needle = static_cast<int>(i);
+    event.displacement = puncture_displacement;
+    event.depth = needle.pre_puncture.puncture->depth;
+    event.force_before = pre_puncture_force_at(needle.pre_puncture.curve, event.depth);
+    event.force_after = post_puncture_force(*needle.loads, event.depth, needle.stiffness, needle.scale);
+    event.drop = event.force_before - event.force_after;
+    result.punctures.push_back(event);
+  }
+}
+
+}  // namespace
+
 InsertionCurve insertion_curve(const std::vector<NeedleInsertion>& needles, const InsertionCurveOptions& options) {
   if (needles.empty()) throw InvalidInput("needles: none given, expected at least one needle");
   if (!(options.final_depth > 0) || !std::isfinite(options.final_depth))
@@ -57,29 +144,10 @@ InsertionCurve insertion_curve(const std::vector<NeedleInsertion>& needles, cons
   InsertionCurve result;
   for (std::size_t i = 0; i < count; ++i) {
     const NeedleInsertion& needle = needles[i];
-    const std::string what = fmt::format("needle {} pre-puncture curve", i + 1);
-    validate_force_curve(needle.pre_puncture.curve, what);
-    if (needle.pre_puncture.curve.depth.front() < 0)
-      throw InvalidInput(fmt::format("{}: first depth {:.6g} m, expected depths >= 0", what,
-                                     needle.pre_puncture.curve.depth.front()));
-    if (needle.loads == nullptr)
-      throw InvalidInput(fmt::format("needle {}: no post-puncture loads given", i + 1));
-    if (!(needle.stiffness > 0) || !std::isfinite(needle.stiffness))
-      throw InvalidInput(fmt::format("needle {} stiffness: {} N/m^2, expected a finite value > 0", i + 1,
-                                     needle.stiffness));
-    if (!(needle.scale > 0) || !std::isfinite(needle.scale))
-      throw InvalidInput(fmt::format("needle {} scale: {}, expected a finite value > 0", i + 1, needle.scale));
-    if (!(needle.contact_offset >= 0) || !std::isfinite(needle.contact_offset))
-      throw InvalidInput(fmt::format("needle {} contact_offset: {} m, expected a finite length >= 0", i + 1,
-                                     needle.contact_offset));
+    validate_needle(needle, i);
     const double last = needle.pre_puncture.curve.depth.back();
     if (needle.pre_puncture.puncture) {
-      const double x = needle.pre_puncture.puncture->depth;
-      if (!(x > 0) || x > last * (1 + 1e-12))
-        throw InvalidInput(fmt::format("{}: puncture depth {:.6g} m, expected a depth in (0, {:.6g}] m (within the "
-                                       "curve)",
-                                       what, x, last));
-      puncture_displacement[i] = needle.contact_offset + x;
+      puncture_displacement[i] = needle.contact_offset + needle.pre_puncture.puncture->depth;
     } else if (needle.contact_offset + last < end) {
       end = needle.contact_offset + last;
       result.status = InsertionStatus::NoPuncture;
@@ -91,68 +159,14 @@ InsertionCurve insertion_curve(const std::vector<NeedleInsertion>& needles, cons
   if (result.reason.empty())
     result.reason = fmt::format("reached the final depth {:.6g} um", options.final_depth * 1e6);
 
-  // Samples: every pre-puncture sample until its needle punctures, both sides of every puncture, and an equally
-  // spaced cutting grid from the first puncture to the end.
-  std::vector<Sample> samples{{0.0, false}};
-  double first_puncture = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < count; ++i) {
-    const double offset = needles[i].contact_offset;
-    for (double x : needles[i].pre_puncture.curve.depth) {
-      const double u = offset + x;
-      if (u <= end && u <= puncture_displacement[i]) samples.push_back({u, false});
-    }
-    if (puncture_displacement[i] <= end) {
-      samples.push_back({puncture_displacement[i], false});
-      samples.push_back({puncture_displacement[i], true});
-      first_puncture = std::min(first_puncture, puncture_displacement[i]);
-    }
-  }
-  if (first_puncture <= end)
-    for (int k = 1; k <= options.cutting_samples; ++k)
-      samples.push_back(
-          {first_puncture + (end - first_puncture) * k / static_cast<double>(options.cutting_samples), false});
-  std::sort(samples.begin(), samples.end());
-  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
-
-  auto punctured = [&](std::size_t i, const Sample& s) {
-    return s.displacement > puncture_displacement[i] ||
-           (s.displacement == puncture_displacement[i] && s.after_punctures);
-  };
-
+  const std::vector<Sample> samples = curve_samples(needles, puncture_displacement, end, options.cutting_samples);
   const std::size_t m = samples.size();
   result.depth.resize(m);
   result.force.assign(m, 0.0);
   result.punctured_needles.assign(m, 0);
   result.phase.assign(m, InsertionPhase::Indentation);
   for (std::size_t s = 0; s < m; ++s) result.depth[s] = samples[s].displacement;
-  for (std::size_t i = 0; i < count; ++i) {
-    const NeedleInsertion& needle = needles[i];
-    std::vector<std::size_t> cutting;
-    std::vector<double> cutting_depth;
-    for (std::size_t s = 0; s < m; ++s) {
-      const double x = samples[s].displacement - needle.contact_offset;
-      if (punctured(i, samples[s])) {
-        cutting.push_back(s);
-        cutting_depth.push_back(x);
-        ++result.punctured_needles[s];
-      } else {
-        result.force[s] += pre_puncture_force_at(needle.pre_puncture.curve, x);
-      }
-    }
-    const std::vector<double> cut =
-        post_puncture_forces(*needle.loads, cutting_depth, needle.stiffness, needle.scale);
-    for (std::size_t k = 0; k < cutting.size(); ++k) result.force[cutting[k]] += cut[k];
-    if (puncture_displacement[i] <= end) {
-      PunctureEvent event;
-      event.needle = static_cast<int>(i);
-      event.displacement = puncture_displacement[i];
-      event.depth = needle.pre_puncture.puncture->depth;
-      event.force_before = pre_puncture_force_at(needle.pre_puncture.curve, event.depth);
-      event.force_after = post_puncture_force(*needle.loads, event.depth, needle.stiffness, needle.scale);
-      event.drop = event.force_before - event.force_after;
-      result.punctures.push_back(event);
-    }
-  }
+  for (std::size_t i = 0; i < count; ++i) add_needle(needles[i], i, puncture_displacement[i], end, samples, result);
   for (std::size_t s = 0; s < m; ++s)
     if (result.punctured_needles[s] > 0) result.phase[s] = InsertionPhase::Cutting;
   std::stable_sort(result.punctures.begin(), result.punctures.end(),
