@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <optional>
 #include <numbers>
 
 #include "needlekit/core/errors.hpp"
@@ -211,6 +212,148 @@ SurfaceLocation checked_location(const SurfaceMesh& surface, const SurfaceLocati
   return out;
 }
 
+namespace {
+
+// One trace across the triangles (walk below): the current triangle t, barycentric position b and direction d, and
+// the path so far. Each crossing either ends the trace (a finished path) or moves on to the next triangle.
+class Walker {
+public:
+  Walker(const SurfaceMesh& surface, const SurfaceLocation& start, const Eigen::Vector3d& direction,
+         const WalkRule& rule, const TraceOptions& options)
+      : surface_(surface), rule_(rule), options_(options), t_(start.triangle), b_(start.barycentric), d_(direction) {
+    path_.points.push_back(position(surface, {t_, b_}));
+  }
+
+  SurfacePath run(double length) {
+    if (is_degenerate(frame_of(surface_, t_), options_)) {
+      return finish(PathStatus::DegenerateTriangle, fmt::format("the start triangle {} is degenerate", t_));
+    }
+    if (std::optional<SurfacePath> ended = leave_start_vertex(length)) return *ended;
+    double remaining = length;
+    int zero_steps = 0;
+    for (int step = 0; step < options_.max_steps; ++step) {
+      const TriangleFrame f = frame_of(surface_, t_);
+      Eigen::Vector3d rate;
+      for (int k = 0; k < 3; ++k) rate[k] = f.gradient[k].dot(d_);
+      const double scale = rate.cwiseAbs().maxCoeff();
+      int exit_corner = -1;
+      double exit_t = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        if (rate[k] < -kRateTolerance * scale) {
+          const double tk = std::max(b_[k], 0.0) / -rate[k];
+          if (tk < exit_t) exit_t = tk, exit_corner = k;
+        }
+      }
+      if (exit_corner < 0 || remaining <= exit_t) {
+        b_ += remaining * rate;
+        clamp_barycentric(b_);
+        path_.length += remaining;
+        return finish(PathStatus::Completed, "");
+      }
+      Eigen::Vector3d crossing = b_ + exit_t * rate;
+      crossing[exit_corner] = 0;
+      clamp_barycentric(crossing);
+      b_ = crossing;
+      path_.length += exit_t;
+      remaining -= exit_t;
+      path_.points.push_back(position(surface_, {t_, b_}));
+      path_.triangles.push_back(t_);
+      zero_steps = exit_t > 1e-14 * std::sqrt(f.longest_squared) ? 0 : zero_steps + 1;
+      if (zero_steps > kMaxZeroSteps) {
+        return finish(PathStatus::StepLimit,
+                      fmt::format("no progress at triangle {} after {} zero-length steps", t_, zero_steps));
+      }
+      if (std::optional<SurfacePath> ended = cross(exit_corner)) return *ended;
+    }
+    return finish(PathStatus::StepLimit, fmt::format("crossed more than {} triangles", options_.max_steps));
+  }
+
+private:
+  SurfacePath finish(PathStatus status, std::string reason) {
+    path_.status = status;
+    path_.reason = std::move(reason);
+    path_.end = {t_, b_};
+    path_.end_point = position(surface_, path_.end);
+    path_.end_direction = d_;
+    if ((path_.points.back() - path_.end_point).norm() > 0 || path_.points.size() == 1) {
+      path_.points.push_back(path_.end_point);
+      path_.triangles.push_back(t_);
+    }
+    return path_;
+  }
+
+  // A start at a vertex: the rule picks the wedge the direction leaves through.
+  std::optional<SurfacePath> leave_start_vertex(double length) {
+    for (int c = 0; c < 3; ++c) {
+      if (b_[c] < 1 - options_.vertex_tolerance || length == 0) continue;
+      const Fan fan = fan_around(surface_, t_, c);
+      std::string reason;
+      const auto leave = rule_.leave_vertex(surface_, fan, fan.index_of(t_), d_, reason);
+      if (!leave) return finish(PathStatus::HitBoundary, reason);
+      t_ = leave->triangle;
+      d_ = leave->direction;
+      b_ = unit_corner(fan.wedges[fan.index_of(t_)].corner);
+      break;
+    }
+    return std::nullopt;
+  }
+
+  // On the edge opposite exit_corner: through a vertex (the crossing lies on an end of the exit edge) or across the
+  // edge into the neighbour; the finished path when the trace cannot go on.
+  std::optional<SurfacePath> cross(int exit_corner) {
+    const auto& tris = surface_.mesh().triangles;
+    const double vertex_tol = options_.vertex_tolerance;
+    const int c1 = (exit_corner + 1) % 3, c2 = (exit_corner + 2) % 3;
+    const int vertex_corner = b_[c2] <= vertex_tol ? c1 : (b_[c1] <= vertex_tol ? c2 : -1);
+    if (vertex_corner >= 0) {
+      b_ = unit_corner(vertex_corner);
+      path_.points.back() = position(surface_, {t_, b_});
+      const Fan fan = fan_around(surface_, t_, vertex_corner);
+      path_.vertex_crossings.push_back({tris[t_][vertex_corner], fan.total_angle});
+      std::string reason;
+      const auto through = rule_.through_vertex(surface_, fan, fan.index_of(t_), d_, reason);
+      if (!through) return finish(PathStatus::HitBoundary, reason);
+      if (is_degenerate(frame_of(surface_, through->triangle), options_)) {
+        return finish(PathStatus::DegenerateTriangle,
+                      fmt::format("triangle {} beyond vertex {} is degenerate", through->triangle,
+                                  tris[t_][vertex_corner]));
+      }
+      t_ = through->triangle;
+      d_ = through->direction;
+      b_ = unit_corner(fan.wedges[fan.index_of(t_)].corner);
+      return std::nullopt;
+    }
+    // Across the edge from corner c1 to corner c2 (edge index c1).
+    const int next = surface_.neighbor(t_, c1);
+    if (next < 0) {
+      return finish(PathStatus::HitBoundary, fmt::format("reached the boundary edge {}-{} of triangle {}",
+                                                         tris[t_][c1], tris[t_][c2], t_));
+    }
+    if (is_degenerate(frame_of(surface_, next), options_)) {
+      return finish(PathStatus::DegenerateTriangle,
+                    fmt::format("triangle {} across edge {}-{} is degenerate", next, tris[t_][c1], tris[t_][c2]));
+    }
+    Eigen::Vector3d nb = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) {
+      if (tris[next][c] == tris[t_][c1]) nb[c] = b_[c1];
+      if (tris[next][c] == tris[t_][c2]) nb[c] = b_[c2];
+    }
+    d_ = rule_.across_edge(surface_, t_, c1, next, d_);
+    t_ = next;
+    b_ = nb;
+    return std::nullopt;
+  }
+
+  const SurfaceMesh& surface_;
+  const WalkRule& rule_;
+  const TraceOptions& options_;
+  int t_;
+  Eigen::Vector3d b_, d_;
+  SurfacePath path_;
+};
+
+}  // namespace
+
 SurfacePath walk(const SurfaceMesh& surface, const SurfaceLocation& start, const Eigen::Vector3d& direction,
                  double length, const WalkRule& rule, const TraceOptions& options) {
   if (options.max_steps < 1 || !(options.vertex_tolerance >= 0 && options.vertex_tolerance <= 1e-3) ||
@@ -219,124 +362,7 @@ SurfacePath walk(const SurfaceMesh& surface, const SurfaceLocation& start, const
                                    "[0, 1e-3]), degenerate_sine {} (expected [0, 1e-3])", options.max_steps,
                                    options.vertex_tolerance, options.degenerate_sine));
   }
-  const auto& tris = surface.mesh().triangles;
-  SurfacePath path;
-  int t = start.triangle;
-  Eigen::Vector3d b = start.barycentric;
-  Eigen::Vector3d d = direction;
-  path.points.push_back(position(surface, {t, b}));
-
-  const auto finish = [&](PathStatus status, std::string reason) {
-    path.status = status;
-    path.reason = std::move(reason);
-    path.end = {t, b};
-    path.end_point = position(surface, path.end);
-    path.end_direction = d;
-    if ((path.points.back() - path.end_point).norm() > 0 || path.points.size() == 1) {
-      path.points.push_back(path.end_point);
-      path.triangles.push_back(t);
-    }
-    return path;
-  };
-  {
-    const TriangleFrame f = frame_of(surface, t);
-    if (is_degenerate(f, options)) {
-      return finish(PathStatus::DegenerateTriangle, fmt::format("the start triangle {} is degenerate", t));
-    }
-  }
-  // A start at a vertex: the rule picks the wedge the direction leaves through.
-  const double vertex_tol = options.vertex_tolerance;
-  for (int c = 0; c < 3; ++c) {
-    if (b[c] < 1 - vertex_tol || length == 0) continue;
-    const Fan fan = fan_around(surface, t, c);
-    std::string reason;
-    const auto leave = rule.leave_vertex(surface, fan, fan.index_of(t), d, reason);
-    if (!leave) return finish(PathStatus::HitBoundary, reason);
-    t = leave->triangle;
-    d = leave->direction;
-    b = unit_corner(fan.wedges[fan.index_of(t)].corner);
-    break;
-  }
-
-  double remaining = length;
-  int zero_steps = 0;
-  for (int step = 0; step < options.max_steps; ++step) {
-    const TriangleFrame f = frame_of(surface, t);
-    Eigen::Vector3d rate;
-    for (int k = 0; k < 3; ++k) rate[k] = f.gradient[k].dot(d);
-    const double scale = rate.cwiseAbs().maxCoeff();
-    int exit_corner = -1;
-    double exit_t = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k) {
-      if (rate[k] < -kRateTolerance * scale) {
-        const double tk = std::max(b[k], 0.0) / -rate[k];
-        if (tk < exit_t) exit_t = tk, exit_corner = k;
-      }
-    }
-    if (exit_corner < 0 || remaining <= exit_t) {
-      b += remaining * rate;
-      clamp_barycentric(b);
-      path.length += remaining;
-      return finish(PathStatus::Completed, "");
-    }
-    Eigen::Vector3d crossing = b + exit_t * rate;
-    crossing[exit_corner] = 0;
-    clamp_barycentric(crossing);
-    b = crossing;
-    path.length += exit_t;
-    remaining -= exit_t;
-    path.points.push_back(position(surface, {t, b}));
-    path.triangles.push_back(t);
-    zero_steps = exit_t > 1e-14 * std::sqrt(f.longest_squared) ? 0 : zero_steps + 1;
-    if (zero_steps > kMaxZeroSteps) {
-      return finish(PathStatus::StepLimit,
-                    fmt::format("no progress at triangle {} after {} zero-length steps", t, zero_steps));
-    }
-
-    // Through a vertex: the crossing lies on an end of the exit edge.
-    const int c1 = (exit_corner + 1) % 3, c2 = (exit_corner + 2) % 3;
-    const int vertex_corner = b[c2] <= vertex_tol ? c1 : (b[c1] <= vertex_tol ? c2 : -1);
-    if (vertex_corner >= 0) {
-      b = unit_corner(vertex_corner);
-      path.points.back() = position(surface, {t, b});
-      const Fan fan = fan_around(surface, t, vertex_corner);
-      path.vertex_crossings.push_back({tris[t][vertex_corner], fan.total_angle});
-      std::string reason;
-      const auto through = rule.through_vertex(surface, fan, fan.index_of(t), d, reason);
-      if (!through) return finish(PathStatus::HitBoundary, reason);
-      const TriangleFrame next = frame_of(surface, through->triangle);
-      if (is_degenerate(next, options)) {
-        return finish(PathStatus::DegenerateTriangle,
-                      fmt::format("triangle {} beyond vertex {} is degenerate", through->triangle,
-                                  tris[t][vertex_corner]));
-      }
-      t = through->triangle;
-      d = through->direction;
-      b = unit_corner(fan.wedges[fan.index_of(t)].corner);
-      continue;
-    }
-
-    // Across the edge from corner c1 to corner c2 (edge index c1).
-    const int next = surface.neighbor(t, c1);
-    if (next < 0) {
-      return finish(PathStatus::HitBoundary, fmt::format("reached the boundary edge {}-{} of triangle {}",
-                                                         tris[t][c1], tris[t][c2], t));
-    }
-    const TriangleFrame nf = frame_of(surface, next);
-    if (is_degenerate(nf, options)) {
-      return finish(PathStatus::DegenerateTriangle,
-                    fmt::format("triangle {} across edge {}-{} is degenerate", next, tris[t][c1], tris[t][c2]));
-    }
-    Eigen::Vector3d nb = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 3; ++c) {
-      if (tris[next][c] == tris[t][c1]) nb[c] = b[c1];
-      if (tris[next][c] == tris[t][c2]) nb[c] = b[c2];
-    }
-    d = rule.across_edge(surface, t, c1, next, d);
-    t = next;
-    b = nb;
-  }
-  return finish(PathStatus::StepLimit, fmt::format("crossed more than {} triangles", options.max_steps));
+  return Walker(surface, start, direction, rule, options).run(length);
 }
 
 }  // namespace detail
