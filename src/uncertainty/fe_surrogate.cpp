@@ -106,6 +106,83 @@ private:
                                    {"punctures_before_depth", OutputKind::Indicator}};
 };
 
+// The log-quadratic response surfaces of the puncture depth and force in the active inputs, fitted to FE runs at
+// design points and checked against held-out runs (result.design, .validation and their errors); empty, with
+// result.status Failed, when too few design runs punctured to fit the terms.
+std::function<void(const double*, double&, double&)> fitted_surrogate(
+    const insertion::IndentationCase& c, const std::vector<FeInput>& which, const std::vector<double>& nominal,
+    const std::vector<std::size_t>& active, const InputTransform& transform, const FeSurrogateOptions& options,
+    FeSurrogateResult& result) {
+  const int a = static_cast<int>(active.size());
+  result.terms = LogQuadraticSurface::terms(a);
+  const int design_runs = options.design_runs > 0 ? options.design_runs : 2 * result.terms;
+  const std::uint64_t seed = options.sampling.seed;
+  const auto points = design_points(transform, seed, kDesignGroup, design_runs);
+  const auto held_out = design_points(transform, seed, kValidationGroup, options.validation_runs);
+  const int total = design_runs + options.validation_runs;
+  int done = 0;
+  for (const auto& x : points) {
+    result.design.push_back(fe_run(c, which, x));
+    if (options.progress) options.progress(++done, total);
+  }
+  const auto active_inputs = [&](const std::vector<double>& x) {
+    std::vector<double> v;
+    for (std::size_t i : active) v.push_back(x[i]);
+    return v;
+  };
+  std::vector<std::vector<double>> fit_inputs;
+  std::vector<double> depths, forces;
+  for (const FeRun& run : result.design) {
+    if (!run.depth) continue;
+    fit_inputs.push_back(active_inputs(run.inputs));
+    depths.push_back(*run.depth);
+    forces.push_back(*run.force);
+  }
+  const int censored = design_runs - static_cast<int>(depths.size());
+  if (static_cast<int>(depths.size()) < result.terms) {
+    result.status = FeSurrogateStatus::Failed;
+    result.reason = fmt::format("{} of {} design runs did not puncture within the loading depth {:.4g} um, leaving "
+                                "{} for {} terms: deepen [loading] depth or narrow the spreads",
+                                censored, design_runs, c.depth * 1e6, depths.size(), result.terms);
+    return {};
+  }
+  std::vector<double> active_nominal = active_inputs(nominal);
+  const auto depth_surface = std::make_shared<LogQuadraticSurface>(active_nominal, fit_inputs, depths);
+  const auto force_surface = std::make_shared<LogQuadraticSurface>(active_nominal, fit_inputs, forces);
+  const std::function<void(const double*, double&, double&)> surrogate =
+      [depth_surface, force_surface, active](const double* x, double& d, double& f) {
+        std::vector<double> v;
+        for (std::size_t i : active) v.push_back(x[i]);
+        d = (*depth_surface)(v.data());
+        f = (*force_surface)(v.data());
+      };
+  for (const auto& x : held_out) {
+    result.validation.push_back(fe_run(c, which, x));
+    if (options.progress) options.progress(++done, total);
+  }
+  int censored_validation = 0;
+  for (auto* runs : {&result.design, &result.validation}) {
+    for (FeRun& run : *runs) {
+      surrogate(run.inputs.data(), run.surrogate_depth, run.surrogate_force);
+      censored_validation += runs == &result.validation && !run.depth;
+    }
+  }
+  result.design_depth_error = relative_error(result.design, true);
+  result.design_force_error = relative_error(result.design, false);
+  result.validation_depth_error = relative_error(result.validation, true);
+  result.validation_force_error = relative_error(result.validation, false);
+  if (censored + censored_validation > 0) {
+    result.status = FeSurrogateStatus::CensoredRuns;
+    result.reason = fmt::format("{} design and {} validation runs did not puncture within the loading depth "
+                                "{:.4g} um: left out of the fit and of the stated error",
+                                censored, censored_validation, c.depth * 1e6);
+  }
+  if (censored_validation == options.validation_runs) {
+    result.notes.push_back("no held-out run punctured: the surrogate's error is not checked");
+  }
+  return surrogate;
+}
+
 }  // namespace
 
 std::string_view to_string(FeSurrogateStatus status) {
@@ -204,72 +281,8 @@ FeSurrogateResult fe_surrogate(const insertion::IndentationCase& base, const std
     const double depth = *result.nominal.depth, force = *result.nominal.force;
     surrogate = [depth, force](const double*, double& d, double& f) { d = depth, f = force; };
   } else {
-    const int a = static_cast<int>(active.size());
-    result.terms = LogQuadraticSurface::terms(a);
-    const int design_runs = options.design_runs > 0 ? options.design_runs : 2 * result.terms;
-    const std::uint64_t seed = options.sampling.seed;
-    const auto points = design_points(transform, seed, kDesignGroup, design_runs);
-    const auto held_out = design_points(transform, seed, kValidationGroup, options.validation_runs);
-    const int total = design_runs + options.validation_runs;
-    int done = 0;
-    for (const auto& x : points) {
-      result.design.push_back(fe_run(c, which, x));
-      if (options.progress) options.progress(++done, total);
-    }
-    const auto active_inputs = [&](const std::vector<double>& x) {
-      std::vector<double> v;
-      for (std::size_t i : active) v.push_back(x[i]);
-      return v;
-    };
-    std::vector<std::vector<double>> fit_inputs;
-    std::vector<double> depths, forces;
-    for (const FeRun& run : result.design) {
-      if (!run.depth) continue;
-      fit_inputs.push_back(active_inputs(run.inputs));
-      depths.push_back(*run.depth);
-      forces.push_back(*run.force);
-    }
-    const int censored = design_runs - static_cast<int>(depths.size());
-    if (static_cast<int>(depths.size()) < result.terms) {
-      result.status = FeSurrogateStatus::Failed;
-      result.reason = fmt::format("{} of {} design runs did not puncture within the loading depth {:.4g} um, leaving "
-                                  "{} for {} terms: deepen [loading] depth or narrow the spreads",
-                                  censored, design_runs, base.depth * 1e6, depths.size(), result.terms);
-      return result;
-    }
-    std::vector<double> active_nominal = active_inputs(nominal);
-    const auto depth_surface = std::make_shared<LogQuadraticSurface>(active_nominal, fit_inputs, depths);
-    const auto force_surface = std::make_shared<LogQuadraticSurface>(active_nominal, fit_inputs, forces);
-    surrogate = [depth_surface, force_surface, active](const double* x, double& d, double& f) {
-      std::vector<double> v;
-      for (std::size_t i : active) v.push_back(x[i]);
-      d = (*depth_surface)(v.data());
-      f = (*force_surface)(v.data());
-    };
-    for (const auto& x : held_out) {
-      result.validation.push_back(fe_run(c, which, x));
-      if (options.progress) options.progress(++done, total);
-    }
-    int censored_validation = 0;
-    for (auto* runs : {&result.design, &result.validation}) {
-      for (FeRun& run : *runs) {
-        surrogate(run.inputs.data(), run.surrogate_depth, run.surrogate_force);
-        censored_validation += runs == &result.validation && !run.depth;
-      }
-    }
-    result.design_depth_error = relative_error(result.design, true);
-    result.design_force_error = relative_error(result.design, false);
-    result.validation_depth_error = relative_error(result.validation, true);
-    result.validation_force_error = relative_error(result.validation, false);
-    if (censored + censored_validation > 0) {
-      result.status = FeSurrogateStatus::CensoredRuns;
-      result.reason = fmt::format("{} design and {} validation runs did not puncture within the loading depth "
-                                  "{:.4g} um: left out of the fit and of the stated error",
-                                  censored, censored_validation, base.depth * 1e6);
-    }
-    if (censored_validation == options.validation_runs) {
-      result.notes.push_back("no held-out run punctured: the surrogate's error is not checked");
-    }
+    surrogate = fitted_surrogate(c, which, nominal, active, transform, options, result);
+    if (!surrogate) return result;
   }
   if (result.depth_limit > base.depth) {
     result.notes.push_back(fmt::format("depth_limit {:.4g} um is beyond the FE runs' loading depth {:.4g} um: the "
