@@ -200,83 +200,79 @@ PitchChoice best_pitch(const DesignPointEvaluator& ev, double d2, bool published
   return best;
 }
 
-OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions& options, Progress& progress) {
-  const std::size_t n1 = ev.d1_values().size(), n2 = ev.d2_count();
-  const auto& lengths = ev.l_values();
-  const bool cylinder = ev.space().shape == needle::Shape::Cylinder;
-  const bool hollow = ev.space().hollow;
-  const double target = ev.space().conditions.target_depth;
+// Per (D1, D2) pair: the smallest feasible bore, the L index interval with L >= d + T, and an upper bound of the
+// index over it that ignores buckling. φ (which may need an eigenvalue) is decided only for the pairs the bound
+// cannot prune.
+struct Pair {
+  std::size_t i1 = 0, i2 = 0, i3 = 0, lo = 0, hi = 0;
+  PitchChoice pitch;
+  double bound = 0;
+};
 
-  // Per base diameter: the best (n, w).
-  std::vector<PitchChoice> pitch(n2);
-  for (std::size_t i2 = 0; i2 < n2; ++i2) {
-    pitch[i2] = best_pitch(ev, cylinder ? 0.0 : ev.d2_values()[i2], options.published_compat);
+// The certified optimum by branch and bound: pairs in the order of their bounds, each searched over its L interval
+// (cut where the needle starts to buckle) while its bound can beat the incumbent.
+class CertifiedSearch {
+public:
+  CertifiedSearch(const DesignPointEvaluator& ev, const OptimizerOptions& options)
+      : ev_(ev), options_(options), lengths_(ev.l_values()), cylinder_(ev.space().shape == needle::Shape::Cylinder),
+        hollow_(ev.space().hollow) {}
+
+  // The pairs that can hold a feasible design, with their bounds.
+  std::vector<Pair> candidate_pairs() const {
+    const std::size_t n1 = ev_.d1_values().size(), n2 = ev_.d2_count();
+    const double target = ev_.space().conditions.target_depth;
+    // Per base diameter: the best (n, w).
+    std::vector<PitchChoice> pitch(n2);
+    for (std::size_t i2 = 0; i2 < n2; ++i2) {
+      pitch[i2] = best_pitch(ev_, cylinder_ ? 0.0 : ev_.d2_values()[i2], options_.published_compat);
+    }
+    std::vector<Pair> pairs(n1 * n2);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n1 * n2), [&](const auto& range) {
+      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+        Pair& p = pairs[k];
+        p.i1 = k / n2;
+        p.i2 = k % n2;
+        p.pitch = cylinder_ ? best_pitch(ev_, ev_.d1_values()[p.i1], options_.published_compat) : pitch[p.i2];
+        if (p.pitch.factor == 0) continue;
+        const needle::NeedleGeometry g0 = ev_.geometry(p.i1, p.i2, 0, 0);
+        if (!cylinder_ && !(g0.tip_diameter < g0.base_diameter)) continue;
+        if (cylinder_ && ev_.needle_outcome(p.i1, 0, 0, 0).status == PointStatus::InvalidGeometry) continue;
+        if (hollow_ && !(ev_.d3_values().front() < std::min(g0.tip_diameter, g0.base_diameter))) continue;
+        p.i3 = 0;  // the smallest bore is always the best: it only weakens the column
+        const double d = ev_.deformation(p.i1, p.i2);
+        p.lo = static_cast<std::size_t>(std::lower_bound(lengths_.begin(), lengths_.end(), d + target) -
+                                        lengths_.begin());
+        if (p.lo == lengths_.size()) continue;
+        p.hi = lengths_.size() - 1;
+        p.bound = bound_on(p, p.lo, p.hi);
+      }
+    });
+    return pairs;
   }
 
-  // Per (D1, D2) pair: the smallest feasible bore, the L index interval with L >= d + T, and an upper bound of the
-  // index over it that ignores buckling. φ (which may need an eigenvalue) is decided only for the pairs the bound
-  // cannot prune.
-  struct Pair {
-    std::size_t i1 = 0, i2 = 0, i3 = 0, lo = 0, hi = 0;
-    PitchChoice pitch;
-    double bound = 0;
-  };
   // g = Q/H with Q = V(h)/h non-decreasing (the mean of a non-decreasing section area) and V non-decreasing:
   // solid (H = T): g <= Q(h_b)/T on [h_a, h_b]; hollow (H = h): g <= V(h_b)/h_a².
-  auto bound_on = [&](const Pair& p, std::size_t a, std::size_t b) {
-    const double d = ev.deformation(p.i1, p.i2);
-    const needle::NeedleGeometry gb = ev.geometry(p.i1, p.i2, p.i3, b);
-    const double h_a = lengths[a] - d, h_b = lengths[b] - d;
-    return p.pitch.factor * (hollow ? ev.embedded(gb, h_b) / (h_a * h_a) : ev.g_of(gb, d));
-  };
-  std::vector<Pair> pairs(n1 * n2);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n1 * n2), [&](const auto& range) {
-    for (std::size_t k = range.begin(); k != range.end(); ++k) {
-      Pair& p = pairs[k];
-      p.i1 = k / n2;
-      p.i2 = k % n2;
-      p.pitch = cylinder ? best_pitch(ev, ev.d1_values()[p.i1], options.published_compat) : pitch[p.i2];
-      if (p.pitch.factor == 0) continue;
-      const needle::NeedleGeometry g0 = ev.geometry(p.i1, p.i2, 0, 0);
-      if (!cylinder && !(g0.tip_diameter < g0.base_diameter)) continue;
-      if (cylinder && ev.needle_outcome(p.i1, 0, 0, 0).status == PointStatus::InvalidGeometry) continue;
-      if (hollow && !(ev.d3_values().front() < std::min(g0.tip_diameter, g0.base_diameter))) continue;
-      p.i3 = 0;  // the smallest bore is always the best: it only weakens the column
-      const double d = ev.deformation(p.i1, p.i2);
-      p.lo = static_cast<std::size_t>(std::lower_bound(lengths.begin(), lengths.end(), d + target) - lengths.begin());
-      if (p.lo == lengths.size()) continue;
-      p.hi = lengths.size() - 1;
-      p.bound = bound_on(p, p.lo, p.hi);
-    }
-  });
+  double bound_on(const Pair& p, std::size_t a, std::size_t b) const {
+    const double d = ev_.deformation(p.i1, p.i2);
+    const needle::NeedleGeometry gb = ev_.geometry(p.i1, p.i2, p.i3, b);
+    const double h_a = lengths_[a] - d, h_b = lengths_[b] - d;
+    return p.pitch.factor * (hollow_ ? ev_.embedded(gb, h_b) / (h_a * h_a) : ev_.g_of(gb, d));
+  }
 
-  std::vector<std::size_t> order;
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-    if (pairs[k].bound > 0) order.push_back(k);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pairs[a].bound > pairs[b].bound; });
+  bool cannot_beat(double bound) const { return incumbent_ && bound < incumbent_->value * (1 - kTieTolerance); }
 
-  OptimizerResult result;
-  std::optional<Point> incumbent;
-  auto cannot_beat = [&](double bound) { return incumbent && bound < incumbent->value * (1 - kTieTolerance); };
-  std::uint64_t evaluated = 0, needle_evaluations = order.size();
-  for (std::size_t idx = 0; idx < order.size(); ++idx) {
-    Pair p = pairs[order[idx]];
-    if (cannot_beat(p.bound)) break;  // sorted: no later pair can beat it either
-    if (idx % 256 == 0) {
-      progress.report(static_cast<double>(idx) / order.size());
-      if (progress.cancelled()) break;
-    }
-    // φ holds on a prefix of the L grid (P_cr decreases with L): binary search for its end.
-    if (ev.needle_buckles(p.i1, p.i2, p.i3, lengths[p.lo])) continue;
-    std::size_t ok = p.lo, bad = lengths.size();
+  // One pair: φ holds on a prefix of the L grid (P_cr decreases with L), found by binary search; then branch and
+  // bound over that L index interval.
+  void search(Pair p) {
+    if (ev_.needle_buckles(p.i1, p.i2, p.i3, lengths_[p.lo])) return;
+    std::size_t ok = p.lo, bad = lengths_.size();
     while (bad - ok > 1) {
       const std::size_t mid = ok + (bad - ok) / 2;
-      (ev.needle_buckles(p.i1, p.i2, p.i3, lengths[mid]) ? bad : ok) = mid;
-      ++needle_evaluations;
+      (ev_.needle_buckles(p.i1, p.i2, p.i3, lengths_[mid]) ? bad : ok) = mid;
+      ++needle_evaluations_;
     }
     p.hi = ok;
-    const double d = ev.deformation(p.i1, p.i2);
-    // Branch and bound over the L index interval.
+    const double d = ev_.deformation(p.i1, p.i2);
     std::vector<std::pair<std::size_t, std::size_t>> stack{{p.lo, p.hi}};
     while (!stack.empty()) {
       const auto [a, b] = stack.back();
@@ -284,10 +280,10 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
       if (cannot_beat(bound_on(p, a, b))) continue;
       if (b - a < 8) {
         for (std::size_t il = a; il <= b; ++il) {
-          const double value = p.pitch.factor * ev.g_of(ev.geometry(p.i1, p.i2, p.i3, il), d);
-          ++evaluated;
+          const double value = p.pitch.factor * ev_.g_of(ev_.geometry(p.i1, p.i2, p.i3, il), d);
+          ++evaluated_;
           const Point candidate{p.pitch.in, p.i1, p.i2, p.i3, p.pitch.iw, il, value};
-          if (!incumbent || better(candidate, *incumbent)) incumbent = candidate;
+          if (!incumbent_ || better(candidate, *incumbent_)) incumbent_ = candidate;
         }
         continue;
       }
@@ -296,15 +292,48 @@ OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions
       stack.push_back({a, mid});      // explored first
     }
   }
-  result.evaluated = evaluated;
-  result.needle_evaluations = needle_evaluations + evaluated;
+
+  void count_needles(std::uint64_t n) { needle_evaluations_ += n; }
+  std::uint64_t evaluated() const { return evaluated_; }
+  std::uint64_t needle_evaluations() const { return needle_evaluations_ + evaluated_; }
+  const std::optional<Point>& incumbent() const { return incumbent_; }
+
+private:
+  const DesignPointEvaluator& ev_;
+  const OptimizerOptions& options_;
+  const std::vector<double>& lengths_;
+  const bool cylinder_, hollow_;
+  std::optional<Point> incumbent_;
+  std::uint64_t evaluated_ = 0, needle_evaluations_ = 0;
+};
+
+OptimizerResult certified(const DesignPointEvaluator& ev, const OptimizerOptions& options, Progress& progress) {
+  CertifiedSearch search(ev, options);
+  const std::vector<Pair> pairs = search.candidate_pairs();
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    if (pairs[k].bound > 0) order.push_back(k);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pairs[a].bound > pairs[b].bound; });
+  search.count_needles(order.size());
+  for (std::size_t idx = 0; idx < order.size(); ++idx) {
+    const Pair& p = pairs[order[idx]];
+    if (search.cannot_beat(p.bound)) break;  // sorted: no later pair can beat it either
+    if (idx % 256 == 0) {
+      progress.report(static_cast<double>(idx) / order.size());
+      if (progress.cancelled()) break;
+    }
+    search.search(p);
+  }
+  OptimizerResult result;
+  result.evaluated = search.evaluated();
+  result.needle_evaluations = search.needle_evaluations();
   if (progress.cancelled()) {
     result.status = OptimizerStatus::Cancelled;
     result.reason = "cancelled";
     return result;
   }
   progress.report(1.0);
-  if (incumbent) result.top.push_back(make_candidate(ev, *incumbent, options));
+  if (search.incumbent()) result.top.push_back(make_candidate(ev, *search.incumbent(), options));
   return result;
 }
 
