@@ -48,18 +48,39 @@ void validate_inputs(const ArrayDesign& d, const InsertionConditions& c, const P
 
 std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
 
-}  // namespace
+// The failed checks in the order they are found, with their explanations when asked for (formatted only then: the
+// optimizer evaluates millions of designs).
+class FailedChecks {
+public:
+  explicit FailedChecks(bool explain) : explain_(explain) {}
+  template <class Explanation>
+  void add(PerformanceStatus status, const Explanation& explanation) {
+    failed_.push_back(status);
+    if (explain_) text_.push_back(explanation());
+  }
+  // The status and the reason: Ok and the index (Eq 4.25 / Eq 5.9), or the first failed check and an index of 0.
+  void finish(const PerformanceIndexOptions& options, PerformanceIndexResult& r) const {
+    if (failed_.empty()) {
+      const double pitch = options.index_pitch.value_or(r.pitch);
+      r.performance_index = r.q_factor / (pitch * pitch * r.permeation_depth);
+      r.status = PerformanceStatus::Ok;
+      return;
+    }
+    r.performance_index = 0;
+    r.status = failed_.front();
+    for (PerformanceStatus check : failed_) r.failed_checks |= 1u << static_cast<unsigned>(check);
+    if (explain_) r.reason = fmt::format("{}", fmt::join(text_, "; "));
+  }
 
-PerformanceIndexResult performance_index(const ArrayDesign& design, const InsertionConditions& conditions,
-                                         const PerformanceIndexOptions& options,
-                                         std::optional<double> known_tapered_factor) {
-  validate_inputs(design, conditions, options);
-  const auto& n = design.needle;
-  PerformanceIndexResult r;
-  std::vector<std::string> failures;
-  std::vector<PerformanceStatus> failed;
+private:
+  bool explain_;
+  std::vector<PerformanceStatus> failed_;
+  std::vector<std::string> text_;
+};
 
-  // §4.2: puncture force, deformation and cutting depth.
+// §4.2: puncture force, deformation and cutting depth.
+void puncture_and_deformation(const needle::NeedleGeometry& n, const InsertionConditions& conditions,
+                              PerformanceIndexResult& r) {
   r.tip_area = needle::tip_area(n);
   r.puncture_force = puncture_force(r.tip_area, conditions.tissue);
   r.puncture_force_law = conditions.tissue.force_law.kind;
@@ -72,30 +93,10 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   r.small_tip_branch = deformation.small_tip_branch;
   r.cutting_depth = cutting_depth(n.length, r.deformation);
   r.needle_volume = needle::volume(n);
+}
 
-  // §4.8 constraint: the patch must hold n needles at a pitch of at least β·D2.
-  r.pitch = design.width / design.needles_per_row;
-  if (options.spacing_factor > 0 &&
-      design.width < options.spacing_factor * design.needles_per_row * n.base_diameter * (1 - 1e-12)) {
-    failed.push_back(PerformanceStatus::ConstraintViolated);
-    if (options.explain) {
-      failures.push_back(fmt::format("violates w >= beta*n*D2: width {} < {:.4g}*{}*{} = {}", um(design.width),
-                                     options.spacing_factor, design.needles_per_row, um(n.base_diameter),
-                                     um(options.spacing_factor * design.needles_per_row * n.base_diameter)));
-    }
-  }
-
-  // Eq 4.23: ideal permeation depth.
-  r.permeation_depth = ideal_permeation_depth(n.hollow(), n.length, r.deformation, conditions.target_depth);
-  if (r.permeation_depth <= 0) {
-    failed.push_back(PerformanceStatus::TooShort);
-    if (options.explain) {
-      failures.push_back(fmt::format("does not reach the target depth: L = {} < d + T = {} + {}", um(n.length),
-                                     um(r.deformation), um(conditions.target_depth)));
-    }
-  }
-
-  // Tables 4.2–4.4: embedded volume, Q, hole and gap volumes, fractional skin volume.
+// Tables 4.2–4.4: embedded volume, Q, hole and gap volumes, fractional skin volume.
+void volumes(const needle::NeedleGeometry& n, const PerformanceIndexOptions& options, PerformanceIndexResult& r) {
   const double h = std::max(0.0, r.cutting_depth);
   r.diameter_at_surface = diameter_at_skin_surface(n, h);
   r.embedded_volume = embedded_volume(n, h);
@@ -103,33 +104,36 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
   r.hole_volume = hole_volume(n, h, options.gap_ratio);
   r.gap_volume = gap_volume(n, h, options.gap_ratio);
   r.fractional_skin_volume = fractional_skin_volume(n, h, options.gap_ratio, r.pitch);
+}
 
-  // §4.3, §5.2: buckling (φ) and bending (ω) under an insertion at angle θ.
+// §4.3, §5.2: buckling (φ) and bending (ω) under an insertion at angle θ.
+void buckling_and_bending(const ArrayDesign& design, const InsertionConditions& conditions,
+                          const PerformanceIndexOptions& options, std::optional<double> known_tapered_factor,
+                          PerformanceIndexResult& r, FailedChecks& failed) {
+  const needle::NeedleGeometry& n = design.needle;
   BucklingOptions buckling = options.buckling;
   buckling.explain = options.explain;
   r.buckling = critical_buckling_load(n, design.material, buckling, known_tapered_factor);
   r.buckling_force = angled_buckling_force(r.puncture_force, conditions.angle);
   r.buckling_ok = options.buckling_safety_factor * r.buckling_force < r.buckling.critical_load;  // Eq 4.5
   if (!r.buckling_ok) {
-    failed.push_back(PerformanceStatus::Buckles);
-    if (options.explain) {
-      failures.push_back(fmt::format("buckles: force {:.4g} N >= critical buckling load {:.4g} N{}", r.buckling_force,
-                                     r.buckling.critical_load,
-                                     options.buckling_safety_factor > 1
-                                         ? fmt::format(" / safety factor {:.3g}", options.buckling_safety_factor)
-                                         : ""));
-    }
+    failed.add(PerformanceStatus::Buckles, [&] {
+      return fmt::format("buckles: force {:.4g} N >= critical buckling load {:.4g} N{}", r.buckling_force,
+                         r.buckling.critical_load,
+                         options.buckling_safety_factor > 1
+                             ? fmt::format(" / safety factor {:.3g}", options.buckling_safety_factor)
+                             : "");
+    });
   }
   r.bending_force = angled_bending_force(r.puncture_force, conditions.angle);
   if (design.material.allowable_stress) {
     r.critical_bending_load = critical_bending_load(n, *design.material.allowable_stress);
     r.bending_ok = options.bending_safety_factor * r.bending_force < *r.critical_bending_load;
     if (!*r.bending_ok) {
-      failed.push_back(PerformanceStatus::Bends);
-      if (options.explain) {
-        failures.push_back(fmt::format("bends: lateral force {:.4g} N >= critical bending load {:.4g} N",
-                                       r.bending_force, *r.critical_bending_load));
-      }
+      failed.add(PerformanceStatus::Bends, [&] {
+        return fmt::format("bends: lateral force {:.4g} N >= critical bending load {:.4g} N", r.bending_force,
+                           *r.critical_bending_load);
+      });
     }
   } else if (r.bending_force > 0) {
     if (options.explain) r.notes.push_back("bending not assessed: the material has no allowable_stress");
@@ -140,18 +144,41 @@ PerformanceIndexResult performance_index(const ArrayDesign& design, const Insert
     }
   }
   if (r.buckling.note.size()) r.notes.push_back(r.buckling.note);
+}
 
-  if (failed.empty()) {
-    // Eq 4.25 / Eq 5.9.
-    const double pitch = options.index_pitch.value_or(r.pitch);
-    r.performance_index = r.q_factor / (pitch * pitch * r.permeation_depth);
-    r.status = PerformanceStatus::Ok;
-  } else {
-    r.performance_index = 0;
-    r.status = failed.front();
-    for (PerformanceStatus check : failed) r.failed_checks |= 1u << static_cast<unsigned>(check);
-    if (options.explain) r.reason = fmt::format("{}", fmt::join(failures, "; "));
+}  // namespace
+
+PerformanceIndexResult performance_index(const ArrayDesign& design, const InsertionConditions& conditions,
+                                         const PerformanceIndexOptions& options,
+                                         std::optional<double> known_tapered_factor) {
+  validate_inputs(design, conditions, options);
+  const auto& n = design.needle;
+  PerformanceIndexResult r;
+  FailedChecks failed(options.explain);
+  puncture_and_deformation(n, conditions, r);
+
+  // §4.8 constraint: the patch must hold n needles at a pitch of at least β·D2.
+  r.pitch = design.width / design.needles_per_row;
+  if (options.spacing_factor > 0 &&
+      design.width < options.spacing_factor * design.needles_per_row * n.base_diameter * (1 - 1e-12)) {
+    failed.add(PerformanceStatus::ConstraintViolated, [&] {
+      return fmt::format("violates w >= beta*n*D2: width {} < {:.4g}*{}*{} = {}", um(design.width),
+                         options.spacing_factor, design.needles_per_row, um(n.base_diameter),
+                         um(options.spacing_factor * design.needles_per_row * n.base_diameter));
+    });
   }
+
+  // Eq 4.23: ideal permeation depth.
+  r.permeation_depth = ideal_permeation_depth(n.hollow(), n.length, r.deformation, conditions.target_depth);
+  if (r.permeation_depth <= 0) {
+    failed.add(PerformanceStatus::TooShort, [&] {
+      return fmt::format("does not reach the target depth: L = {} < d + T = {} + {}", um(n.length), um(r.deformation),
+                         um(conditions.target_depth));
+    });
+  }
+  volumes(n, options, r);
+  buckling_and_bending(design, conditions, options, known_tapered_factor, r, failed);
+  failed.finish(options, r);
   return r;
 }
 
