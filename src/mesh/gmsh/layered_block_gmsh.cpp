@@ -107,142 +107,168 @@ void embed_edge_sites(const EdgeSites& sites, const std::pair<int, int>& top, do
   }
 }
 
+// The layers as stacked boxes (model units), fragmented so that neighbouring layers share their interface.
+struct LayerVolumes {
+  std::vector<int> volume_of_layer;  // Gmsh volume tag of each layer
+  std::vector<double> tops;          // z of each layer's top
+  double height = 0;                 // the block's
+};
+
+LayerVolumes layer_volumes(const std::vector<TissueLayer>& layers, double w, double l, double u) {
+  LayerVolumes result;
+  gmsh::vectorpair boxes;
+  double z = 0;
+  for (const TissueLayer& layer : layers) {
+    result.tops.push_back(z);
+    const double t = layer.thickness * u;
+    boxes.emplace_back(3, gmsh::model::occ::addBox(-0.5 * w, -0.5 * l, z - t, w, l, t));
+    z -= t;
+  }
+  result.height = -z;
+  result.volume_of_layer.resize(layers.size());
+  if (layers.size() == 1) {
+    result.volume_of_layer[0] = boxes[0].second;
+    return result;
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  gmsh::model::occ::fragment({boxes.front()}, gmsh::vectorpair(boxes.begin() + 1, boxes.end()), out, map);
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    if (map.at(i).size() != 1 || map[i][0].first != 3) {
+      throw std::logic_error(fmt::format("fragment split layer {} into {} entities", i, map.at(i).size()));
+    }
+    result.volume_of_layer[i] = map[i][0].second;
+  }
+  return result;
+}
+
+// The insertion sites as points (and circles of site_circle_radius) on the top face z = 0, embedded there so that
+// they become mesh nodes; returns the site points' tags (for the size field).
+std::vector<int> embed_sites(const LayeredBlockOptions& options, double w, double l, double u, double eps) {
+  EdgeSites edge_sites;
+  std::vector<int> site_points, site_circles;
+  for (const Eigen::Vector2d& s : options.insertion_sites) {
+    const bool on_x = std::abs(s.x() * u) > 0.5 * w - 1e-9 * w, on_y = std::abs(s.y() * u) > 0.5 * l - 1e-9 * l;
+    // On the top face's edge (a symmetry plane of a reduced model): exactly on it, a node of that edge.
+    const double x = on_x ? std::copysign(0.5 * w, s.x()) : s.x() * u, y = on_y ? std::copysign(0.5 * l, s.y()) : s.y() * u;
+    if (on_x && on_y) {  // a corner: the block's own vertex
+      edge_sites.corners.emplace_back(x, y);
+      continue;
+    }
+    (on_x || on_y ? edge_sites.points : site_points).push_back(gmsh::model::occ::addPoint(x, y, 0));
+    if (on_x || on_y) edge_sites.positions.emplace_back(x, y);
+    if (options.site_circle_radius > 0) {
+      site_circles.push_back(gmsh::model::occ::addCircle(x, y, 0, options.site_circle_radius * u));
+    }
+  }
+  gmsh::model::occ::synchronize();
+  gmsh::vectorpair top;
+  gmsh::model::getEntitiesInBoundingBox(-0.5 * w - eps, -0.5 * l - eps, -eps, 0.5 * w + eps, 0.5 * l + eps, eps, top, 2);
+  if (top.size() != 1) throw std::logic_error(fmt::format("{} top surfaces", top.size()));
+  if (!site_points.empty()) gmsh::model::mesh::embed(0, site_points, 2, top[0].second);
+  if (!site_circles.empty()) gmsh::model::mesh::embed(1, site_circles, 2, top[0].second);
+  embed_edge_sites(edge_sites, top[0], eps, site_points);
+  return site_points;
+}
+
+// The horizontal faces of a thin layer must not carry the same triangulation: with every node of the top face
+// straight above one of the bottom face, the vertical rectangles between them are cocircular and the 3D mesher
+// leaves flat slivers there (zero volume; seen in half of the runs of a 20 um stratum corneum meshed at 40 um,
+// with HXT and with Delaunay). The interfaces and the bottom alternate between Delaunay (5) and the top's
+// Frontal-Delaunay (6) triangulations, which place their nodes differently.
+void alternate_interface_algorithms(const LayerVolumes& volumes, double w, double l, double eps) {
+  const std::size_t n = volumes.tops.size();
+  for (std::size_t i = 1; i <= n; ++i) {
+    const double zi = i < n ? volumes.tops[i] : -volumes.height;
+    gmsh::vectorpair faces;
+    gmsh::model::getEntitiesInBoundingBox(-0.5 * w - eps, -0.5 * l - eps, zi - eps, 0.5 * w + eps, 0.5 * l + eps,
+                                          zi + eps, faces, 2);
+    for (const auto& face : faces) gmsh::model::mesh::setAlgorithm(2, face.second, i % 2 == 1 ? 5 : 6);
+  }
+}
+
+// The background size field: size_at_site within refinement_radius of the sites, growing at size_gradient to
+// size_far, and capped in each thin layer at thin_layer_size_factor times its thickness.
+void set_size_fields(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                     const LayerVolumes& volumes, const std::vector<int>& site_points, double w, double l, double u) {
+  const double size_site = options.size_at_site * u, size_far = options.size_far * u;
+  const double radius = options.refinement_radius * u;
+  std::vector<double> fields;
+  if (!site_points.empty()) {
+    const int distance = add_field("Distance");
+    set_field_option(distance, {"PointsList", "NodesList"}, std::vector<double>(site_points.begin(), site_points.end()));
+    const int threshold = add_field("Threshold");
+    set_field_option(threshold, {"InField", "IField"}, distance);
+    set_field_option(threshold, {"SizeMin", "LcMin"}, size_site);
+    set_field_option(threshold, {"SizeMax", "LcMax"}, size_far);
+    set_field_option(threshold, {"DistMin"}, radius);
+    set_field_option(threshold, {"DistMax"}, radius + (size_far - size_site) / options.size_gradient);
+    fields.push_back(threshold);
+  }
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const double cap = options.thin_layer_size_factor * layers[i].thickness * u;
+    if (cap <= 0 || cap >= size_far) continue;
+    const int box = add_field("Box");
+    set_field_option(box, {"VIn"}, cap);
+    set_field_option(box, {"VOut"}, size_far);
+    set_field_option(box, {"XMin"}, -w);
+    set_field_option(box, {"XMax"}, w);
+    set_field_option(box, {"YMin"}, -l);
+    set_field_option(box, {"YMax"}, l);
+    set_field_option(box, {"ZMin"}, volumes.tops[i] - layers[i].thickness * u - 1e-6 * volumes.height);
+    set_field_option(box, {"ZMax"}, volumes.tops[i] + 1e-6 * volumes.height);
+    set_field_option(box, {"Thickness"}, (size_far - cap) / options.size_gradient);
+    fields.push_back(box);
+  }
+  if (!fields.empty()) {
+    const int min = add_field("Min");
+    set_field_option(min, {"FieldsList"}, fields);
+    gmsh::model::mesh::field::setAsBackgroundMesh(min);
+  }
+  GmshSession::set_option({"Mesh.MeshSizeMax", "Mesh.CharacteristicLengthMax"}, size_far);
+}
+
+// The meshing algorithms and the threads.
+void set_mesh_options(int threads_option) {
+  GmshSession::set_option({"Mesh.MeshSizeFromPoints", "Mesh.CharacteristicLengthFromPoints"}, 0);
+  GmshSession::set_option({"Mesh.MeshSizeFromCurvature", "Mesh.CharacteristicLengthFromCurvature"}, 0);
+  GmshSession::set_option({"Mesh.MeshSizeExtendFromBoundary", "Mesh.CharacteristicLengthExtendFromBoundary"}, 0);
+  GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
+  // Reproducible meshes: Gmsh 4.8's HXT (10) gives meshes that depend on the heap layout even on one thread (the
+  // same case gave 11,158-11,308 tetrahedra depending on the case file's name or the environment's size), and
+  // several threads make the 2D meshes differ in their last bits. Delaunay 3D (1) on one thread gives the same
+  // mesh, bit for bit, whatever the memory layout (tests/example/test_mesh_determinism.cpp), at about HXT's speed on
+  // these blocks (and about 20 % more elements for the same size field).
+  GmshSession::set_option({"Mesh.Algorithm3D"}, 1);
+  const int threads = threads_option == 0 ? 1 : threads_option;
+  GmshSession::set_option({"General.NumThreads"}, threads);
+  GmshSession::set_option({"Mesh.MaxNumThreads2D"}, threads);
+  GmshSession::set_option({"Mesh.MaxNumThreads3D"}, threads);
+  GmshSession::set_option({"Mesh.Optimize"}, 1);
+}
+
 }  // namespace
 
 // The Gmsh part: geometry, size fields, Delaunay 3D, conversion to a TetMesh (no orientation, quality or timing).
 TetMesh gmsh_layered_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
   const double u = 1 / kModelUnit;  // m -> model units
   const double w = options.width * u, l = options.length * u;
-  const double size_site = options.size_at_site * u, size_far = options.size_far * u;
-  const double radius = options.refinement_radius * u;
-
   TetMesh mesh;
   GmshSession session;
   try {
     gmsh::model::add("needlekit_layered_block");
-    gmsh::vectorpair boxes;
-    std::vector<double> tops;  // z of each layer's top, model units
-    double z = 0;
-    for (const TissueLayer& layer : layers) {
-      tops.push_back(z);
-      const double t = layer.thickness * u;
-      boxes.emplace_back(3, gmsh::model::occ::addBox(-0.5 * w, -0.5 * l, z - t, w, l, t));
-      z -= t;
-    }
-    const double height = -z;
-    std::vector<int> volume_of_layer(layers.size());
-    if (layers.size() > 1) {
-      gmsh::vectorpair out;
-      std::vector<gmsh::vectorpair> map;
-      gmsh::model::occ::fragment({boxes.front()}, gmsh::vectorpair(boxes.begin() + 1, boxes.end()), out, map);
-      for (std::size_t i = 0; i < layers.size(); ++i) {
-        if (map.at(i).size() != 1 || map[i][0].first != 3) {
-          throw std::logic_error(fmt::format("fragment split layer {} into {} entities", i, map.at(i).size()));
-        }
-        volume_of_layer[i] = map[i][0].second;
-      }
-    } else {
-      volume_of_layer[0] = boxes[0].second;
-    }
+    const LayerVolumes volumes = layer_volumes(layers, w, l, u);
     const double eps = 1e-3 * std::min({w, l, layers.front().thickness * u});
-    EdgeSites edge_sites;
-    std::vector<int> site_points, site_circles;
-    for (const Eigen::Vector2d& s : options.insertion_sites) {
-      const bool on_x = std::abs(s.x() * u) > 0.5 * w - 1e-9 * w, on_y = std::abs(s.y() * u) > 0.5 * l - 1e-9 * l;
-      // On the top face's edge (a symmetry plane of a reduced model): exactly on it, a node of that edge.
-      const double x = on_x ? std::copysign(0.5 * w, s.x()) : s.x() * u, y = on_y ? std::copysign(0.5 * l, s.y()) : s.y() * u;
-      if (on_x && on_y) {  // a corner: the block's own vertex
-        edge_sites.corners.emplace_back(x, y);
-        continue;
-      }
-      (on_x || on_y ? edge_sites.points : site_points).push_back(gmsh::model::occ::addPoint(x, y, 0));
-      if (on_x || on_y) edge_sites.positions.emplace_back(x, y);
-      if (options.site_circle_radius > 0) {
-        site_circles.push_back(gmsh::model::occ::addCircle(x, y, 0, options.site_circle_radius * u));
-      }
-    }
-    gmsh::model::occ::synchronize();
-
-    // The top surface z = 0; the sites become mesh nodes on it.
-    gmsh::vectorpair top;
-    gmsh::model::getEntitiesInBoundingBox(-0.5 * w - eps, -0.5 * l - eps, -eps, 0.5 * w + eps, 0.5 * l + eps, eps,
-                                          top, 2);
-    if (top.size() != 1) throw std::logic_error(fmt::format("{} top surfaces", top.size()));
-    if (!site_points.empty()) gmsh::model::mesh::embed(0, site_points, 2, top[0].second);
-    if (!site_circles.empty()) gmsh::model::mesh::embed(1, site_circles, 2, top[0].second);
-    embed_edge_sites(edge_sites, top[0], eps, site_points);
-
-    // The horizontal faces of a thin layer must not carry the same triangulation: with every node of the top face
-    // straight above one of the bottom face, the vertical rectangles between them are cocircular and the 3D mesher
-    // leaves flat slivers there (zero volume; seen in half of the runs of a 20 um stratum corneum meshed at 40 um,
-    // with HXT and with Delaunay). The interfaces and the bottom alternate between Delaunay (5) and the top's
-    // Frontal-Delaunay (6) triangulations, which place their nodes differently.
-    for (std::size_t i = 1; i <= layers.size(); ++i) {
-      const double zi = i < layers.size() ? tops[i] : -height;
-      gmsh::vectorpair faces;
-      gmsh::model::getEntitiesInBoundingBox(-0.5 * w - eps, -0.5 * l - eps, zi - eps, 0.5 * w + eps, 0.5 * l + eps,
-                                            zi + eps, faces, 2);
-      for (const auto& face : faces) gmsh::model::mesh::setAlgorithm(2, face.second, i % 2 == 1 ? 5 : 6);
-    }
-
+    const std::vector<int> site_points = embed_sites(options, w, l, u, eps);
+    alternate_interface_algorithms(volumes, w, l, eps);
     for (std::size_t i = 0; i < layers.size(); ++i) {
-      const int group = gmsh::model::addPhysicalGroup(3, {volume_of_layer[i]});
+      const int group = gmsh::model::addPhysicalGroup(3, {volumes.volume_of_layer[i]});
       gmsh::model::setPhysicalName(3, group, layers[i].name);
     }
-
-    // Size fields.
-    std::vector<double> fields;
-    if (!site_points.empty()) {
-      const int distance = add_field("Distance");
-      set_field_option(distance, {"PointsList", "NodesList"}, std::vector<double>(site_points.begin(), site_points.end()));
-      const int threshold = add_field("Threshold");
-      set_field_option(threshold, {"InField", "IField"}, distance);
-      set_field_option(threshold, {"SizeMin", "LcMin"}, size_site);
-      set_field_option(threshold, {"SizeMax", "LcMax"}, size_far);
-      set_field_option(threshold, {"DistMin"}, radius);
-      set_field_option(threshold, {"DistMax"}, radius + (size_far - size_site) / options.size_gradient);
-      fields.push_back(threshold);
-    }
-    for (std::size_t i = 0; i < layers.size(); ++i) {
-      const double cap = options.thin_layer_size_factor * layers[i].thickness * u;
-      if (cap <= 0 || cap >= size_far) continue;
-      const int box = add_field("Box");
-      set_field_option(box, {"VIn"}, cap);
-      set_field_option(box, {"VOut"}, size_far);
-      set_field_option(box, {"XMin"}, -w);
-      set_field_option(box, {"XMax"}, w);
-      set_field_option(box, {"YMin"}, -l);
-      set_field_option(box, {"YMax"}, l);
-      set_field_option(box, {"ZMin"}, tops[i] - layers[i].thickness * u - 1e-6 * height);
-      set_field_option(box, {"ZMax"}, tops[i] + 1e-6 * height);
-      set_field_option(box, {"Thickness"}, (size_far - cap) / options.size_gradient);
-      fields.push_back(box);
-    }
-    if (!fields.empty()) {
-      const int min = add_field("Min");
-      set_field_option(min, {"FieldsList"}, fields);
-      gmsh::model::mesh::field::setAsBackgroundMesh(min);
-    }
-    GmshSession::set_option({"Mesh.MeshSizeMax", "Mesh.CharacteristicLengthMax"}, size_far);
-    GmshSession::set_option({"Mesh.MeshSizeFromPoints", "Mesh.CharacteristicLengthFromPoints"}, 0);
-    GmshSession::set_option({"Mesh.MeshSizeFromCurvature", "Mesh.CharacteristicLengthFromCurvature"}, 0);
-    GmshSession::set_option({"Mesh.MeshSizeExtendFromBoundary", "Mesh.CharacteristicLengthExtendFromBoundary"},
-                                    0);
-    GmshSession::set_option({"Mesh.Algorithm"}, 6);     // Frontal-Delaunay surfaces
-    // Reproducible meshes: Gmsh 4.8's HXT (10) gives meshes that depend on the heap layout even on one thread (the
-    // same case gave 11,158-11,308 tetrahedra depending on the case file's name or the environment's size), and
-    // several threads make the 2D meshes differ in their last bits. Delaunay 3D (1) on one thread gives the same
-    // mesh, bit for bit, whatever the memory layout (tests/example/test_mesh_determinism.cpp), at about HXT's speed on
-    // these blocks (and about 20 % more elements for the same size field).
-    GmshSession::set_option({"Mesh.Algorithm3D"}, 1);
-    const int threads = options.threads == 0 ? 1 : options.threads;
-    GmshSession::set_option({"General.NumThreads"}, threads);
-    GmshSession::set_option({"Mesh.MaxNumThreads2D"}, threads);
-    GmshSession::set_option({"Mesh.MaxNumThreads3D"}, threads);
-    GmshSession::set_option({"Mesh.Optimize"}, 1);
+    set_size_fields(options, layers, volumes, site_points, w, l, u);
+    set_mesh_options(options.threads);
     gmsh::model::mesh::generate(3);
-
-    mesh = gmsh_tet_mesh(layers, volume_of_layer);
+    mesh = gmsh_tet_mesh(layers, volumes.volume_of_layer);
   } catch (...) {
     throw std::runtime_error(fmt::format("layered block: Gmsh failed: {}", gmsh_error_message()));
   }
