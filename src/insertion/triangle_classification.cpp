@@ -79,9 +79,9 @@ void validate_needle_surface(const geometry::TriangleMesh& needle, std::string_v
                                    what, volume));
 }
 
-TriangleClassification classify_triangles(const geometry::TriangleMesh& needle,
-                                          const TriangleClassificationOptions& options,
-                                          const geometry::SurfaceMesh* surface) {
+namespace {
+
+void validate(const TriangleClassificationOptions& options, const geometry::SurfaceMesh* surface) {
   const double d_norm = options.insertion_direction.norm();
   if (!(d_norm > 0) || !std::isfinite(d_norm))
     throw InvalidInput("insertion_direction: expected a finite, non-zero vector");
@@ -93,76 +93,87 @@ TriangleClassification classify_triangles(const geometry::TriangleMesh& needle,
     throw InvalidInput(fmt::format("bore_radius: {} m, expected a finite length >= 0", options.bore_radius));
   if (options.occlusion_test && surface == nullptr)
     throw InvalidInput("occlusion_test: the occlusion test casts rays against the needle and needs its SurfaceMesh");
+}
+
+// The class of one non-degenerate triangle with unit normal n: by the angle of n to d (§3.6.1), then a channel (an
+// inward-facing triangle inside the bore radius, or not visible from outside) or occluded (jagged needles: a ray
+// from each vertex along d hits the needle).
+TriangleClass class_of(const geometry::TriangleMesh& needle, std::size_t t, const Eigen::Vector3d& n,
+                       const Eigen::Vector3d& d, const TriangleClassificationOptions& options,
+                       const geometry::SurfaceMesh* surface, double skip) {
+  const double cos_angle = n.dot(d);
+  TriangleClass cls;
+  if (std::abs(cos_angle) <= std::sin(options.side_tolerance)) cls = TriangleClass::Side;  // within tolerance of π/2
+  else if (cos_angle < 0) cls = TriangleClass::Back;
+  else cls = cos_angle >= std::cos(options.alpha_tolerance) ? TriangleClass::Alpha : TriangleClass::Beta;
+
+  const auto& tri = needle.triangles[t];
+  const Eigen::Vector3d centroid =
+      (needle.vertices[static_cast<std::size_t>(tri[0])] + needle.vertices[static_cast<std::size_t>(tri[1])] +
+       needle.vertices[static_cast<std::size_t>(tri[2])]) / 3.0;
+  Eigen::Vector3d radial = centroid - options.axis_point;
+  radial -= radial.dot(d) * d;
+  const double rho = radial.norm();
+  const bool faces_axis = rho > 0 && n.dot(radial) < -1e-12 * rho;
+  if (faces_axis && cls != TriangleClass::Back) {
+    bool channel = options.bore_radius > 0 && rho <= options.bore_radius * (1 + 1e-6);
+    if (!channel && surface != nullptr && cls != TriangleClass::Side)
+      channel = ray_hits_needle(*surface, centroid, n, skip);
+    if (channel) cls = TriangleClass::Channel;
+  }
+  if (options.occlusion_test && (cls == TriangleClass::Alpha || cls == TriangleClass::Beta)) {
+    bool all_hit = true;
+    for (int corner = 0; corner < 3 && all_hit; ++corner) {
+      const Eigen::Vector3d& v = needle.vertices[static_cast<std::size_t>(tri[corner])];
+      // Start a hair inside the triangle, so that the neighbours sharing the vertex are not hit.
+      const Eigen::Vector3d origin = v + 1e-6 * (centroid - v);
+      all_hit = ray_hits_needle(*surface, origin, d, skip);
+    }
+    if (all_hit) cls = TriangleClass::Occluded;
+  }
+  return cls;
+}
+
+void count(TriangleClassification& result, int t, TriangleClass cls, double area) {
+  result.classes[static_cast<std::size_t>(t)] = cls;
+  switch (cls) {
+    case TriangleClass::Alpha:
+      result.alpha.push_back(t);
+      result.alpha_area += area;
+      break;
+    case TriangleClass::Beta:
+      result.beta.push_back(t);
+      result.beta_area += area;
+      break;
+    case TriangleClass::Side: ++result.side; break;
+    case TriangleClass::Back: ++result.back; break;
+    case TriangleClass::Channel: ++result.channel; break;
+    case TriangleClass::Occluded: ++result.occluded; break;
+  }
+}
+
+}  // namespace
+
+TriangleClassification classify_triangles(const geometry::TriangleMesh& needle,
+                                          const TriangleClassificationOptions& options,
+                                          const geometry::SurfaceMesh* surface) {
+  validate(options, surface);
   validate_needle_surface(needle);
-
   TriangleClassification result;
-  const Eigen::Vector3d d = options.insertion_direction / d_norm;
+  const Eigen::Vector3d d = options.insertion_direction / options.insertion_direction.norm();
   result.insertion_direction = d;
-  const double sin_side = std::sin(options.side_tolerance);
-  const double cos_alpha = std::cos(options.alpha_tolerance);
-  const double size = bounding_diagonal(needle);
-  const double skip = 1e-9 * size;  // rays start this far off the surface
-
-  const std::size_t count = needle.triangles.size();
-  result.classes.resize(count);
-  for (std::size_t t = 0; t < count; ++t) {
+  const double skip = 1e-9 * bounding_diagonal(needle);  // rays start this far off the surface
+  const std::size_t triangles = needle.triangles.size();
+  result.classes.resize(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
     const Eigen::Vector3d normal_area = unnormalized_normal(needle, static_cast<int>(t));
     const double twice_area = normal_area.norm();
     if (!(twice_area > 0)) {  // degenerate: no direction, no area, no load
-      result.classes[t] = TriangleClass::Side;
-      ++result.side;
+      count(result, static_cast<int>(t), TriangleClass::Side, 0);
       continue;
     }
-    const Eigen::Vector3d n = normal_area / twice_area;
-    const double cos_angle = n.dot(d);
-    TriangleClass cls;
-    if (std::abs(cos_angle) <= sin_side) cls = TriangleClass::Side;  // angle to d within tolerance of π/2
-    else if (cos_angle < 0) cls = TriangleClass::Back;
-    else cls = cos_angle >= cos_alpha ? TriangleClass::Alpha : TriangleClass::Beta;
-
-    // Channel: an inward-facing triangle (normal toward the axis) inside the bore radius, or not visible from outside.
-    const auto& tri = needle.triangles[t];
-    const Eigen::Vector3d centroid =
-        (needle.vertices[static_cast<std::size_t>(tri[0])] + needle.vertices[static_cast<std::size_t>(tri[1])] +
-         needle.vertices[static_cast<std::size_t>(tri[2])]) / 3.0;
-    Eigen::Vector3d radial = centroid - options.axis_point;
-    radial -= radial.dot(d) * d;
-    const double rho = radial.norm();
-    const bool faces_axis = rho > 0 && n.dot(radial) < -1e-12 * rho;
-    if (faces_axis && cls != TriangleClass::Back) {
-      bool channel = options.bore_radius > 0 && rho <= options.bore_radius * (1 + 1e-6);
-      if (!channel && surface != nullptr && cls != TriangleClass::Side)
-        channel = ray_hits_needle(*surface, centroid, n, skip);
-      if (channel) cls = TriangleClass::Channel;
-    }
-
-    // Occlusion (§3.6.1, jagged needles): a ray from at least one vertex along d must not hit the needle.
-    if (options.occlusion_test && (cls == TriangleClass::Alpha || cls == TriangleClass::Beta)) {
-      bool all_hit = true;
-      for (int corner = 0; corner < 3 && all_hit; ++corner) {
-        const Eigen::Vector3d& v = needle.vertices[static_cast<std::size_t>(tri[corner])];
-        // Start a hair inside the triangle, so that the neighbours sharing the vertex are not hit.
-        const Eigen::Vector3d origin = v + 1e-6 * (centroid - v);
-        all_hit = ray_hits_needle(*surface, origin, d, skip);
-      }
-      if (all_hit) cls = TriangleClass::Occluded;
-    }
-
-    result.classes[t] = cls;
-    switch (cls) {
-      case TriangleClass::Alpha:
-        result.alpha.push_back(static_cast<int>(t));
-        result.alpha_area += 0.5 * twice_area;
-        break;
-      case TriangleClass::Beta:
-        result.beta.push_back(static_cast<int>(t));
-        result.beta_area += 0.5 * twice_area;
-        break;
-      case TriangleClass::Side: ++result.side; break;
-      case TriangleClass::Back: ++result.back; break;
-      case TriangleClass::Channel: ++result.channel; break;
-      case TriangleClass::Occluded: ++result.occluded; break;
-    }
+    count(result, static_cast<int>(t),
+          class_of(needle, t, normal_area / twice_area, d, options, surface, skip), 0.5 * twice_area);
   }
   if (result.alpha.empty() && result.beta.empty())
     throw InvalidInput(fmt::format("needle mesh: no triangle faces the insertion direction ({:.6g}, {:.6g}, {:.6g}) "
