@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -91,9 +92,7 @@ std::vector<double> axis(double lo, double hi, double focus, int cells, double g
   return c;
 }
 
-}  // namespace
-
-TetMesh structured_block_mesh(const StructuredBlockOptions& o) {
+void validate(const StructuredBlockOptions& o) {
   require(o.width > 0 && std::isfinite(o.width), "width", o.width, "> 0 m");
   require(o.length > 0 && std::isfinite(o.length), "length", o.length, "> 0 m");
   require(o.height > 0 && std::isfinite(o.height), "height", o.height, "> 0 m");
@@ -104,18 +103,20 @@ TetMesh structured_block_mesh(const StructuredBlockOptions& o) {
   require(o.grading >= 1 && std::isfinite(o.grading), "grading", o.grading, ">= 1");
   require(std::abs(o.focus.x()) <= o.width / 2, "focus x", o.focus.x(), "inside the top face");
   require(std::abs(o.focus.y()) <= o.length / 2, "focus y", o.focus.y(), "inside the top face");
+  if (o.core_cells <= 0) return;
+  require(o.core_half_width > 0, "core_half_width", o.core_half_width, "> 0 m");
+  const bool corner_x = o.focus.x() <= -o.width / 2 * (1 - 1e-12), corner_y = o.focus.y() <= -o.length / 2 * (1 - 1e-12);
+  require(o.nx > (corner_x ? 1 : 2) * o.core_cells && o.ny > (corner_y ? 1 : 2) * o.core_cells, "core_cells",
+          o.core_cells, "< nx / 2 and < ny / 2 (< nx, ny for a focus on the low face)");
+  require(o.nz > o.core_cells, "core_cells", o.core_cells, "< nz");
+  require(o.focus.x() + o.core_half_width < o.width / 2 && o.focus.y() + o.core_half_width < o.length / 2 &&
+              o.core_half_width < o.height,
+          "core_half_width", o.core_half_width, "a core inside the block");
+}
 
+// The grid's nodes: graded (or cored) coordinates along x, y and z, z from the bottom up, finest at the top.
+std::vector<Eigen::Vector3d> grid_nodes(const StructuredBlockOptions& o) {
   const bool cored = o.core_cells > 0;
-  if (cored) {
-    require(o.core_half_width > 0, "core_half_width", o.core_half_width, "> 0 m");
-    const bool corner_x = o.focus.x() <= -o.width / 2 * (1 - 1e-12), corner_y = o.focus.y() <= -o.length / 2 * (1 - 1e-12);
-    require(o.nx > (corner_x ? 1 : 2) * o.core_cells && o.ny > (corner_y ? 1 : 2) * o.core_cells, "core_cells",
-            o.core_cells, "< nx / 2 and < ny / 2 (< nx, ny for a focus on the low face)");
-    require(o.nz > o.core_cells, "core_cells", o.core_cells, "< nz");
-    require(o.focus.x() + o.core_half_width < o.width / 2 && o.focus.y() + o.core_half_width < o.length / 2 &&
-                o.core_half_width < o.height,
-            "core_half_width", o.core_half_width, "a core inside the block");
-  }
   const auto xs = cored ? cored_axis(-o.width / 2, o.width / 2, o.focus.x(), o.nx, o.core_cells, o.core_half_width)
                         : axis(-o.width / 2, o.width / 2, o.focus.x(), o.nx, o.grading);
   const auto ys = cored ? cored_axis(-o.length / 2, o.length / 2, o.focus.y(), o.ny, o.core_cells, o.core_half_width)
@@ -125,62 +126,77 @@ TetMesh structured_block_mesh(const StructuredBlockOptions& o) {
                             : graded_offsets(o.nz, o.height, o.grading);  // below the top, increasing
   for (auto it = depths.rbegin(); it != depths.rend(); ++it) zs.push_back(-*it);
   zs.push_back(0.0);  // zs[0] = -height ... back = 0
+  std::vector<Eigen::Vector3d> nodes;
+  nodes.reserve(xs.size() * ys.size() * zs.size());
+  for (double z : zs)
+    for (double y : ys)
+      for (double x : xs) nodes.emplace_back(x, y, z);
+  return nodes;
+}
 
-  const int px = o.nx + 1, py = o.ny + 1, pz = o.nz + 1;
-  TetMesh m;
-  m.nodes.reserve(static_cast<size_t>(px) * py * pz);
-  for (int k = 0; k < pz; ++k)
-    for (int j = 0; j < py; ++j)
-      for (int i = 0; i < px; ++i) m.nodes.emplace_back(xs[i], ys[j], zs[k]);
-  auto id = [&](int i, int j, int k) { return i + px * (j + py * k); };
-  if (cored && o.round_core) {
-    // Elliptical square-to-disc mapping of each square ring |x|, |y| <= m about the focus onto the circle of radius
-    // m, blended linearly back to the identity between m = c and m = 2c (c = core half-width).
-    const double c = o.core_half_width;
-    for (auto& p : m.nodes) {
-      const double x = p.x() - o.focus.x(), y = p.y() - o.focus.y();
-      const double r = std::max(std::abs(x), std::abs(y));
-      if (r <= 0 || r >= 2 * c) continue;
-      const double xd = x * std::sqrt(1 - 0.5 * (y / r) * (y / r)), yd = y * std::sqrt(1 - 0.5 * (x / r) * (x / r));
-      const double w = std::clamp((r - c) / c, 0.0, 1.0);
-      p.x() = o.focus.x() + (1 - w) * xd + w * x;
-      p.y() = o.focus.y() + (1 - w) * yd + w * y;
-    }
+// Elliptical square-to-disc mapping of each square ring |x|, |y| <= m about the focus onto the circle of radius m,
+// blended linearly back to the identity between m = c and m = 2c (c = core half-width).
+void round_the_core(const StructuredBlockOptions& o, std::vector<Eigen::Vector3d>& nodes) {
+  const double c = o.core_half_width;
+  for (auto& p : nodes) {
+    const double x = p.x() - o.focus.x(), y = p.y() - o.focus.y();
+    const double r = std::max(std::abs(x), std::abs(y));
+    if (r <= 0 || r >= 2 * c) continue;
+    const double xd = x * std::sqrt(1 - 0.5 * (y / r) * (y / r)), yd = y * std::sqrt(1 - 0.5 * (x / r) * (x / r));
+    const double w = std::clamp((r - c) / c, 0.0, 1.0);
+    p.x() = o.focus.x() + (1 - w) * xd + w * x;
+    p.y() = o.focus.y() + (1 - w) * yd + w * y;
   }
+}
 
+// Each hexahedron (corners v0..v7, bottom face first) cut into 6 tetrahedra (Kuhn) or 5 (alternating with the
+// parity of i + j + k so that neighbouring cells' face diagonals conform), every one positively oriented.
+void add_hex_tetrahedra(const std::array<int, 8>& v, int parity, int tets_per_hex, TetMesh& m) {
   auto add = [&](std::array<int, 4> t) {
     const auto& p = m.nodes;
-    const double v = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]);
-    if (v < 0) std::swap(t[2], t[3]);
+    const double volume = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]);
+    if (volume < 0) std::swap(t[2], t[3]);
     m.tets.push_back(t);
   };
+  if (tets_per_hex == 6) {
+    // Kuhn subdivision along the diagonal v0-v6: conforming for any hex arrangement.
+    add({v[0], v[1], v[2], v[6]});
+    add({v[0], v[2], v[3], v[6]});
+    add({v[0], v[3], v[7], v[6]});
+    add({v[0], v[7], v[4], v[6]});
+    add({v[0], v[4], v[5], v[6]});
+    add({v[0], v[5], v[1], v[6]});
+  } else if (parity == 0) {
+    add({v[1], v[0], v[2], v[5]});
+    add({v[3], v[2], v[0], v[7]});
+    add({v[4], v[5], v[7], v[0]});
+    add({v[6], v[7], v[5], v[2]});
+    add({v[0], v[2], v[5], v[7]});
+  } else {
+    add({v[0], v[1], v[3], v[4]});
+    add({v[2], v[3], v[1], v[6]});
+    add({v[5], v[4], v[6], v[1]});
+    add({v[7], v[6], v[4], v[3]});
+    add({v[1], v[3], v[4], v[6]});
+  }
+}
+
+}  // namespace
+
+TetMesh structured_block_mesh(const StructuredBlockOptions& o) {
+  validate(o);
+  TetMesh m;
+  m.nodes = grid_nodes(o);
+  if (o.core_cells > 0 && o.round_core) round_the_core(o, m.nodes);
+  const int px = o.nx + 1, py = o.ny + 1;
+  auto id = [&](int i, int j, int k) { return i + px * (j + py * k); };
   for (int k = 0; k < o.nz; ++k)
     for (int j = 0; j < o.ny; ++j)
       for (int i = 0; i < o.nx; ++i) {
-        const int v[8] = {id(i, j, k),         id(i + 1, j, k),         id(i + 1, j + 1, k),
-                          id(i, j + 1, k),     id(i, j, k + 1),         id(i + 1, j, k + 1),
-                          id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
-        if (o.tets_per_hex == 6) {
-          // Kuhn subdivision along the diagonal v0-v6: conforming for any hex arrangement.
-          add({v[0], v[1], v[2], v[6]});
-          add({v[0], v[2], v[3], v[6]});
-          add({v[0], v[3], v[7], v[6]});
-          add({v[0], v[7], v[4], v[6]});
-          add({v[0], v[4], v[5], v[6]});
-          add({v[0], v[5], v[1], v[6]});
-        } else if ((i + j + k) % 2 == 0) {
-          add({v[1], v[0], v[2], v[5]});
-          add({v[3], v[2], v[0], v[7]});
-          add({v[4], v[5], v[7], v[0]});
-          add({v[6], v[7], v[5], v[2]});
-          add({v[0], v[2], v[5], v[7]});
-        } else {
-          add({v[0], v[1], v[3], v[4]});
-          add({v[2], v[3], v[1], v[6]});
-          add({v[5], v[4], v[6], v[1]});
-          add({v[7], v[6], v[4], v[3]});
-          add({v[1], v[3], v[4], v[6]});
-        }
+        const std::array<int, 8> v = {id(i, j, k),         id(i + 1, j, k),         id(i + 1, j + 1, k),
+                                      id(i, j + 1, k),     id(i, j, k + 1),         id(i + 1, j, k + 1),
+                                      id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+        add_hex_tetrahedra(v, (i + j + k) % 2, o.tets_per_hex, m);
       }
   m.tet_layer.assign(m.tets.size(), 0);
   TissueLayer layer = o.material;
