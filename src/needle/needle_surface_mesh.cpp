@@ -310,94 +310,73 @@ void check_options(const NeedleMeshOptions& options) {
   }
 }
 
-}  // namespace
+// The rims of the needle's cross-section (outside and bore) with the height of every column's top: on the bevel
+// plane where it cuts the column, otherwise at the tip.
+struct Rims {
+  bool bevel = false;  // a bevel with D1 < D2 (a bevel with D1 = D2 is the cylinder: its plane only touches the rim)
+  Rim outer, inner;
+};
 
-geometry::TriangleMesh needle_surface_mesh(const NeedleGeometry& needle, const NeedleMeshOptions& options) {
-  validate(needle);
-  check_options(options);
-  const int n = options.circumferential_segments;
+Rims rims_of(const NeedleGeometry& needle, int n) {
   const double length = needle.length;
   const double r = needle.base_diameter / 2, bore = needle.bore_diameter / 2;
   const double c = needle.base_diameter - needle.tip_diameter;
-  // A bevel with D1 = D2 is the cylinder (its plane only touches the rim).
-  const bool bevel = needle.shape == Shape::Bevel && c > kTangentTolerance * r;
+  Rims rims;
+  rims.bevel = needle.shape == Shape::Bevel && c > kTangentTolerance * r;
   // Tip chord: the bevel keeps x <= x_cut(s) = r − c + c·s/L; at the tip (s = 0) that is x_t = r − c = D1 − r.
   const double x_chord = r - c;
   // Height of the bevel plane above the point x: z = L − s with x = x_cut(s), i.e. z = (r − x)·L/c, in [0, L].
   auto plane_height = [&](double x) { return std::clamp((r - x) * length / c, 0.0, length); };
-
-  // Columns end on the bevel plane where it cuts them, otherwise at the tip; the chord crossings end at the tip.
   auto set_tops = [&](Rim& rim) {
     for (int k = 0; k < n; ++k) {
       const bool cut = rim.cut == Cut::All || (rim.cut == Cut::Arc && 0 < k && k < rim.arc_end);
       rim.top.push_back(cut ? plane_height(rim.xy[k].x()) : length);
     }
   };
-
-  Rim outer;
-  if (bevel) outer = chord_split_rim(r, x_chord, n);
+  Rim& outer = rims.outer;
+  if (rims.bevel) outer = chord_split_rim(r, x_chord, n);
   else outer.xy = uniform_nodes(r, n, 0.0);
   set_tops(outer);
-
-  Rim inner;  // the bore
-  if (needle.hollow()) {
-    if (!bevel) {
-      inner.xy = uniform_nodes(bore, n, 0.0);  // aligned with the outer nodes: the bore polygon is a scaled copy
-    } else if (std::abs(x_chord) < bore * (1 - kTangentTolerance)) {
-      inner = chord_split_rim(bore, x_chord, n);  // the tip chord cuts the bore
-    } else {
-      // The bore opens entirely in the tip face (x_t >= D3/2) or in the bevel face (x_t <= −D3/2). The nodes are
-      // offset by half a step from the point where the chord could touch the bore, so no node lies on the chord.
-      inner.cut = x_chord > 0 ? Cut::None : Cut::All;
-      inner.xy = uniform_nodes(bore, n, (x_chord > 0 ? 0.0 : M_PI) + M_PI / n);
-    }
-    set_tops(inner);
-    // A bevel's bore nodes are not aligned with the outer ones, so the bore polygon must stay inside the outer
-    // polygon, whose inscribed circle has the radius r·cos(largest step / 2).
-    if (bevel && bore >= r * std::cos(largest_step(outer) / 2)) {
-      throw InvalidInput(fmt::format(
-          "needle mesh: circumferential_segments = {} is too coarse for the wall between the bore ({:.6g} um) and the "
-          "outside ({:.6g} um); use more segments",
-          n, needle.bore_diameter * 1e6, needle.base_diameter * 1e6));
-    }
+  if (!needle.hollow()) return rims;
+  Rim& inner = rims.inner;
+  if (!rims.bevel) {
+    inner.xy = uniform_nodes(bore, n, 0.0);  // aligned with the outer nodes: the bore polygon is a scaled copy
+  } else if (std::abs(x_chord) < bore * (1 - kTangentTolerance)) {
+    inner = chord_split_rim(bore, x_chord, n);  // the tip chord cuts the bore
+  } else {
+    // The bore opens entirely in the tip face (x_t >= D3/2) or in the bevel face (x_t <= −D3/2). The nodes are
+    // offset by half a step from the point where the chord could touch the bore, so no node lies on the chord.
+    inner.cut = x_chord > 0 ? Cut::None : Cut::All;
+    inner.xy = uniform_nodes(bore, n, (x_chord > 0 ? 0.0 : M_PI) + M_PI / n);
   }
-
-  MeshBuilder builder;
-  // Cone: the radius goes linearly from r at the base to D1/2 at the tip; the nodes are scaled (Table 4.2 frustum).
-  const double tip_scale = needle.shape == Shape::Cone ? needle.tip_diameter / needle.base_diameter : 1.0;
-  auto outer_scale = [&](double z) { return 1 + (tip_scale - 1) * z / length; };
-  auto constant_scale = [](double) { return 1.0; };
-  const auto outer_columns = builder.add_columns(outer, length, options.axial_segments, outer_scale);
-  builder.add_wall(outer_columns, true);
-  std::vector<std::vector<int>> inner_columns;
-  if (needle.hollow()) {
-    inner_columns = builder.add_columns(inner, length, options.axial_segments, constant_scale);
-    builder.add_wall(inner_columns, false);
+  set_tops(inner);
+  // A bevel's bore nodes are not aligned with the outer ones, so the bore polygon must stay inside the outer
+  // polygon, whose inscribed circle has the radius r·cos(largest step / 2).
+  if (rims.bevel && bore >= r * std::cos(largest_step(outer) / 2)) {
+    throw InvalidInput(fmt::format(
+        "needle mesh: circumferential_segments = {} is too coarse for the wall between the bore ({:.6g} um) and the "
+        "outside ({:.6g} um); use more segments",
+        n, needle.bore_diameter * 1e6, needle.base_diameter * 1e6));
   }
+  return rims;
+}
 
-  // Base: the full disk (annulus), facing −z.
-  builder.add_planar_face(bottoms(outer_columns), bottoms(inner_columns), false);
-
-  const std::vector<int> outer_top = tops(outer_columns), inner_top = tops(inner_columns);
-  if (!bevel) {
-    builder.add_planar_face(outer_top, inner_top, true);  // tip disk (annulus)
-    return builder.take();
-  }
-
-  // Tip face (x <= x_t) and bevel face (x >= x_t), both counter-clockwise seen from +z. The outer arc 0 ..= arc_end
-  // is the bevel's; the tip face runs over the rest and closes along the chord.
-  const int outer_end = outer.arc_end;
+// Tip face (x <= x_t) and bevel face (x >= x_t), both counter-clockwise seen from +z. The outer arc 0 ..= arc_end
+// is the bevel's; the tip face runs over the rest and closes along the chord.
+void add_bevel_faces(const Rims& rims, const std::vector<int>& outer_top, const std::vector<int>& inner_top, int n,
+                     MeshBuilder& builder) {
+  const int outer_end = rims.outer.arc_end;
   std::vector<int> tip(outer_top.begin() + outer_end, outer_top.end());
   tip.push_back(outer_top.front());
   std::vector<int> bevel_face(outer_top.begin(), outer_top.begin() + outer_end + 1);
   std::vector<int> tip_hole, bevel_hole;
-  switch (inner.cut) {
+  switch (rims.inner.cut) {
     case Cut::None: tip_hole = inner_top; break;
     case Cut::All: bevel_hole = inner_top; break;
     case Cut::Arc: {
       // The chord runs from the outer rim into the bore and out again; each face follows the bore arc on its side,
       // clockwise (the bore is a hole in both).
-      const int inner_end = inner.arc_end;
+      const int inner_end = rims.inner.arc_end;
       tip.push_back(inner_top.front());
       for (int k = n - 1; k >= inner_end; --k) tip.push_back(inner_top[k]);
       for (int k = inner_end; k >= 0; --k) bevel_face.push_back(inner_top[k]);
@@ -406,6 +385,35 @@ geometry::TriangleMesh needle_surface_mesh(const NeedleGeometry& needle, const N
   }
   builder.add_planar_face(tip, tip_hole, true);
   builder.add_planar_face(bevel_face, bevel_hole, true);
+}
+
+}  // namespace
+
+geometry::TriangleMesh needle_surface_mesh(const NeedleGeometry& needle, const NeedleMeshOptions& options) {
+  validate(needle);
+  check_options(options);
+  const int n = options.circumferential_segments;
+  const double length = needle.length;
+  const Rims rims = rims_of(needle, n);
+  MeshBuilder builder;
+  // Cone: the radius goes linearly from r at the base to D1/2 at the tip; the nodes are scaled (Table 4.2 frustum).
+  const double tip_scale = needle.shape == Shape::Cone ? needle.tip_diameter / needle.base_diameter : 1.0;
+  auto outer_scale = [&](double z) { return 1 + (tip_scale - 1) * z / length; };
+  auto constant_scale = [](double) { return 1.0; };
+  const auto outer_columns = builder.add_columns(rims.outer, length, options.axial_segments, outer_scale);
+  builder.add_wall(outer_columns, true);
+  std::vector<std::vector<int>> inner_columns;
+  if (needle.hollow()) {
+    inner_columns = builder.add_columns(rims.inner, length, options.axial_segments, constant_scale);
+    builder.add_wall(inner_columns, false);
+  }
+  // Base: the full disk (annulus), facing −z.
+  builder.add_planar_face(bottoms(outer_columns), bottoms(inner_columns), false);
+  if (rims.bevel) {
+    add_bevel_faces(rims, tops(outer_columns), tops(inner_columns), n, builder);
+  } else {
+    builder.add_planar_face(tops(outer_columns), tops(inner_columns), true);  // tip disk (annulus)
+  }
   return builder.take();
 }
 
