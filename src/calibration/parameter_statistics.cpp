@@ -9,6 +9,58 @@
 
 namespace needlekit::calibration {
 
+namespace {
+
+// Directions the singular values say the data do not determine (relative singular value <= the tolerance): their
+// parameters are marked not identifiable, with a warning per direction. Returns 1/σ² per singular value (0 for those).
+Eigen::VectorXd inverse_squares(const Eigen::VectorXd& sigma, const Eigen::MatrixXd& v,
+                                const std::vector<std::string>& names, const ParameterStatisticsOptions& options,
+                                ParameterStatistics& s) {
+  const double largest = sigma.size() ? sigma(0) : 0;
+  Eigen::VectorXd inverse_square = Eigen::VectorXd::Zero(sigma.size());
+  for (Eigen::Index k = 0; k < sigma.size(); ++k) {
+    if (sigma(k) > options.degeneracy_tolerance * largest) {
+      inverse_square(k) = 1 / (sigma(k) * sigma(k));
+      continue;
+    }
+    std::vector<std::string> group;
+    for (Eigen::Index j = 0; j < v.rows(); ++j) {
+      if (std::abs(v(j, k)) > 0.05 && s.identifiable[j]) {
+        s.identifiable[j] = false;
+        group.push_back(names[j]);
+      }
+    }
+    if (group.size() >= 2) {
+      s.warnings.push_back(fmt::format("degenerate: {} cannot be told apart: the data determine only a combination of "
+                                       "them (relative singular value {:.2g}); fix all but one",
+                                       fmt::join(group, " and "), largest > 0 ? sigma(k) / largest : 0.0));
+    } else if (group.size() == 1) {
+      s.warnings.push_back(fmt::format("{}: not determined by the data (relative singular value {:.2g})", group[0],
+                                       largest > 0 ? sigma(k) / largest : 0.0));
+    }
+  }
+  return inverse_square;
+}
+
+// The correlation matrix of the identifiable parameters from their covariance, warning above the threshold.
+void correlations(const Eigen::MatrixXd& covariance, const std::vector<std::string>& names,
+                  const ParameterStatisticsOptions& options, ParameterStatistics& s) {
+  const Eigen::Index n = covariance.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      if (!s.identifiable[i] || !s.identifiable[j]) continue;
+      const double d = std::sqrt(covariance(i, i) * covariance(j, j));
+      s.correlation(i, j) = i == j ? 1.0 : (d > 0 ? covariance(i, j) / d : 0.0);
+      if (i < j && std::abs(s.correlation(i, j)) > options.correlation_warning) {
+        s.warnings.push_back(fmt::format("{} and {} are hardly told apart by the data (correlation {:.4f})", names[i],
+                                         names[j], s.correlation(i, j)));
+      }
+    }
+  }
+}
+
+}  // namespace
+
 ParameterStatistics parameter_statistics(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& residuals,
                                          const std::vector<double>& values, const std::vector<std::string>& names,
                                          const ParameterStatisticsOptions& options) {
@@ -33,31 +85,8 @@ ParameterStatistics parameter_statistics(const Eigen::MatrixXd& jacobian, const 
   }
   const Eigen::MatrixXd scaled = jacobian * scale.cwiseInverse().asDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
   const Eigen::MatrixXd& v = svd.matrixV();
-  const double largest = sigma.size() ? sigma(0) : 0;
-  Eigen::VectorXd inverse_square = Eigen::VectorXd::Zero(sigma.size());
-  for (Eigen::Index k = 0; k < sigma.size(); ++k) {
-    if (sigma(k) > options.degeneracy_tolerance * largest) {
-      inverse_square(k) = 1 / (sigma(k) * sigma(k));
-      continue;
-    }
-    std::vector<std::string> group;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      if (std::abs(v(j, k)) > 0.05 && s.identifiable[j]) {
-        s.identifiable[j] = false;
-        group.push_back(names[j]);
-      }
-    }
-    if (group.size() >= 2) {
-      s.warnings.push_back(fmt::format("degenerate: {} cannot be told apart: the data determine only a combination of "
-                                       "them (relative singular value {:.2g}); fix all but one",
-                                       fmt::join(group, " and "), largest > 0 ? sigma(k) / largest : 0.0));
-    } else if (group.size() == 1) {
-      s.warnings.push_back(fmt::format("{}: not determined by the data (relative singular value {:.2g})", group[0],
-                                       largest > 0 ? sigma(k) / largest : 0.0));
-    }
-  }
+  const Eigen::VectorXd inverse_square = inverse_squares(svd.singularValues(), v, names, options, s);
   if (m <= n) {
     s.warnings.push_back(fmt::format("{} residuals for {} parameters: no confidence intervals", m, n));
     return s;
@@ -80,17 +109,7 @@ ParameterStatistics parameter_statistics(const Eigen::MatrixXd& jacobian, const 
                                        names[j], s.ci95[j]->first, s.ci95[j]->second, values[j]));
     }
   }
-  for (Eigen::Index i = 0; i < n; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j) {
-      if (!s.identifiable[i] || !s.identifiable[j]) continue;
-      const double d = std::sqrt(covariance(i, i) * covariance(j, j));
-      s.correlation(i, j) = i == j ? 1.0 : (d > 0 ? covariance(i, j) / d : 0.0);
-      if (i < j && std::abs(s.correlation(i, j)) > options.correlation_warning) {
-        s.warnings.push_back(fmt::format("{} and {} are hardly told apart by the data (correlation {:.4f})", names[i],
-                                         names[j], s.correlation(i, j)));
-      }
-    }
-  }
+  correlations(covariance, names, options, s);
   return s;
 }
 
