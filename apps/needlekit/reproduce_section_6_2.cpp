@@ -158,136 +158,157 @@ struct PhantomNeedle {
   const char* example;  // an insertion case: the indentation case plus [post_puncture]
 };
 
-void phantom_needles(const RunContext& context, SectionReport& report, const SectionProgress& progress) {
-  const PublishedValues& published = *context.published;
-  const std::vector<PhantomNeedle> needles = {{"sharp_bevel", "sharp bevel", "insert_sharp_bevel.toml"},
-                                              {"blunt_bevel", "blunt bevel", "insert_blunt_bevel.toml"},
-                                              {"cylinder", "cylinder", "insert_cylinder.toml"}};
+// What the three phantom needles add to the section's figures and table.
+struct PhantomFigures {
   nlohmann::json complete_series = nlohmann::json::array(), pre_series = nlohmann::json::array();
   nlohmann::json markers = nlohmann::json::array(), pre_markers = nlohmann::json::array();
   nlohmann::json summary = nlohmann::json::array();
   int earlier_than_experiment = 0;
+};
+
+// The complete insertion of one phantom needle: the FE curve to the puncture point, then the post-puncture load of
+// the needle's mesh; its 3D view goes into the report.
+insertion::CompleteInsertionResult insert_phantom_needle(const RunContext& context, SectionReport& report,
+                                                         const PhantomNeedle& n, io::InsertionCase& c,
+                                                         const std::function<void(double)>& progress) {
+  set_resolution(c.indentation, context.quick);
+  c.indentation.stop_at_puncture = true;
+  if (context.quick) c.options.curve.cutting_samples = std::min(60, c.options.curve.cutting_samples);
+  c.options.indentation.progress = [&](const insertion::IndentationProgress& p) {
+    context.check_interrupt();
+    progress(p.fraction);
+  };
+  io::IndentationView view(c.indentation);
+  c.options.indentation.on_mesh = [&](const mesh::TetMesh& tissue) { view.set_mesh(tissue); };
+  c.options.indentation.on_step = [&](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
+    context.check_interrupt();
+    view.add_step(step, solver);
+  };
+  insertion::CompleteInsertionResult complete = insertion::complete_insertion(c.indentation, c.options);
+  if (complete.curve.depth.empty()) throw std::runtime_error(fmt::format("{}: {}", n.example, complete.reason));
+  add_view(context, report, fmt::format("6_2_{}", n.key), view.json(),
+           fmt::format("{}: the silicone surface pushed in by the needle up to the FE's last step (the puncture point "
+                       "or where the FE stopped)",
+                       n.label));
+  return complete;
+}
+
+// The needle's puncture point against the experiment's (the bevels) and against the bound of the dissertation's own
+// simulation; the blunt bevel's force at 300 um against Fig 6.6.
+void compare_phantom_needle(const RunContext& context, SectionReport& report, const PhantomNeedle& n,
+                            const FeRun& run, const insertion::InsertionCurve& curve, PhantomFigures& figures) {
+  const PublishedValues& published = *context.published;
+  const std::optional<insertion::PuncturePoint>& p = run.result.puncture;
+  // How deep the FE got: the case's depth, or less when the solver stopped early (then the report says why).
+  const double reached_um = run.result.steps.empty() ? 0.0 : run.result.steps.back().depth / kMicro;
+  const bool stopped_early = !p && run.result.status != insertion::IndentationStatus::ReachedDepth;
+  if (stopped_early) {
+    report.deviation(fmt::format("{}: the FE stopped without puncture at {:.4g} um of the case's {:g} um: {}",
+                                 n.label, reached_um, run.input.depth / kMicro, run.result.reason));
+  }
+  if (p) {
+    figures.markers.push_back({{"x", p->depth * 1e3}, {"y", p->force},
+                               {"label", fmt::format("needlekit puncture, {}", n.label)}, {"style", "x"}});
+    figures.pre_markers.push_back({{"x", p->depth / kMicro}, {"y", p->force},
+                                   {"label", fmt::format("puncture, {}", n.label)}, {"style", "x"}});
+  }
+  const std::string prefix = fmt::format("6.2.{}.", n.key);
+  if (n.key != std::string("cylinder")) {
+    const PublishedValue& depth = published.at(prefix + "puncture_depth");
+    const PublishedValue& force = published.at(prefix + "puncture_force");
+    figures.markers.push_back({{"x", depth.value}, {"y", force.value},
+                               {"label", fmt::format("experiment, {}", n.label)}, {"style", "o"}});
+    if (p) {
+      figures.earlier_than_experiment += p->depth * 1e3 < depth.value;
+      report.compare(depth, p->depth * 1e3, fmt::format("{}: puncture depth vs experiment", n.label),
+                     fmt::format("FE, {} criterion", insertion::to_string(p->criterion)));
+      report.compare(force, p->force, fmt::format("{}: puncture force vs experiment", n.label));
+    } else {
+      report.input(fmt::format("{}: no puncture within the simulated {:.4g} um (experiment: {} mm, {} N)", n.label,
+                               reached_um, depth.printed, force.printed));
+    }
+  }
+  // The dissertation's own simulation: bounds on the puncture depth.
+  const std::string bound_id = n.key == std::string("sharp_bevel") ? "6.2.sim.sharp_bevel.puncture_depth_below"
+                               : n.key == std::string("blunt_bevel") ? "6.2.sim.blunt_bevel.puncture_depth_above"
+                                                                      : "6.2.sim.cylinder.puncture_depth_above";
+  const PublishedValue& bound = published.at(bound_id);
+  const bool below = n.key == std::string("sharp_bevel");
+  // Without a puncture the depth is at least the depth reached: the bound holds if that is already beyond it.
+  const double depth_um = p ? p->depth / kMicro : reached_um;
+  const bool holds = below ? (p && depth_um < bound.value) : depth_um > bound.value;
+  report.compare(bound, depth_um,
+                 fmt::format("{}: simulated puncture depth ({} {} um in the dissertation's simulation)", n.label,
+                             below ? "below" : "beyond", bound.printed),
+                 fmt::format("{}; the bound {}",
+                             p              ? fmt::format("needlekit punctures at {:.4g} um", depth_um)
+                             : stopped_early ? fmt::format("no puncture up to {:.4g} um, where the FE stopped (shown)",
+                                                           depth_um)
+                                             : "no puncture up to the simulated depth (shown)",
+                             holds ? "holds" : stopped_early ? "is not reached" : "does not hold"));
+  if (n.key == std::string("blunt_bevel")) {
+    const double at_300 = interpolate(curve.depth, curve.force, 300e-6);
+    report.compare(published.at("6.2.fig_6_6.blunt_force_at_300um"), at_300,
+                   "blunt bevel: insertion force at 300 um (Fig 6.6)", "complete insertion curve at 0.3 mm");
+  }
+}
+
+void phantom_needles(const RunContext& context, SectionReport& report, const SectionProgress& progress) {
+  const std::vector<PhantomNeedle> needles = {{"sharp_bevel", "sharp bevel", "insert_sharp_bevel.toml"},
+                                              {"blunt_bevel", "blunt bevel", "insert_blunt_bevel.toml"},
+                                              {"cylinder", "cylinder", "insert_cylinder.toml"}};
+  PhantomFigures figures;
   for (std::size_t i = 0; i < needles.size(); ++i) {
     const PhantomNeedle& n = needles[i];
     const double lo = 0.5 * i / needles.size(), hi = 0.5 * (i + 1) / needles.size();
     io::InsertionCase c = io::read_insertion_case(context.example(n.example));
-    set_resolution(c.indentation, context.quick);
-    c.indentation.stop_at_puncture = true;
-    if (context.quick) c.options.curve.cutting_samples = std::min(60, c.options.curve.cutting_samples);
-    c.options.indentation.progress = [&](const insertion::IndentationProgress& p) {
-      context.check_interrupt();
-      progress(lo + (hi - lo) * p.fraction, n.label);
-    };
-    io::IndentationView view(c.indentation);
-    c.options.indentation.on_mesh = [&](const mesh::TetMesh& tissue) { view.set_mesh(tissue); };
-    c.options.indentation.on_step = [&](const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {
-      context.check_interrupt();
-      view.add_step(step, solver);
-    };
-    // The complete insertion: the FE curve to the puncture point, then the post-puncture load of the needle's mesh.
-    const insertion::CompleteInsertionResult complete = insertion::complete_insertion(c.indentation, c.options);
-    if (complete.curve.depth.empty()) throw std::runtime_error(fmt::format("{}: {}", n.example, complete.reason));
+    const insertion::CompleteInsertionResult complete =
+        insert_phantom_needle(context, report, n, c, [&](double f) { progress(lo + (hi - lo) * f, n.label); });
     const FeRun run{n.example, c.indentation, *complete.indentation, {}, {}, {}};
     const insertion::InsertionCurve& curve = complete.curve;
-    add_view(context, report, fmt::format("6_2_{}", n.key), view.json(),
-             fmt::format("{}: the silicone surface pushed in by the needle up to the FE's last step (the puncture point "
-                         "or where the FE stopped)",
-                         n.label));
     report.input(case_text(run) + fmt::format("; post-puncture K = {:g} N/mm^2, S = {:g}, to {:g} um",
                                               complete.stiffness * 1e-6, complete.scale,
                                               c.options.curve.final_depth / kMicro));
     const std::string pre_csv = context.write(fmt::format("section_6_2/{}_pre_puncture.csv", n.key), steps_csv(run.result));
     report.data_file(pre_csv);
-    pre_series.push_back({{"csv", pre_csv}, {"x", "depth_um"}, {"y", "force_N"}, {"label", n.label}, {"style", ".-"}});
-
+    figures.pre_series.push_back(
+        {{"csv", pre_csv}, {"x", "depth_um"}, {"y", "force_N"}, {"label", n.label}, {"style", ".-"}});
     const std::string complete_csv =
         context.write(fmt::format("section_6_2/{}_insertion.csv", n.key), io::insertion_curve_csv(curve));
     report.data_file(complete_csv);
-    complete_series.push_back(
+    figures.complete_series.push_back(
         {{"csv", complete_csv}, {"x", "depth_um"}, {"y", "force_N"}, {"x_divide_by", 1000.0}, {"label", n.label}});
-
+    compare_phantom_needle(context, report, n, run, curve, figures);
     const std::optional<insertion::PuncturePoint>& p = run.result.puncture;
-    // How deep the FE got: the case's depth, or less when the solver stopped early (then the report says why).
-    const double reached_um = run.result.steps.empty() ? 0.0 : run.result.steps.back().depth / kMicro;
-    const bool stopped_early = !p && run.result.status != insertion::IndentationStatus::ReachedDepth;
-    if (stopped_early) {
-      report.deviation(fmt::format("{}: the FE stopped without puncture at {:.4g} um of the case's {:g} um: {}",
-                                   n.label, reached_um, run.input.depth / kMicro, run.result.reason));
-    }
-    if (p) {
-      markers.push_back({{"x", p->depth * 1e3}, {"y", p->force}, {"label", fmt::format("needlekit puncture, {}", n.label)},
-                         {"style", "x"}});
-      pre_markers.push_back({{"x", p->depth / kMicro}, {"y", p->force}, {"label", fmt::format("puncture, {}", n.label)},
-                             {"style", "x"}});
-    }
-    const std::string prefix = fmt::format("6.2.{}.", n.key);
-    if (n.key != std::string("cylinder")) {
-      const PublishedValue& depth = published.at(prefix + "puncture_depth");
-      const PublishedValue& force = published.at(prefix + "puncture_force");
-      markers.push_back({{"x", depth.value}, {"y", force.value}, {"label", fmt::format("experiment, {}", n.label)},
-                         {"style", "o"}});
-      if (p) {
-        earlier_than_experiment += p->depth * 1e3 < depth.value;
-        report.compare(depth, p->depth * 1e3, fmt::format("{}: puncture depth vs experiment", n.label),
-                       fmt::format("FE, {} criterion", insertion::to_string(p->criterion)));
-        report.compare(force, p->force, fmt::format("{}: puncture force vs experiment", n.label));
-      } else {
-        report.input(fmt::format("{}: no puncture within the simulated {:.4g} um (experiment: {} mm, {} N)", n.label,
-                                 reached_um, depth.printed, force.printed));
-      }
-    }
-    // The dissertation's own simulation: bounds on the puncture depth.
-    const std::string bound_id = n.key == std::string("sharp_bevel") ? "6.2.sim.sharp_bevel.puncture_depth_below"
-                                 : n.key == std::string("blunt_bevel") ? "6.2.sim.blunt_bevel.puncture_depth_above"
-                                                                        : "6.2.sim.cylinder.puncture_depth_above";
-    const PublishedValue& bound = published.at(bound_id);
-    const bool below = n.key == std::string("sharp_bevel");
-    // Without a puncture the depth is at least the depth reached: the bound holds if that is already beyond it.
-    const double depth_um = p ? p->depth / kMicro : reached_um;
-    const bool holds = below ? (p && depth_um < bound.value) : depth_um > bound.value;
-    report.compare(bound, depth_um,
-                   fmt::format("{}: simulated puncture depth ({} {} um in the dissertation's simulation)", n.label,
-                               below ? "below" : "beyond", bound.printed),
-                   fmt::format("{}; the bound {}",
-                               p              ? fmt::format("needlekit punctures at {:.4g} um", depth_um)
-                               : stopped_early ? fmt::format("no puncture up to {:.4g} um, where the FE stopped (shown)",
-                                                             depth_um)
-                                               : "no puncture up to the simulated depth (shown)",
-                               holds ? "holds" : stopped_early ? "is not reached" : "does not hold"));
-    if (n.key == std::string("blunt_bevel")) {
-      const double at_300 = interpolate(curve.depth, curve.force, 300e-6);
-      report.compare(published.at("6.2.fig_6_6.blunt_force_at_300um"), at_300,
-                     "blunt bevel: insertion force at 300 um (Fig 6.6)", "complete insertion curve at 0.3 mm");
-    }
-    summary.push_back({n.label, p ? nlohmann::json(p->depth / kMicro) : nlohmann::json("none"),
-                       p ? nlohmann::json(p->force) : nlohmann::json("none"),
-                       p ? insertion::to_string(p->criterion) : std::string("-"),
-                       curve.punctures.empty() ? nlohmann::json("-") : nlohmann::json(curve.punctures[0].drop),
-                       curve.force.empty() ? 0.0 : curve.force.back(), curve.depth.empty() ? 0.0 : curve.depth.back() * 1e3,
-                       run.result.elements, run.result.total_seconds, insertion::to_string(run.result.status)});
+    figures.summary.push_back(
+        {n.label, p ? nlohmann::json(p->depth / kMicro) : nlohmann::json("none"),
+         p ? nlohmann::json(p->force) : nlohmann::json("none"), p ? insertion::to_string(p->criterion) : std::string("-"),
+         curve.punctures.empty() ? nlohmann::json("-") : nlohmann::json(curve.punctures[0].drop),
+         curve.force.empty() ? 0.0 : curve.force.back(), curve.depth.empty() ? 0.0 : curve.depth.back() * 1e3,
+         run.result.elements, run.result.total_seconds, insertion::to_string(run.result.status)});
   }
   report.table("§6.2 needles in silicone rubber (E = 0.2 MPa, nu = 0.49): FE puncture points and complete curves",
                {"needle", "puncture_depth_um", "puncture_force_N", "criterion", "relaxation_drop_N",
                 "force_at_end_N", "end_depth_mm", "tetrahedra", "fe_seconds", "fe_status"},
-               summary, "Post-puncture: K and S of each insert_*.toml example (S = 0.168 of Fig 6.11).");
+               figures.summary, "Post-puncture: K and S of each insert_*.toml example (S = 0.168 of Fig 6.11).");
   report.figure("figures/fig_6_9_insertion_curves.png",
                 "Figs 6.9/6.11: complete insertion force of the sharp bevel, blunt bevel and cylinder in silicone rubber "
                 "(FE to the puncture point, then the post-puncture model) with the experimental puncture points (circles) "
                 "and needlekit's (crosses).",
-                {{"kind", "lines"}, {"series", complete_series}, {"markers", markers}, {"xlabel", "depth (mm)"},
-                 {"ylabel", "force (N)"}});
+                {{"kind", "lines"}, {"series", figures.complete_series}, {"markers", figures.markers},
+                 {"xlabel", "depth (mm)"}, {"ylabel", "force (N)"}});
   report.figure("figures/fig_6_5_pre_puncture.png",
                 "Fig 6.5: pre-puncture FE force-depth curves in silicone rubber; crosses: where the mean pressure under "
                 "the tip reaches the critical pressure 0.663 MPa.",
-                {{"kind", "lines"}, {"series", pre_series}, {"markers", pre_markers}, {"xlabel", "depth (um)"},
-                 {"ylabel", "force (N)"}});
-  if (earlier_than_experiment > 0) {
+                {{"kind", "lines"}, {"series", figures.pre_series}, {"markers", figures.pre_markers},
+                 {"xlabel", "depth (um)"}, {"ylabel", "force (N)"}});
+  if (figures.earlier_than_experiment > 0) {
     report.deviation(fmt::format(
         "{} in the FE earlier than in the experiment: the critical-pressure criterion "
         "fires as soon as the mean pressure under the tip reaches P_c, while the phantom in the experiment deforms "
         "further before it cracks; the dissertation's own simulation also punctures earlier than its experiment "
         "(its bounds are compared above).",
-        earlier_than_experiment == 2 ? "Both bevels puncture" : "One bevel punctures"));
+        figures.earlier_than_experiment == 2 ? "Both bevels puncture" : "One bevel punctures"));
   }
   report.deviation("K of the post-puncture load is not given by the dissertation: the insert_*.toml examples take the "
                    "phantom's Young's modulus, and S = 0.168 (fitted by the dissertation to the sharp bevel) for every "
