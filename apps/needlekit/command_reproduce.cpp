@@ -162,14 +162,10 @@ SectionReport run_section(const std::string& label,
   return report;
 }
 
-void run_reproduce(const ReproduceArguments& arguments) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::string started = utc_now();
-  const fs::path resources = resources_root({"docs/published/chapter6.json", "scripts/report.py"});
-  const reproduce::PublishedValues published =
-      reproduce::PublishedValues::read(resources / "docs" / "published" / "chapter6.json");
-  const fs::path out = arguments.out_dir;
-
+// The run's context: the published values and resources, the meshes of §6.4 (checked before anything runs) and the
+// staging folder every file is written to first.
+RunContext run_context(const ReproduceArguments& arguments, const reproduce::PublishedValues& published,
+                       const fs::path& resources) {
   RunContext context;
   context.quick = arguments.quick;
   context.with_calibration = arguments.with_calibration;
@@ -184,50 +180,69 @@ void run_reproduce(const ReproduceArguments& arguments) {
                                 mesh.string()));
     }
   }
-  context.staging = create_staging(out);
+  context.staging = create_staging(arguments.out_dir);
+  return context;
+}
 
+// Every section in turn, then results.json (with the viewer) and the report script's report.html in the staging
+// folder; returns the number of sections that failed.
+int run_sections(const ReproduceArguments& arguments, RunContext& context, const fs::path& resources,
+                 const std::string& started, std::chrono::steady_clock::time_point start) {
+  std::vector<SectionReport> sections;
+  sections.push_back(run_section("§6.2 insertion forces", reproduce::section_6_2, context));
+  context.check_interrupt();
+  sections.push_back(run_section("§6.3 performance index", reproduce::section_6_3, context));
+  context.check_interrupt();
+  sections.push_back(run_section("§6.4 patches", reproduce::section_6_4, context));
+  context.check_interrupt();
+  sections.push_back(run_section("uncertainty", reproduce::section_uncertainty, context));
+  context.check_interrupt();
+  sections.push_back(run_section("arrays", reproduce::section_arrays, context));
+  context.check_interrupt();
+
+  nlohmann::json results = {
+      {"title", "Dissertation Chapter 6 reproduced by needlekit"},
+      {"dissertation", "P. Boonma, Geometric Modeling and Analysis of Microneedle Interaction with Soft Tissue, "
+                       "PhD dissertation, NC State University, 2012"},
+      {"mode", arguments.quick ? "quick" : "full"},
+      {"started_utc", started},
+      {"command", arguments.quick ? "needlekit reproduce --quick" : "needlekit reproduce"},
+      {"hardware_threads", std::thread::hardware_concurrency()},
+      {"published_values", "docs/published/chapter6.json"},
+      {"sections", nlohmann::json::array()}};
+  int failed_sections = 0;
+  for (const SectionReport& section : sections) {
+    results["sections"].push_back(section.json());
+    failed_sections += section.json()["status"] == "failed";
+  }
+  add_viewer(context, results);
+  results["finished_utc"] = utc_now();
+  results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  context.write("results.json", io::json_text(results));
+
+  ProgressBar bar("report (figures, report.html)");
+  bar.update(0);
+  const std::string python =
+      !arguments.python.empty() ? arguments.python : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+  run_report_script(python, resources / "scripts" / "report.py", context.staging);
+  bar.finish();
+  return failed_sections;
+}
+
+void run_reproduce(const ReproduceArguments& arguments) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string started = utc_now();
+  const fs::path resources = resources_root({"docs/published/chapter6.json", "scripts/report.py"});
+  const reproduce::PublishedValues published =
+      reproduce::PublishedValues::read(resources / "docs" / "published" / "chapter6.json");
+  const fs::path out = arguments.out_dir;
+  RunContext context = run_context(arguments, published, resources);
   int failed_sections = 0;
   try {
     fmt::print("needlekit reproduce ({} run): dissertation Chapter 6 -> {}\n", arguments.quick ? "quick" : "full",
                (out / "report.html").string());
     std::fflush(stdout);
-    std::vector<SectionReport> sections;
-    sections.push_back(run_section("§6.2 insertion forces", reproduce::section_6_2, context));
-    context.check_interrupt();
-    sections.push_back(run_section("§6.3 performance index", reproduce::section_6_3, context));
-    context.check_interrupt();
-    sections.push_back(run_section("§6.4 patches", reproduce::section_6_4, context));
-    context.check_interrupt();
-    sections.push_back(run_section("uncertainty", reproduce::section_uncertainty, context));
-    context.check_interrupt();
-    sections.push_back(run_section("arrays", reproduce::section_arrays, context));
-    context.check_interrupt();
-
-    nlohmann::json results = {
-        {"title", "Dissertation Chapter 6 reproduced by needlekit"},
-        {"dissertation", "P. Boonma, Geometric Modeling and Analysis of Microneedle Interaction with Soft Tissue, "
-                         "PhD dissertation, NC State University, 2012"},
-        {"mode", arguments.quick ? "quick" : "full"},
-        {"started_utc", started},
-        {"command", arguments.quick ? "needlekit reproduce --quick" : "needlekit reproduce"},
-        {"hardware_threads", std::thread::hardware_concurrency()},
-        {"published_values", "docs/published/chapter6.json"},
-        {"sections", nlohmann::json::array()}};
-    for (const SectionReport& section : sections) {
-      results["sections"].push_back(section.json());
-      failed_sections += section.json()["status"] == "failed";
-    }
-    add_viewer(context, results);
-    results["finished_utc"] = utc_now();
-    results["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    context.write("results.json", io::json_text(results));
-
-    ProgressBar bar("report (figures, report.html)");
-    bar.update(0);
-    const std::string python =
-        !arguments.python.empty() ? arguments.python : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-    run_report_script(python, resources / "scripts" / "report.py", context.staging);
-    bar.finish();
+    failed_sections = run_sections(arguments, context, resources, started, start);
     context.check_interrupt();
     publish(context.staging, out);
   } catch (const Interrupted&) {

@@ -3,6 +3,7 @@
 // published-compatible and with the corrected pitch.
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -53,7 +54,7 @@ std::string design_text(const analysis::ArrayDesign& design) {
 void table_6_1(const RunContext& context, SectionReport& report) {
   const PublishedValues& published = *context.published;
   nlohmann::json rows = nlohmann::json::array();
-  nlohmann::json categories = nlohmann::json::array(), published_mpi = nlohmann::json::array(),
+  nlohmann::json categories = nlohmann::json::array(), published_index = nlohmann::json::array(),
                  needlekit_mpi = nlohmann::json::array();
   nlohmann::json evaluations = nlohmann::json::object();
   for (const TableNeedle& n : table_6_1_needles()) {
@@ -82,7 +83,7 @@ void table_6_1(const RunContext& context, SectionReport& report) {
                     r.buckling.critical_load, r.performance_index * kMicro, published.at(prefix + "performance_index").printed,
                     std::string(analysis::to_string(r.status))});
     categories.push_back(n.label);
-    published_mpi.push_back(published.at(prefix + "performance_index").value);
+    published_index.push_back(published.at(prefix + "performance_index").value);
     needlekit_mpi.push_back(r.performance_index * kMicro);
   }
   const std::vector<std::string> columns = {"needle", "D1_um", "D2_um", "D3_um", "tip_area_um2", "puncture_force_N",
@@ -98,9 +99,9 @@ void table_6_1(const RunContext& context, SectionReport& report) {
                 "cylinders' index is zero: the 500 um needle does not overcome the 580 um deformation.",
                 {{"kind", "bars"},
                  {"categories", categories},
-                 {"series", {{{"label", "dissertation"}, {"values", published_mpi}},
+                 {"series", {{{"label", "dissertation"}, {"values", published_index}},
                              {{"label", "needlekit"}, {"values", needlekit_mpi}}}},
-                 {"ylabel", "MPI (1/um)"},
+                 {"ylabel", "performance index (1/um)"},
                  {"log", false}});
   report.deviation("Table 6.1 prints cone and bevel volumes a few um^3 away from the closed-form volumes needlekit "
                    "computes (probably CAD values); the volumes do not enter the index.");
@@ -212,66 +213,80 @@ void figures_6_18_6_19(const RunContext& context, SectionReport& report, const S
                   {{"kind", "lines"},
                    {"series", series},
                    {"xlabel", "parameter / its Table 6.1 value"},
-                   {"ylabel", "MPI (1/um)"}});
+                   {"ylabel", "performance index (1/um)"}});
   }
   report.deviation("Figs 6.18/6.19: the published doubling factors (x3.25, x1.11, x1.03) depend on an averaging the "
                    "text does not describe; needlekit reports the plain ratio PI(2x)/PI(x). The ranking D2 > L > D1 "
                    "and the hollow cone's falling index with length reproduce.");
 }
 
+struct Table63Row {
+  const char* key;
+  const char* label;
+  const char* example;
+};
+
+// The best design of one row by the published-compatible optimizer ([0]) and by the corrected pitch w/n ([1]);
+// each optimizer's JSON is a data file of the section.
+std::array<analysis::DesignCandidate, 2> optimize_row(const RunContext& context, SectionReport& report,
+                                                      const Table63Row& row, const analysis::DesignSpace& space) {
+  std::array<analysis::DesignCandidate, 2> best;
+  for (const bool compat : {true, false}) {
+    analysis::OptimizerOptions options;
+    options.top = 10;
+    options.published_compat = compat;
+    options.threads = 0;
+    options.progress = [](double) { return !interrupt_requested(); };
+    const analysis::OptimizerResult result = analysis::optimize_design(space, options);
+    context.check_interrupt();
+    if (result.status != analysis::OptimizerStatus::Optimal) {
+      throw std::runtime_error(fmt::format("Table 6.3 {}: optimizer {}: {}", row.label,
+                                           analysis::to_string(result.status), result.reason));
+    }
+    best[compat ? 0 : 1] = result.top.front();
+    report.data_file(context.write(
+        fmt::format("section_6_3/table_6_3_{}{}.json", row.key, compat ? "_published_compat" : "_corrected_pitch"),
+        io::json_text(io::optimizer_json(space, result))));
+  }
+  return best;
+}
+
+// The published-compatible optimum beside the printed row.
+void compare_row(const PublishedValues& published, SectionReport& report, const Table63Row& row,
+                 const analysis::DesignCandidate& c) {
+  const std::string prefix = fmt::format("6.3.2.{}.", row.key);
+  report.compare(published.at(prefix + "n"), c.needles_per_row, fmt::format("Table 6.3 {}: n", row.label));
+  report.compare(published.at(prefix + "tip_diameter"), c.tip_diameter / kMicro,
+                 fmt::format("Table 6.3 {}: tip size D1", row.label));
+  report.compare(published.at(prefix + "base_diameter"), c.base_diameter / kMicro,
+                 fmt::format("Table 6.3 {}: base diameter D2", row.label));
+  report.compare(published.at(prefix + "width"), c.width / kMicro, fmt::format("Table 6.3 {}: patch width w", row.label));
+  report.compare(published.at(prefix + "length"), c.length / kMicro, fmt::format("Table 6.3 {}: length L", row.label));
+  report.compare(published.at(prefix + "performance_index"), c.performance_index * kMicro,
+                 fmt::format("Table 6.3 {}: performance index", row.label), "published-compatible optimizer");
+}
+
 // Table 6.3: the optimizer over the Fig 6.20 grid for the six needle types.
 void table_6_3(const RunContext& context, SectionReport& report, const SectionProgress& progress) {
   const PublishedValues& published = *context.published;
-  struct Row {
-    const char* key;
-    const char* label;
-    const char* example;
-  };
-  const std::vector<Row> rows = {{"solid_cylinder", "solid cylinder", "optimize_fig_6_20_cylinder_solid.toml"},
-                                 {"solid_cone", "solid cone", "optimize_fig_6_20_cone_solid.toml"},
-                                 {"solid_bevel", "solid bevel", "optimize_fig_6_20_bevel_solid.toml"},
-                                 {"hollow_cylinder", "hollow cylinder", "optimize_fig_6_20_cylinder_hollow.toml"},
-                                 {"hollow_cone", "hollow cone", "optimize_fig_6_20_cone_hollow.toml"},
-                                 {"hollow_bevel", "hollow bevel", "optimize_fig_6_20_bevel_hollow.toml"}};
+  const std::vector<Table63Row> rows = {{"solid_cylinder", "solid cylinder", "optimize_fig_6_20_cylinder_solid.toml"},
+                                        {"solid_cone", "solid cone", "optimize_fig_6_20_cone_solid.toml"},
+                                        {"solid_bevel", "solid bevel", "optimize_fig_6_20_bevel_solid.toml"},
+                                        {"hollow_cylinder", "hollow cylinder", "optimize_fig_6_20_cylinder_hollow.toml"},
+                                        {"hollow_cone", "hollow cone", "optimize_fig_6_20_cone_hollow.toml"},
+                                        {"hollow_bevel", "hollow bevel", "optimize_fig_6_20_bevel_hollow.toml"}};
   nlohmann::json table = nlohmann::json::array();
-  nlohmann::json categories = nlohmann::json::array(), published_mpi = nlohmann::json::array(),
-                 compat_mpi = nlohmann::json::array(), corrected_mpi = nlohmann::json::array();
+  nlohmann::json categories = nlohmann::json::array(), published_index = nlohmann::json::array(),
+                 compat_index = nlohmann::json::array(), corrected_index = nlohmann::json::array();
   int done = 0;
-  for (const Row& row : rows) {
+  for (const Table63Row& row : rows) {
     context.check_interrupt();
     const analysis::DesignSpace space = io::read_space_file(context.example(row.example)).space;
     report.input(fmt::format("examples/{}: the Fig 6.20 grid ({} points)", row.example,
                              analysis::design_space_size(space)));
-    nlohmann::json variants = nlohmann::json::object();
-    analysis::DesignCandidate best[2];
-    for (const bool compat : {true, false}) {
-      analysis::OptimizerOptions options;
-      options.top = 10;
-      options.published_compat = compat;
-      options.threads = 0;
-      options.progress = [](double) { return !interrupt_requested(); };
-      const analysis::OptimizerResult result = analysis::optimize_design(space, options);
-      context.check_interrupt();
-      if (result.status != analysis::OptimizerStatus::Optimal) {
-        throw std::runtime_error(fmt::format("Table 6.3 {}: optimizer {}: {}", row.label,
-                                             analysis::to_string(result.status), result.reason));
-      }
-      best[compat ? 0 : 1] = result.top.front();
-      report.data_file(context.write(
-          fmt::format("section_6_3/table_6_3_{}{}.json", row.key, compat ? "_published_compat" : "_corrected_pitch"),
-          io::json_text(io::optimizer_json(space, result))));
-    }
+    const std::array<analysis::DesignCandidate, 2> best = optimize_row(context, report, row, space);
+    compare_row(published, report, row, best[0]);
     const std::string prefix = fmt::format("6.3.2.{}.", row.key);
-    const analysis::DesignCandidate& c = best[0];
-    report.compare(published.at(prefix + "n"), c.needles_per_row, fmt::format("Table 6.3 {}: n", row.label));
-    report.compare(published.at(prefix + "tip_diameter"), c.tip_diameter / kMicro,
-                   fmt::format("Table 6.3 {}: tip size D1", row.label));
-    report.compare(published.at(prefix + "base_diameter"), c.base_diameter / kMicro,
-                   fmt::format("Table 6.3 {}: base diameter D2", row.label));
-    report.compare(published.at(prefix + "width"), c.width / kMicro, fmt::format("Table 6.3 {}: patch width w", row.label));
-    report.compare(published.at(prefix + "length"), c.length / kMicro, fmt::format("Table 6.3 {}: length L", row.label));
-    report.compare(published.at(prefix + "performance_index"), c.performance_index * kMicro,
-                   fmt::format("Table 6.3 {}: MPI", row.label), "published-compatible optimizer");
     for (int v = 0; v < 2; ++v) {
       const analysis::DesignCandidate& d = best[v];
       table.push_back({row.label, v == 0 ? "needlekit, published-compatible" : "needlekit, corrected pitch w/n",
@@ -284,9 +299,9 @@ void table_6_3(const RunContext& context, SectionReport& report, const SectionPr
                      "not printed", published.at(prefix + "width").printed, published.at(prefix + "length").printed,
                      published.at(prefix + "performance_index").printed});
     categories.push_back(row.label);
-    published_mpi.push_back(published.at(prefix + "performance_index").value);
-    compat_mpi.push_back(best[0].performance_index * kMicro);
-    corrected_mpi.push_back(best[1].performance_index * kMicro);
+    published_index.push_back(published.at(prefix + "performance_index").value);
+    compat_index.push_back(best[0].performance_index * kMicro);
+    corrected_index.push_back(best[1].performance_index * kMicro);
     progress(0.6 + 0.4 * (++done) / rows.size(), "Table 6.3 optimizer");
   }
   const std::vector<std::string> columns = {"needle", "source", "n", "D1_um", "D2_um", "D3_um", "w_um", "L_um",
@@ -299,14 +314,14 @@ void table_6_3(const RunContext& context, SectionReport& report, const SectionPr
                "hollow cone (the only way to obtain those two published rows); the corrected optimizer uses w/n "
                "everywhere and finds better hollow designs.");
   report.figure("figures/table_6_3_mpi.png",
-                "Table 6.3: MPI of the best design of each needle type: the dissertation, needlekit with the "
+                "Table 6.3: performance index of the best design of each needle type: the dissertation, needlekit with the "
                 "published-compatible pitch, and needlekit with the corrected pitch w/n.",
                 {{"kind", "bars"},
                  {"categories", categories},
-                 {"series", {{{"label", "dissertation"}, {"values", published_mpi}},
-                             {{"label", "needlekit, published-compatible"}, {"values", compat_mpi}},
-                             {{"label", "needlekit, corrected pitch"}, {"values", corrected_mpi}}}},
-                 {"ylabel", "MPI (1/um)"},
+                 {"series", {{{"label", "dissertation"}, {"values", published_index}},
+                             {{"label", "needlekit, published-compatible"}, {"values", compat_index}},
+                             {{"label", "needlekit, corrected pitch"}, {"values", corrected_index}}}},
+                 {"ylabel", "performance index (1/um)"},
                  {"log", false}});
   report.deviation("Table 6.3 is reproduced with the Fig 6.20 ranges (w up to 10000 um), not the Table 6.2 ranges "
                    "(w up to 2 cm, L up to 1000 um) the text lists; with Table 6.2's ranges other designs win.");

@@ -280,7 +280,7 @@ void neck_20mm(const RunContext& context, SectionReport& report, Surfaces& surfa
                 "Fig 6.25: mean performance index of the 20 x 20 mm flexible patch (400 cylindrical SU-8 needles, 400 um) "
                 "on the neck against the spring-energy cap E_cri.",
                 {{"kind", "lines"}, {"series", series}, {"xlabel", "maximum spring energy E_cri (mJ)"},
-                 {"ylabel", "mean MPI (1/um)"}});
+                 {"ylabel", "mean performance index (1/um)"}});
   // Fig 6.26: the same patch at 0.5 mJ (highly flexible).
   const PatchRun run = run_patch(context, surfaces, "patch_neck_20mm.toml", 0.5e-3);
   compare_statistics(report, published, "6.4.2.fig_6_26", "buckling_force", run.evaluation.buckling_force,
@@ -359,7 +359,7 @@ SectionReport section_6_4(const RunContext& context, const SectionProgress& prog
                    "not published): needlekit uses the Visible Human Male skin and a CC-BY skull, so the angles under "
                    "the patches and every force that depends on them differ; the forces that F(A) and theta "
                    "determine are checked exactly above.");
-  report.deviation("The dissertation's MPI values of §6.4 (0.0289, 0.0291, 0.1184, ...) come from the fitting "
+  report.deviation("The dissertation's performance index values (its \"MPI\") of §6.4 (0.0289, 0.0291, 0.1184, ...) come from the fitting "
                    "simulation with a normalisation it does not document; needlekit reports Eq 5.9 in 1/um.");
   progress(1, "done");
   return report;
