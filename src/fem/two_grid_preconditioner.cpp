@@ -10,13 +10,52 @@
 
 namespace needlekit::fem::detail {
 
+namespace {
+
+// A_c = P^T K P couples the coarse nodes that interpolate the nodes of one fine element: one group per element
+// (compressed: group k holds nodes[pointers[k] .. pointers[k + 1])).
+void coarse_element_groups(const TangentInputs& inputs, std::vector<int>& pointers, std::vector<int>& nodes) {
+  const mesh::CoarseLevel& coarse = *inputs.coarse;
+  const int nodes_per_element = inputs.nodes_per_element;
+  const size_t elements = inputs.connectivity.size() / static_cast<size_t>(nodes_per_element);
+  pointers.assign(1, 0);
+  pointers.reserve(elements + 1);
+  nodes.reserve(elements * 6);
+  std::vector<int> group;
+  for (size_t e = 0; e < elements; ++e) {
+    group.clear();
+    for (int a = 0; a < nodes_per_element; ++a) {
+      const mesh::NodeInterpolation& parents = coarse.interpolation[static_cast<size_t>(
+          inputs.connectivity[e * static_cast<size_t>(nodes_per_element) + a])];
+      for (size_t k = 0; k < 4; ++k)
+        if (parents.weights[k] != 0) group.push_back(parents.nodes[k]);
+    }
+    std::sort(group.begin(), group.end());
+    group.erase(std::unique(group.begin(), group.end()), group.end());
+    nodes.insert(nodes.end(), group.begin(), group.end());
+    pointers.push_back(static_cast<int>(nodes.size()));
+  }
+}
+
+}  // namespace
+
 TwoGridPreconditioner::TwoGridPreconditioner(const TangentInputs& inputs, const UpperPattern& fine,
                                              tbb::task_arena& arena, int chebyshev_degree)
     : fine_(fine), arena_(arena), degree_(chebyshev_degree) {
+  const int coarse_count = build_interpolation(inputs);
+  build_restriction(coarse_count);
+  build_neighbours();
+  std::vector<int> group_pointers, group_nodes;
+  coarse_element_groups(inputs, group_pointers, group_nodes);
+  coarse_pattern_ = upper_pattern({}, 4, inputs.coarse->nodes, coarse_free_, &group_pointers, &group_nodes);
+  coarse_values_.assign(coarse_pattern_.row_indices.size(), 0.0);
+  coarse_cholesky_ = std::make_unique<SparseCholesky>(static_cast<int64_t>(coarse_count),
+                                                      coarse_pattern_.column_pointers, coarse_pattern_.row_indices);
+}
+
+int TwoGridPreconditioner::build_interpolation(const TangentInputs& inputs) {
   const mesh::CoarseLevel& coarse = *inputs.coarse;
   const std::vector<int>& free_index = inputs.free_index;
-  const std::vector<int>& connectivity = inputs.connectivity;
-  const int nodes_per_element = inputs.nodes_per_element;
   // A coarse dof is kept when most of its interpolation weight goes to free fine dofs: one on a fixed face or under
   // a needle's tip nodes gives most of it to constrained fine dofs and is left out (as the fine dof of the same node
   // is in a nested level), which also keeps A_c regular where a coarse node reaches a single free fine dof.
@@ -31,12 +70,11 @@ TwoGridPreconditioner::TwoGridPreconditioner(const TangentInputs& inputs, const 
       if (free_index[dof] >= 0) free_weight[coarse_dof] += parents.weights[k];
     }
   }
-  std::vector<int> coarse_free(free_weight.size(), -1);
+  coarse_free_.assign(free_weight.size(), -1);
   int coarse_count = 0;
-  for (size_t dof = 0; dof < coarse_free.size(); ++dof)
-    if (free_weight[dof] > 0.5 * all_weight[dof]) coarse_free[dof] = coarse_count++;
-  const size_t fine_free = fine.column_pointers.size() - 1;
-  interpolation_.resize(fine_free);
+  for (size_t dof = 0; dof < coarse_free_.size(); ++dof)
+    if (free_weight[dof] > 0.5 * all_weight[dof]) coarse_free_[dof] = coarse_count++;
+  interpolation_.resize(fine_.column_pointers.size() - 1);
   for (size_t dof = 0; dof < free_index.size(); ++dof) {
     const int f = free_index[dof];
     if (f < 0) continue;
@@ -44,11 +82,14 @@ TwoGridPreconditioner::TwoGridPreconditioner(const TangentInputs& inputs, const 
     Interpolation& row = interpolation_[static_cast<size_t>(f)];
     for (size_t k = 0; k < 4; ++k)
       if (parents.weights[k] != 0) {
-        row.coarse[k] = coarse_free[static_cast<size_t>(3 * parents.nodes[k]) + dof % 3];
+        row.coarse[k] = coarse_free_[static_cast<size_t>(3 * parents.nodes[k]) + dof % 3];
         row.weight[k] = parents.weights[k];
       }
   }
-  // The Galerkin product's tables: per coarse dof the fine dofs it interpolates, per fine dof its coupled dofs.
+  return coarse_count;
+}
+
+void TwoGridPreconditioner::build_restriction(int coarse_count) {
   std::vector<int32_t> count(static_cast<size_t>(coarse_count) + 1, 0);
   for (const Interpolation& row : interpolation_)
     for (int k = 0; k < 4; ++k)
@@ -56,52 +97,33 @@ TwoGridPreconditioner::TwoGridPreconditioner(const TangentInputs& inputs, const 
   for (size_t c = 0; c + 1 < count.size(); ++c) count[c + 1] += count[c];
   restriction_pointers_ = count;
   restriction_.resize(static_cast<size_t>(count.back()));
-  for (size_t f = 0; f < fine_free; ++f)
+  for (size_t f = 0; f < interpolation_.size(); ++f)
     for (int k = 0; k < 4; ++k)
       if (interpolation_[f].coarse[k] >= 0)
         restriction_[static_cast<size_t>(count[static_cast<size_t>(interpolation_[f].coarse[k])]++)] = {
             static_cast<int32_t>(f), interpolation_[f].weight[k]};
+}
+
+void TwoGridPreconditioner::build_neighbours() {
+  const size_t fine_free = fine_.column_pointers.size() - 1;
   std::vector<int64_t> degree(fine_free + 1, 0);
   for (size_t c = 0; c < fine_free; ++c)
-    for (int64_t k = fine.column_pointers[c]; k < fine.column_pointers[c + 1]; ++k) {
+    for (int64_t k = fine_.column_pointers[c]; k < fine_.column_pointers[c + 1]; ++k) {
       ++degree[c + 1];
-      if (fine.row_indices[static_cast<size_t>(k)] != static_cast<int64_t>(c))
-        ++degree[static_cast<size_t>(fine.row_indices[static_cast<size_t>(k)]) + 1];
+      if (fine_.row_indices[static_cast<size_t>(k)] != static_cast<int64_t>(c))
+        ++degree[static_cast<size_t>(fine_.row_indices[static_cast<size_t>(k)]) + 1];
     }
   for (size_t f = 0; f < fine_free; ++f) degree[f + 1] += degree[f];
   neighbour_pointers_ = degree;
   neighbours_.resize(static_cast<size_t>(degree.back()));
   for (size_t c = 0; c < fine_free; ++c)
-    for (int64_t k = fine.column_pointers[c]; k < fine.column_pointers[c + 1]; ++k) {
-      const auto r = static_cast<int32_t>(fine.row_indices[static_cast<size_t>(k)]);
+    for (int64_t k = fine_.column_pointers[c]; k < fine_.column_pointers[c + 1]; ++k) {
+      const auto r = static_cast<int32_t>(fine_.row_indices[static_cast<size_t>(k)]);
       neighbours_[static_cast<size_t>(degree[c]++)] = {r, static_cast<int32_t>(k)};
       if (r != static_cast<int32_t>(c))
         neighbours_[static_cast<size_t>(degree[static_cast<size_t>(r)]++)] = {static_cast<int32_t>(c),
                                                                               static_cast<int32_t>(k)};
     }
-  // A_c = P^T K P couples the coarse nodes that interpolate the nodes of one fine element: one group per element.
-  std::vector<int> group_pointers{0}, group_nodes;
-  const size_t elements = connectivity.size() / static_cast<size_t>(nodes_per_element);
-  group_pointers.reserve(elements + 1);
-  group_nodes.reserve(elements * 6);
-  std::vector<int> group;
-  for (size_t e = 0; e < elements; ++e) {
-    group.clear();
-    for (int a = 0; a < nodes_per_element; ++a) {
-      const mesh::NodeInterpolation& parents =
-          coarse.interpolation[static_cast<size_t>(connectivity[e * static_cast<size_t>(nodes_per_element) + a])];
-      for (size_t k = 0; k < 4; ++k)
-        if (parents.weights[k] != 0) group.push_back(parents.nodes[k]);
-    }
-    std::sort(group.begin(), group.end());
-    group.erase(std::unique(group.begin(), group.end()), group.end());
-    group_nodes.insert(group_nodes.end(), group.begin(), group.end());
-    group_pointers.push_back(static_cast<int>(group_nodes.size()));
-  }
-  coarse_pattern_ = upper_pattern({}, 4, coarse.nodes, coarse_free, &group_pointers, &group_nodes);
-  coarse_values_.assign(coarse_pattern_.row_indices.size(), 0.0);
-  coarse_cholesky_ = std::make_unique<SparseCholesky>(static_cast<int64_t>(coarse_count),
-                                                      coarse_pattern_.column_pointers, coarse_pattern_.row_indices);
 }
 
 TwoGridPreconditioner::~TwoGridPreconditioner() = default;

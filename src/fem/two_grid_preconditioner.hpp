@@ -60,6 +60,11 @@ public:
   double coarse_factor_flops() const;
 
 private:
+  // The construction's steps: the coarse dofs kept and the interpolation rows (returns the coarse free dofs), the
+  // restriction's table per coarse dof, and the coupled dofs per fine dof (the Galerkin product's tables).
+  int build_interpolation(const TangentInputs& inputs);
+  void build_restriction(int coarse_count);
+  void build_neighbours();
   // Chebyshev smoothing of K x = r from x = 0.
   void smooth(const Eigen::VectorXd& r, Eigen::VectorXd& x, const Multiply& multiply);
 
@@ -68,6 +73,7 @@ private:
     std::array<double, 4> weight{0, 0, 0, 0};
   };
   std::vector<Interpolation> interpolation_;  // per fine free dof
+  std::vector<int> coarse_free_;              // per coarse dof: its coarse free dof, -1 when left out
   struct Restriction {  // one fine free dof that a coarse dof interpolates, with its weight
     int32_t fine;
     double weight;
