@@ -59,55 +59,51 @@ void validate_tissue_mesh(const mesh::TetMesh& mesh) {
   }
 }
 
-FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
-  FunctionSpace fs;
-  const int nn = fs.nodes_per_element = order == ElementOrder::Quadratic ? 10 : 4;
-  const int nq = fs.points = nn == 4 ? 1 : 4;
+namespace {
+
+// Quadratic tetrahedra: one mid-edge node per edge, numbered after the corners in the order of the sorted edge keys,
+// and the corners as the coarse level.
+void add_mid_edge_nodes(const mesh::TetMesh& mesh, FunctionSpace& fs) {
   const int n0 = static_cast<int>(mesh.nodes.size());
-  fs.box_min = fs.box_max = mesh.nodes[0];
-  for (const auto& p : mesh.nodes) {
-    fs.box_min = fs.box_min.cwiseMin(p);
-    fs.box_max = fs.box_max.cwiseMax(p);
-  }
-  fs.nodes = mesh.nodes;
   const size_t ne = mesh.tets.size();
-  fs.connectivity.resize(ne * nn);
+  fs.corners.nodes = n0;
+  fs.corners.tets = mesh.tets;
+  fs.corners.interpolation.resize(static_cast<size_t>(n0));
+  for (int a = 0; a < n0; ++a) fs.corners.interpolation[static_cast<size_t>(a)] = mesh::NodeInterpolation::at_node(a);
+  std::vector<std::pair<int64_t, int>> edge_keys;  // (key, tet*6+k)
+  edge_keys.reserve(ne * 6);
   for (size_t e = 0; e < ne; ++e)
-    for (int a = 0; a < 4; ++a) fs.connectivity[e * nn + a] = mesh.tets[e][a];
-  if (nn == 10) {  // one mid-edge node per edge, numbered in the order of the sorted edge keys
-    fs.corners.nodes = n0;
-    fs.corners.tets = mesh.tets;
-    fs.corners.interpolation.resize(static_cast<size_t>(n0));
-    for (int a = 0; a < n0; ++a) fs.corners.interpolation[static_cast<size_t>(a)] = mesh::NodeInterpolation::at_node(a);
-    std::vector<std::pair<int64_t, int>> edge_keys;  // (key, tet*6+k)
-    edge_keys.reserve(ne * 6);
-    for (size_t e = 0; e < ne; ++e)
-      for (int k = 0; k < 6; ++k) {
-        int a = mesh.tets[e][tet_edges[k][0]], b = mesh.tets[e][tet_edges[k][1]];
-        if (a > b) std::swap(a, b);
-        edge_keys.emplace_back(static_cast<int64_t>(a) * n0 + b, static_cast<int>(e * 6 + k));
-      }
-    std::sort(edge_keys.begin(), edge_keys.end());
-    int64_t prev = -1;
-    int id = n0 - 1;
-    for (const auto& [key, slot] : edge_keys) {
-      if (key != prev) {
-        ++id;
-        prev = key;
-        const int a = static_cast<int>(key / n0), b = static_cast<int>(key % n0);
-        fs.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
-        fs.corners.interpolation.push_back(mesh::NodeInterpolation::edge_midpoint(a, b));
-      }
-      fs.connectivity[static_cast<size_t>(slot / 6) * 10 + 4 + slot % 6] = id;
+    for (int k = 0; k < 6; ++k) {
+      int a = mesh.tets[e][tet_edges[k][0]], b = mesh.tets[e][tet_edges[k][1]];
+      if (a > b) std::swap(a, b);
+      edge_keys.emplace_back(static_cast<int64_t>(a) * n0 + b, static_cast<int>(e * 6 + k));
     }
+  std::sort(edge_keys.begin(), edge_keys.end());
+  int64_t prev = -1;
+  int id = n0 - 1;
+  for (const auto& [key, slot] : edge_keys) {
+    if (key != prev) {
+      ++id;
+      prev = key;
+      const int a = static_cast<int>(key / n0), b = static_cast<int>(key % n0);
+      fs.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
+      fs.corners.interpolation.push_back(mesh::NodeInterpolation::edge_midpoint(a, b));
+    }
+    fs.connectivity[static_cast<size_t>(slot / 6) * 10 + 4 + slot % 6] = id;
   }
-  const int nnode = static_cast<int>(fs.nodes.size());
+}
+
+// Every element's quadrature (weights and shape-function gradients), Lamé constants and volume, the nodes' largest
+// Young's modulus, and the mean modulus and element size.
+void element_data(const mesh::TetMesh& mesh, FunctionSpace& fs) {
+  const int nn = fs.nodes_per_element, nq = fs.points;
+  const size_t ne = mesh.tets.size();
   fs.elements.resize(ne);
   fs.lame.resize(ne);
   fs.volumes.resize(ne);
   fs.gradients.resize(ne * nq * 3 * nn);
   fs.weights.resize(ne * nq);
-  fs.node_youngs_modulus.assign(static_cast<size_t>(nnode), 0.0);
+  fs.node_youngs_modulus.assign(fs.nodes.size(), 0.0);
   double vol_sum = 0, e_sum = 0;
   for (size_t e = 0; e < ne; ++e) {
     std::vector<Eigen::Vector3d> x(static_cast<size_t>(nn));
@@ -130,6 +126,11 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
   }
   fs.mean_youngs_modulus = e_sum / vol_sum;
   fs.mean_element_size = std::cbrt(6 * std::sqrt(2.0) * vol_sum / ne);
+}
+
+// The elements' data in the colouring's order (each colour's elements contiguous) for the threaded assembly.
+void assembly_order(FunctionSpace& fs) {
+  const int nn = fs.nodes_per_element;
   fs.colouring = element_colouring(fs.connectivity, nn, fs.nodes);
   const auto append = [](auto& to, const auto& from, size_t e, size_t per_element) {
     to.insert(to.end(), from.begin() + static_cast<std::ptrdiff_t>(e * per_element),
@@ -142,6 +143,27 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
     append(fs.assembly.gradients, fs.gradients, e, gradients_per_element);
     append(fs.assembly.weights, fs.weights, e, static_cast<size_t>(fs.points));
   }
+}
+
+}  // namespace
+
+FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
+  FunctionSpace fs;
+  const int nn = fs.nodes_per_element = order == ElementOrder::Quadratic ? 10 : 4;
+  fs.points = nn == 4 ? 1 : 4;
+  fs.box_min = fs.box_max = mesh.nodes[0];
+  for (const auto& p : mesh.nodes) {
+    fs.box_min = fs.box_min.cwiseMin(p);
+    fs.box_max = fs.box_max.cwiseMax(p);
+  }
+  fs.nodes = mesh.nodes;
+  const size_t ne = mesh.tets.size();
+  fs.connectivity.resize(ne * nn);
+  for (size_t e = 0; e < ne; ++e)
+    for (int a = 0; a < 4; ++a) fs.connectivity[e * nn + a] = mesh.tets[e][a];
+  if (nn == 10) add_mid_edge_nodes(mesh, fs);
+  element_data(mesh, fs);
+  assembly_order(fs);
   return fs;
 }
 

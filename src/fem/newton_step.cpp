@@ -51,39 +51,91 @@ bool QuasiStaticSolver::Impl::solve_iteration(const Eigen::VectorXd& rhs, Eigen:
   return true;
 }
 
-// Newton with backtracking line search at fixed needle displacement `disp` (and fixed multipliers).
-bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& failure, int cutbacks_so_far) {
-  const double tiny = 1e-14 * space.mean_youngs_modulus * space.mean_element_size * space.mean_element_size;
-  double first_energy_norm = 0, last_du = std::numeric_limits<double>::infinity(), last_en = last_du;
-  // Forces and tangent at u: assembled here for the first iteration, afterwards by the line search's full-step
-  // trial when that step is accepted (the usual case), so an accepted full step costs one assembly, not two.
-  // The full-step trial leaves the tangent out when it expects Newton to stop there (tangent_ready false): the
-  // tangent is then assembled only if the test fails after all.
+// What one Newton solve carries from iteration to iteration.
+struct QuasiStaticSolver::Impl::NewtonState {
+  double first_energy_norm = 0;
+  double last_du = std::numeric_limits<double>::infinity(), last_en = std::numeric_limits<double>::infinity();
+  // Forces and tangent at u: assembled by the loop for the first iteration, afterwards by the line search's full-step
+  // trial when that step is accepted (the usual case), so an accepted full step costs one assembly, not two. The
+  // full-step trial leaves the tangent out when it expects Newton to stop there (tangent_ready false): the tangent
+  // is then assembled only if the test fails after all.
   bool assembled = false, tangent_ready = false;
   double carried_assembly_seconds = 0, previous_residual = 0;
   // Surface contact: the iteration at which the set of nodes in contact last changed (contact cycling when Newton
   // fails while it keeps changing).
-  size_t active_set = contact ? contact->active_set_fingerprint() : 0;
+  size_t active_set = 0;
   int last_set_change = 0;
   Eval ev;
+};
+
+namespace {
+
+// Why Newton ran out of iterations: contact cycling when the contact nodes changed within the last two iterations.
+std::string iteration_limit_reason(int max_iterations, double relative_residual, bool cycling) {
+  const std::string residual = "(residual " + std::to_string(relative_residual) +
+                               " of the force scale; [solver] max_iterations sets the limit)";
+  return "Newton did not converge in " + std::to_string(max_iterations) + " iterations " +
+         (cycling ? "while the contact nodes kept changing " : "") + residual;
+}
+
+// Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no tighter
+// than leaving a tenth of the convergence target. Loose while far from the solution, tight near it, without spoiling
+// Newton's quadratic convergence. (std::min/max, not std::clamp: the lower bound exceeds kMaxForcing once the
+// residual is below its target and Newton still iterates for the displacement or energy test.)
+double forcing_term(double residual, double previous_residual, double residual_target) {
+  const double suggested = previous_residual > 0 ? std::pow(residual / previous_residual, 2) : kFirstForcing;
+  return std::min(kMaxForcing, std::max(suggested, 0.1 * residual_target / residual));
+}
+
+}  // namespace
+
+// The backtracking line search on the total potential along du; returns the step length. The full step's evaluation
+// assembles the tangent too (the next iteration's assembly when the full step is accepted), unless Newton is
+// expected to stop there (expect_last). Records in rec whether the search failed.
+double QuasiStaticSolver::Impl::newton_line_search(double disp, const Eigen::VectorXd& du, double slope,
+                                                   bool expect_last, NewtonState& state, IterationRecord& rec) {
+  Eigen::VectorXd trial;
+  const auto potential_at = [&](double a) {
+    trial = u;
+    add_free(trial, du, a);
+    const auto t1 = Clock::now();
+    const Eval e = evaluate(trial, disp, a >= 1, a == 1 && !expect_last);
+    if (a == 1) state.carried_assembly_seconds = seconds_since(t1);
+    LineSearchPoint point{e.valid, e.potential(), 0.0};
+    if (a >= 1 && e.valid) point.slope = free_residual().dot(du);
+    if (a == 1) state.ev = e;
+    return point;
+  };
+  const LineSearchResult search = line_search(state.ev.potential(), slope, potential_at);
+  state.assembled = search.step == 1 && search.last_evaluation_at_step;  // the full step, accepted without expansion
+  state.tangent_ready = !expect_last;
+  rec.line_search_failed = search.failed;
+  return search.step;
+}
+
+// Newton with backtracking line search at fixed needle displacement `disp` (and fixed multipliers).
+bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& failure, int cutbacks_so_far) {
+  const double tiny = 1e-14 * space.mean_youngs_modulus * space.mean_element_size * space.mean_element_size;
+  NewtonState state;
+  state.active_set = contact ? contact->active_set_fingerprint() : 0;
   const int max_iterations = newton_iteration_limit(opt);
   for (int it = 1; it <= max_iterations + 1; ++it) {
     IterationRecord rec;
     auto t0 = Clock::now();
-    if (!assembled) {
-      ev = evaluate(u, disp, true, true);
-      tangent_ready = true;
+    if (!state.assembled) {
+      state.ev = evaluate(u, disp, true, true);
+      state.tangent_ready = true;
     }
-    rec.assembly_seconds = assembled ? carried_assembly_seconds : seconds_since(t0);
-    assembled = false;
-    if (!ev.valid) {
-      failure = inverted(ev);
+    rec.assembly_seconds = state.assembled ? state.carried_assembly_seconds : seconds_since(t0);
+    state.assembled = false;
+    if (!state.ev.valid) {
+      failure = inverted(state.ev);
       return false;
     }
     if (contact) {
       const size_t now = contact->active_set_fingerprint();
-      if (now != active_set) last_set_change = it;
-      active_set = now;
+      if (now != state.active_set) state.last_set_change = it;
+      state.active_set = now;
     }
     const Eigen::VectorXd r = free_residual();
     rec.residual_norm = r.norm();
@@ -96,73 +148,45 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     for (int dof : dofs.free_dofs) unorm += u[dof] * u[dof];
     unorm = std::sqrt(unorm);
     const bool res_ok = rec.residual_norm <= opt.residual_tolerance * ref;
-    const bool disp_ok = last_du <= opt.displacement_tolerance * std::max(unorm, 1e-300);
-    const bool energy_ok = it > 1 && last_en <= opt.energy_tolerance * first_energy_norm;
+    const bool disp_ok = state.last_du <= opt.displacement_tolerance * std::max(unorm, 1e-300);
+    const bool energy_ok = it > 1 && state.last_en <= opt.energy_tolerance * state.first_energy_norm;
     if (rec.residual_norm <= tiny * 1e-6 || (res_ok && (disp_ok || energy_ok))) {
-      converged_strain_energy = ev.strain_energy;
+      converged_strain_energy = state.ev.strain_energy;
       return true;
     }
     if (it > max_iterations) {
-      const std::string residual = "(residual " + std::to_string(rec.residual_norm / ref) +
-                                   " of the force scale; [solver] max_iterations sets the limit)";
-      if (contact && last_set_change > it - 3)
-        failure = {StepStatus::ContactCycling, "Newton did not converge in " + std::to_string(max_iterations) +
-                                                   " iterations while the contact nodes kept changing " + residual};
-      else
-        failure = {StepStatus::IterationLimit,
-                   "Newton did not converge in " + std::to_string(max_iterations) + " iterations " + residual};
+      const bool cycling = contact && state.last_set_change > it - 3;
+      failure = {cycling ? StepStatus::ContactCycling : StepStatus::IterationLimit,
+                 iteration_limit_reason(max_iterations, rec.residual_norm / ref, cycling)};
       return false;
     }
-    if (!tangent_ready) {  // the last trial expected to stop here and left the tangent out
+    if (!state.tangent_ready) {  // the last trial expected to stop here and left the tangent out
       const auto t1 = Clock::now();
-      ev = evaluate(u, disp, true, true);
+      state.ev = evaluate(u, disp, true, true);
       rec.assembly_seconds += seconds_since(t1);
-      tangent_ready = true;
+      state.tangent_ready = true;
     }
     Eigen::VectorXd du;
-    // Forcing term (Eisenstat & Walker 1996, choice 2): eta = (|r_k| / |r_k-1|)^2, at most kMaxForcing, and no
-    // tighter than leaving a tenth of the convergence target. Loose while far from the solution, tight near it,
-    // without spoiling Newton's quadratic convergence.
-    // (std::min/max, not std::clamp: the lower bound exceeds kMaxForcing once the residual is below its target
-    // and Newton still iterates for the displacement or energy test.)
-    const double suggested = previous_residual > 0 ? std::pow(rec.residual_norm / previous_residual, 2) : kFirstForcing;
-    const double eta = std::min(kMaxForcing, std::max(suggested, 0.1 * opt.residual_tolerance * ref / rec.residual_norm));
-    previous_residual = rec.residual_norm;
+    const double eta = forcing_term(rec.residual_norm, state.previous_residual, opt.residual_tolerance * ref);
+    state.previous_residual = rec.residual_norm;
     if (!solve_iteration(-r, du, rec, eta, res, failure)) return false;
     const double slope = r.dot(du);
     rec.energy_norm = std::abs(slope);
-    if (it == 1) first_energy_norm = rec.energy_norm;
+    if (it == 1) state.first_energy_norm = rec.energy_norm;
     double alpha = 1;
     if (opt.line_search && slope < 0) {
-      // The full step's evaluation assembles the tangent too: it is the next iteration's assembly when accepted.
-      // Unless Newton is expected to stop there: the full step passes the displacement (or energy) test, and CG left
-      // at most half the residual target (Newton's own remainder is of higher order). Then the tangent would not be
+      // Newton is expected to stop at the full step when it passes the displacement (or energy) test and CG left at
+      // most half the residual target (Newton's own remainder is of higher order): then its tangent would not be
       // used; in most load steps this saves the tangent of the last trial.
       const bool expect_last = eta * rec.residual_norm <= 0.5 * opt.residual_tolerance * ref &&
                                (rec.increment_norm <= opt.displacement_tolerance * unorm ||
-                                (it > 1 && rec.energy_norm <= opt.energy_tolerance * first_energy_norm));
-      Eigen::VectorXd trial;
-      const auto potential_at = [&](double a) {
-        trial = u;
-        add_free(trial, du, a);
-        const auto t1 = Clock::now();
-        const Eval e = evaluate(trial, disp, a >= 1, a == 1 && !expect_last);
-        if (a == 1) carried_assembly_seconds = seconds_since(t1);
-        LineSearchPoint point{e.valid, e.potential(), 0.0};
-        if (a >= 1 && e.valid) point.slope = free_residual().dot(du);
-        if (a == 1) ev = e;
-        return point;
-      };
-      const LineSearchResult search = line_search(ev.potential(), slope, potential_at);
-      alpha = search.step;
-      assembled = alpha == 1 && search.last_evaluation_at_step;  // the full step, accepted without expansion
-      tangent_ready = !expect_last;
-      rec.line_search_failed = search.failed;
+                                (it > 1 && rec.energy_norm <= opt.energy_tolerance * state.first_energy_norm));
+      alpha = newton_line_search(disp, du, slope, expect_last, state, rec);
     }
     rec.step_length = alpha;
     add_free(u, du, alpha);
-    last_du = alpha * rec.increment_norm;
-    last_en = alpha * rec.energy_norm;
+    state.last_du = alpha * rec.increment_norm;
+    state.last_en = alpha * rec.energy_norm;
     book(rec, res);
     if (opt.progress) opt.progress({disp, it, rec.residual_norm, cutbacks_so_far});
   }

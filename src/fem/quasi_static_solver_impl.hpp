@@ -93,6 +93,9 @@ struct QuasiStaticSolver::Impl {
   bool solve_iteration(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec, double forcing,
                        StepResult& res, Failure& failure);
   bool newton(double disp, StepResult& res, Failure& failure, int cutbacks_so_far);
+  struct NewtonState;  // what one Newton solve carries from iteration to iteration (newton_step.cpp)
+  double newton_line_search(double disp, const Eigen::VectorXd& du, double slope, bool expect_last, NewtonState& state,
+                            IterationRecord& rec);
   // `predict`: false when u already holds a start (advance_to's warm start) that the predictor must not move.
   bool substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict = true);
   StepResult advance(double target, const std::vector<Eigen::Vector3d>* start);
