@@ -114,102 +114,108 @@ void print_summary(const io::PatchCase& c, const nlohmann::json& s) {
                                                    s["spring_energy_mJ"]["max"].get<double>()));
 }
 
+// --sweep: the flexible fit at each E_cri of the sweep, as CSV (printed, and with --out sweep.csv and sweep.json).
+// Returns whether a fit did not converge.
+bool run_sweep(const PatchArguments& arguments, const Sweep& sweep, const geometry::SurfaceMesh& surface,
+               const io::PatchCase& c, patch::FitAndEvaluateOptions options) {
+  bool not_converged = false;
+  std::string csv =
+      "max_spring_energy_mJ,performance_index_mean_per_um,performance_index_total_per_um,penetrating,buckled,bent,"
+      "angle_max_deg,buckling_force_max_N,bending_force_max_N,bending_force_mean_N,spring_energy_total_mJ,fit_ms,"
+      "status\n";
+  nlohmann::json points = nlohmann::json::array();
+  ProgressBar progress("sweep");
+  for (int i = 0; i < sweep.count; ++i) {
+    options.fit.flexible.max_spring_energy =
+        sweep.count == 1 ? sweep.from : sweep.from + (sweep.to - sweep.from) * i / (sweep.count - 1);
+    const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
+    // The output folder once the first fit placed the patch (a bad placement leaves none), before the long sweep.
+    if (i == 0 && !arguments.out_dir.empty()) create_output_directory(arguments.out_dir);
+    const patch::PatchEvaluation& e = r.evaluation;
+    const double ms = r.fit_seconds * 1e3;
+    not_converged = not_converged || r.status == patch::FitStatus::NotConverged;
+    points.push_back(io::patch_summary_json(r.design, options.fit, r.fit, e, ms));
+    csv += fmt::format("{:.6g},{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g},{}\n",
+                       options.fit.flexible.max_spring_energy * 1e3, e.performance_index.mean * 1e-6,
+                       e.performance_index.total * 1e-6, e.penetrating, e.buckled, e.bent, e.angle.max * 180 / M_PI,
+                       e.buckling_force.max, e.bending_force.max, e.bending_force.mean, e.spring_energy.total * 1e3,
+                       ms, patch::to_string(r.status));
+    progress.update(static_cast<double>(i + 1) / sweep.count);
+  }
+  progress.finish();
+  if (!arguments.out_dir.empty()) {  // both files or none
+    StagedFiles outputs;
+    outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.csv", csv);
+    outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.json", io::json_text(points));
+    outputs.commit();
+  }
+  if (arguments.json) {
+    fmt::print("{}", io::json_text(points));
+  } else {
+    fmt::print("{}", csv);
+  }
+  return not_converged;
+}
+
+// One fit's files: the needles' table, the surface, patch and needles for ParaView, the attribution of the body
+// mesh, the summary and the 3D view (every file or none: StagedFiles writes temporary names, renamed at the end).
+void write_fit_outputs(const PatchArguments& arguments, const io::PatchCase& c, const io::PatchSurface& body,
+                       const patch::FitAndEvaluateResult& r, const nlohmann::json& summary) {
+  const geometry::SurfaceMesh& surface = body.surface;
+  const std::filesystem::path out(arguments.out_dir);
+  // Created only now: a placement that fails (bad input, exit 2) leaves no folder behind. A fit takes milliseconds.
+  create_output_directory(out);
+  const double diagonal = std::hypot(r.design.width_u, r.design.width_v);
+  StagedFiles outputs;
+  outputs.write(out / "needles.csv", io::patch_needles_csv(r.design, r.fit, r.evaluation));
+  outputs.write(out / "surface.vtu",
+                io::vtu_document(io::surface_grid(surface, r.frame.surface_point, diagonal), out / "surface.vtu"));
+  outputs.write(out / "patch.vtu",
+                io::vtu_document(io::patch_grid(r.design, r.fit, r.geodesics->strain), out / "patch.vtu"));
+  outputs.write(out / "needles.vtu", io::vtu_document(io::needles_grid(r.evaluation), out / "needles.vtu"));
+  if (const std::optional<io::MeshAttribution>& attribution = body.attribution) {
+    outputs.write(out / "ATTRIBUTION.md",
+                  fmt::format("surface.vtu is a part of {} ({}).\n\n- {}\n\n{}\n", c.mesh.filename().string(),
+                              attribution->readme.lexically_normal().string(), fmt::join(attribution->entries, "\n- "),
+                              fmt::join(attribution->notices, "\n")));
+  }
+  outputs.write(out / "summary.json", io::json_text(summary));
+  // The 3D view (docs/views.md): the surface, the patch and the needles coloured by force or margin.
+  const std::string name = std::filesystem::path(arguments.case_path).stem().string();
+  outputs.write(out / "patch_view.js", io::view_script(io::patch_view(name, surface, r.design, r.fit, r.evaluation)));
+  io::stage_view_page(outputs, out, "patch_view.html", name + ": 3D view", {"patch_view.js"},
+                      io::viewer_files(viewer_sources()));
+  outputs.commit();
+}
+
 void run_patch(const PatchArguments& arguments) {
   io::PatchCase c = io::read_patch_case(arguments.case_path);
   const bool sweeping = !arguments.sweep.empty();
-  const Sweep sweep_spec = sweeping ? parse_sweep(arguments.sweep) : Sweep{};
-  const Sweep* sweep = sweeping ? &sweep_spec : nullptr;
-  if (sweep && c.fit.kind != patch::PatchKind::Flexible) {
+  const Sweep sweep = sweeping ? parse_sweep(arguments.sweep) : Sweep{};
+  if (sweeping && c.fit.kind != patch::PatchKind::Flexible) {
     throw InvalidInput(fmt::format("--sweep max_spring_energy needs a flexible patch, but {} has patch.kind = \"{}\"",
                                    arguments.case_path, patch::to_string(c.fit.kind)));
   }
   // Warnings: an inward surface turned outwards, implausible scales (a unit mistake?) and a mesh without a licence or
   // attribution.
   const io::PatchSurface body = io::read_patch_surface(c);
-  const geometry::SurfaceMesh& surface = body.surface;
-  const std::optional<io::MeshAttribution>& attribution = body.attribution;
-  patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweep};
+  const patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweeping};
+  print_warnings(body.warnings);
   // A fit that did not converge (the equilibrium solver's iteration limit) ends the command with exit code 3 once
   // everything is written; the other statuses (the patch leaves the surface, springs over E_cri) are outcomes.
-  bool not_converged = false;
-  print_warnings(body.warnings);
-
-  if (sweep) {
-    std::string csv =
-        "max_spring_energy_mJ,performance_index_mean_per_um,performance_index_total_per_um,penetrating,buckled,bent,"
-        "angle_max_deg,buckling_force_max_N,bending_force_max_N,bending_force_mean_N,spring_energy_total_mJ,fit_ms,"
-        "status\n";
-    nlohmann::json points = nlohmann::json::array();
-    ProgressBar progress("sweep");
-    for (int i = 0; i < sweep->count; ++i) {
-      options.fit.flexible.max_spring_energy =
-          sweep->count == 1 ? sweep->from : sweep->from + (sweep->to - sweep->from) * i / (sweep->count - 1);
-      const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
-      // The output folder once the first fit placed the patch (a bad placement leaves none), before the long sweep.
-      if (i == 0 && !arguments.out_dir.empty()) create_output_directory(arguments.out_dir);
-      const patch::PatchEvaluation& e = r.evaluation;
-      const double ms = r.fit_seconds * 1e3;
-      not_converged = not_converged || r.status == patch::FitStatus::NotConverged;
-      points.push_back(io::patch_summary_json(r.design, options.fit, r.fit, e, ms));
-      csv += fmt::format("{:.6g},{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g},{}\n",
-                         options.fit.flexible.max_spring_energy * 1e3, e.performance_index.mean * 1e-6,
-                         e.performance_index.total * 1e-6, e.penetrating, e.buckled, e.bent, e.angle.max * 180 / M_PI,
-                         e.buckling_force.max, e.bending_force.max, e.bending_force.mean, e.spring_energy.total * 1e3,
-                         ms, patch::to_string(r.status));
-      progress.update(static_cast<double>(i + 1) / sweep->count);
-    }
-    progress.finish();
-    if (!arguments.out_dir.empty()) {  // both files or none
-      StagedFiles outputs;
-      outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.csv", csv);
-      outputs.write(std::filesystem::path(arguments.out_dir) / "sweep.json", io::json_text(points));
-      outputs.commit();
-    }
-    if (arguments.json) {
-      fmt::print("{}", io::json_text(points));
-    } else {
-      fmt::print("{}", csv);
-    }
-    if (not_converged) throw CommandOutcome{ExitCode::NumericalFailure};
+  if (sweeping) {
+    if (run_sweep(arguments, sweep, body.surface, c, options)) throw CommandOutcome{ExitCode::NumericalFailure};
     return;
   }
-
-  const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(surface, c.design, options);
-  not_converged = r.status == patch::FitStatus::NotConverged;
+  const patch::FitAndEvaluateResult r = patch::fit_and_evaluate(body.surface, c.design, options);
   const nlohmann::json summary = io::patch_case_summary(c, r, body.warnings);
-  const patch::SpringGeodesics& geodesics = *r.geodesics;
-  if (!arguments.out_dir.empty()) {  // every file or none (StagedFiles: temporary names, renamed at the end)
-    const std::filesystem::path out(arguments.out_dir);
-    // Created only now: a placement that fails (bad input, exit 2) leaves no folder behind. A fit takes milliseconds.
-    create_output_directory(out);
-    const double diagonal = std::hypot(r.design.width_u, r.design.width_v);
-    StagedFiles outputs;
-    outputs.write(out / "needles.csv", io::patch_needles_csv(r.design, r.fit, r.evaluation));
-    outputs.write(out / "surface.vtu",
-                  io::vtu_document(io::surface_grid(surface, r.frame.surface_point, diagonal), out / "surface.vtu"));
-    outputs.write(out / "patch.vtu",
-                  io::vtu_document(io::patch_grid(r.design, r.fit, geodesics.strain), out / "patch.vtu"));
-    outputs.write(out / "needles.vtu", io::vtu_document(io::needles_grid(r.evaluation), out / "needles.vtu"));
-    if (attribution) {
-      outputs.write(out / "ATTRIBUTION.md",
-                    fmt::format("surface.vtu is a part of {} ({}).\n\n- {}\n\n{}\n", c.mesh.filename().string(),
-                                attribution->readme.lexically_normal().string(), fmt::join(attribution->entries, "\n- "),
-                                fmt::join(attribution->notices, "\n")));
-    }
-    outputs.write(out / "summary.json", io::json_text(summary));
-    // The 3D view (docs/views.md): the surface, the patch and the needles coloured by force or margin.
-    const std::string name = std::filesystem::path(arguments.case_path).stem().string();
-    outputs.write(out / "patch_view.js", io::view_script(io::patch_view(name, surface, r.design, r.fit, r.evaluation)));
-    io::stage_view_page(outputs, out, "patch_view.html", name + ": 3D view", {"patch_view.js"},
-                        io::viewer_files(viewer_sources()));
-    outputs.commit();
-  }
+  if (!arguments.out_dir.empty()) write_fit_outputs(arguments, c, body, r, summary);
   if (arguments.json) {
     fmt::print("{}", io::json_text(summary));
   } else {
     print_summary(c, summary);
   }
-  if (not_converged) throw CommandOutcome{ExitCode::NumericalFailure};
+  if (r.status == patch::FitStatus::NotConverged) throw CommandOutcome{ExitCode::NumericalFailure};
 }
 
 }  // namespace
