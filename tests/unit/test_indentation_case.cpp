@@ -459,11 +459,11 @@ TEST(IndentationCase, AngleAndAzimuthTiltTheNeedle) {
   EXPECT_THAT(error_of(replaced(angled, "contact = \"surface\"", "contact = \"tip-nodes\"")),
               HasSubstr("key 'loading.angle': 30 deg with contact = \"tip-nodes\""));
   EXPECT_THAT(error_of(replaced(angled, "angle = \"30 deg\"", "angle = \"90 deg\"")),
-              HasSubstr("case.toml:29: key 'loading.angle': 90 deg is outside [0, 90) deg"));
+              HasSubstr("case.toml:28: key 'loading.angle': 90 deg is outside [0, 90) deg"));
   EXPECT_THAT(error_of(replaced(angled, "angle = \"30 deg\"", "angle = 30")),
-              HasSubstr("case.toml:29: key 'loading.angle'"));
+              HasSubstr("case.toml:28: key 'loading.angle'"));
   EXPECT_THAT(error_of(replaced(angled, "angle = \"30 deg\"", "angle = \"30 um\"")),
-              HasSubstr("case.toml:29: key 'loading.angle'"));
+              HasSubstr("case.toml:28: key 'loading.angle'"));
   // Upright with the tip-node rule stays valid.
   EXPECT_NO_THROW(parse(replaced(kCase, "steps = 20\n", "steps = 20\nangle = \"0 deg\"\n")));
 }
