@@ -68,6 +68,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/insertion/indentation.cpp
   src/insertion/insertion_curve.cpp
   src/insertion/needle_array.cpp
+  src/insertion/needle_loads.cpp
   src/insertion/needle_outcomes.cpp
   src/insertion/post_puncture_force.cpp
   src/insertion/puncture_criteria.cpp
@@ -244,6 +245,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
 )
 
 set(NEEDLEKIT_VERIFICATION_TEST_SOURCES
+  tests/verification/test_angled_indentation.cpp
   tests/verification/test_calibration_recovery.cpp
   tests/verification/test_certified_optimum.cpp
   tests/verification/test_column_eigenvalue.cpp

@@ -34,6 +34,8 @@ struct IndentArguments {
   std::string size_far;
   std::string depth;
   int steps = 0;
+  std::string angle;
+  std::string azimuth;
 };
 
 std::string needle_map_script() {
@@ -81,6 +83,12 @@ void run_indent(const IndentArguments& arguments) {
     indentation_case.depth = units::parse_quantity(arguments.depth, units::Dimension::Length, "--depth");
   }
   if (arguments.steps > 0) indentation_case.steps = arguments.steps;
+  if (!arguments.angle.empty()) {
+    indentation_case.angle = units::parse_quantity(arguments.angle, units::Dimension::Angle, "--angle");
+  }
+  if (!arguments.azimuth.empty()) {
+    indentation_case.azimuth = units::parse_quantity(arguments.azimuth, units::Dimension::Angle, "--azimuth");
+  }
   insertion::validate(indentation_case);
   print_warnings(io::indentation_scale_warnings(indentation_case));
 
@@ -128,6 +136,17 @@ void run_indent(const IndentArguments& arguments) {
     fmt::print("puncture: none\n");
   }
   if (result.array) print_array(indentation_case, result);
+  if (indentation_case.angle > 0 && !result.steps.empty()) {
+    const insertion::IndentationStep& last = result.steps.back();
+    fmt::print("angled insertion ({:.4g} deg from the normal, azimuth {:.4g} deg), last step: axial {:.5g} N, lateral "
+               "({:.5g}, {:.5g}) N, moment about the base {:.5g} N m\n",
+               indentation_case.angle * 180 / M_PI, indentation_case.azimuth * 180 / M_PI, last.force,
+               last.lateral_force.x(), last.lateral_force.y(), last.moment.norm());
+  }
+  if (result.bending) {
+    fmt::print("bending (Eqs 5.7/5.8): lateral load {:.5g} N, critical {:.5g} N, margin {:.4g}\n",
+               result.bending->lateral_load, result.bending->critical_load, result.bending->margin);
+  }
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
     const bool series = !result.steps.empty();  // the .pvd exists once a step was written
@@ -156,6 +175,10 @@ void add_indent_command(CLI::App& app) {
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--depth", arguments->depth, "override [loading] depth, e.g. \"50 um\"");
   command->add_option("--steps", arguments->steps, "override [loading] steps")->check(CLI::Range(1, 100000));
+  command->add_option("--angle", arguments->angle,
+                      "override [loading] angle, the needle's axis from the skin's normal, e.g. \"15 deg\"");
+  command->add_option("--azimuth", arguments->azimuth,
+                      "override [loading] azimuth, the tilt's direction from +x, e.g. \"90 deg\"");
   command->footer(indentation_case_help());
   command->callback([arguments] { run_indent(*arguments); });
 }

@@ -122,7 +122,15 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("edge_radius", &IndentationCase::edge_radius,
                      "m, surface contact on a parametric needle: its edges rounded with this radius (None: the "
                      "default, 2 um or half the largest the tip allows)");
-  def_quantity(indentation, "depth", &IndentationCase::depth, Dimension::Length, "m, final depth");
+  def_quantity(indentation, "depth", &IndentationCase::depth, Dimension::Length,
+               "m, final depth (along the needle's axis when it is tilted)");
+  def_quantity(indentation, "angle", &IndentationCase::angle, Dimension::Angle,
+               "rad, [0, pi/2): the needle's axis from the skin's normal (\"15 deg\"; surface contact only)");
+  def_quantity(indentation, "azimuth", &IndentationCase::azimuth, Dimension::Angle,
+               "rad: the direction of the tilt in the block's x-y plane from +x (\"90 deg\"); the needle turns with "
+               "it, a bevel's face normal towards the azimuth");
+  indentation.def_readwrite("material", &IndentationCase::material,
+                            "NeedleMaterial or None: for the bending check of the lateral load (Eqs 5.7/5.8)");
   m.def("read_indentation_case", &io::read_indentation_case, py::arg("path"),
         "Reads an indentation case file; raises InvalidInput naming file, line and key.");
   m.def(
@@ -149,7 +157,15 @@ void bind_indentation(py::module_& m) {
       .def_readonly("strain_energy", &IndentationStep::strain_energy, "J")
       .def_readonly("external_work", &IndentationStep::external_work, "J")
       .def_readonly("newton_iterations", &IndentationStep::newton_iterations)
-      .def_readonly("step_seconds", &IndentationStep::step_seconds, "s");
+      .def_readonly("step_seconds", &IndentationStep::step_seconds, "s")
+      .def_readonly("lateral_force", &IndentationStep::lateral_force,
+                    "N, the tissue's force on the needles across their axis, block axes (x, y, z)")
+      .def_readonly("moment", &IndentationStep::moment,
+                    "N m, the tissue's moment on the needles about each needle's base centre, block axes");
+  py::class_<BendingCheck>(m, "BendingCheck", "The ch. 4 bending check (Eqs 5.7/5.8) of the last step's lateral load.")
+      .def_readonly("lateral_load", &BendingCheck::lateral_load, "N")
+      .def_readonly("critical_load", &BendingCheck::critical_load, "N")
+      .def_readonly("margin", &BendingCheck::margin, "critical_load / lateral_load (>= 1: safe)");
   py::class_<IndentationResult>(m, "IndentationResult",
                                 "Every converged step; depth, force, ... as numpy arrays (one entry per step).")
       .def_readonly("status", &IndentationResult::status)
@@ -158,6 +174,7 @@ void bind_indentation(py::module_& m) {
       .def_readonly("puncture", &IndentationResult::puncture)
       .def_readonly("needles", &IndentationResult::needles, "one NeedleOutcome per needle (of the whole array)")
       .def_readonly("array", &IndentationResult::array, "an ArrayOutcome for an array case, else None")
+      .def_readonly("bending", &IndentationResult::bending, "BendingCheck or None (no material with allowable_stress)")
       .def_readonly("elements", &IndentationResult::elements)
       .def_readonly("nodes", &IndentationResult::nodes)
       .def_readonly("dofs", &IndentationResult::dofs)

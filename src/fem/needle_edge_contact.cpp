@@ -141,6 +141,7 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
                                    const std::vector<int>& free_index, const UpperPattern& pattern,
                                    std::vector<double>& values) {
   force_on_needle_.setZero();
+  moment_on_needle_.setZero();
   std::fill(force_now_.begin(), force_now_.end(), 0.0);
   std::fill(gap_now_.begin(), gap_now_.end(), std::numeric_limits<double>::infinity());
   if (points_.empty()) return 0;
@@ -201,6 +202,7 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
     force_now_[i] = pressure;
     const PlaneGap g = triangle_plane_gap(p, position(corner[0]), position(corner[1]), position(corner[2]));
     force_on_needle_ += pressure * g.normal;
+    moment_on_needle_ += points_[i].cross(pressure * g.normal);
     if (want_force)  // -dE/dx_i = P dg/dx_i
       for (int a = 0; a < 3; ++a) force.segment<3>(3 * corner[a]) += pressure * g.gradient.segment<3>(3 * a);
     if (want_tangent) {

@@ -66,6 +66,8 @@ public:
   // The tissue's force on the needle at the last evaluation (N, world axes) and the active points' indices hashed
   // into `hash` (FNV-1a).
   const Eigen::Vector3d& force_on_needle() const { return force_on_needle_; }
+  // Its moment about the origin of the needle's frame at zero displacement (the points as placed), N m.
+  const Eigen::Vector3d& moment_on_needle() const { return moment_on_needle_; }
   void hash_active(size_t& hash) const;
   size_t point_count() const { return points_.size(); }
 
@@ -79,6 +81,7 @@ private:
   std::vector<int> face_;  // per point: the tissue face it is held against (index into top.triangles), -1: none
   bool search_ = true;
   Eigen::Vector3d force_on_needle_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment_on_needle_ = Eigen::Vector3d::Zero();
 };
 
 // Adds the symmetric block `k` (3 N x 3 N, over the three dofs of each node in `nodes`) into the upper pattern over

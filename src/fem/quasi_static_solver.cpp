@@ -4,6 +4,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <atomic>
@@ -200,6 +201,7 @@ void QuasiStaticSolver::Impl::measure(StepResult& res) {
   const size_t m = needles.size();
   res.indenter_force.assign(m, 0);
   res.contact_force.assign(m, Eigen::Vector3d::Zero());
+  res.contact_moment.assign(m, Eigen::Vector3d::Zero());
   res.max_contact_pressure.assign(m, 0);
   res.mean_contact_pressure.assign(m, 0);
   res.contact_area.assign(m, 0);
@@ -222,12 +224,18 @@ void QuasiStaticSolver::Impl::measure(StepResult& res) {
     if (opt.contact == ContactModel::TipNodes) {
       if (d > nd.gap)
         for (int a : nd.tip_nodes)
-          if (dofs.tip_dof[3 * a + 2]) record(a, fint.segment<3>(3 * a).dot(nd.direction));  // Eq 3.11
+          if (dofs.tip_dof[3 * a + 2]) {
+            const double axial = fint.segment<3>(3 * a).dot(nd.direction);  // Eq 3.11
+            record(a, axial);
+            const Eigen::Vector3d at = space.nodes[a] + u.segment<3>(3 * a) - d * nd.direction;
+            res.contact_moment[k] -= at.cross(axial * nd.direction);
+          }
     } else {
       for (size_t t = 0; t < top.nodes.size(); ++t)
         if (contact->node_force(k, t) > 0) record(top.nodes[t], contact->axial_force(k, t));
       res.indenter_force[k] += contact->edge_axial_force(k);  // the second pass: force only, no nodal area
       res.contact_force[k] = contact->force_on_needle(k);
+      res.contact_moment[k] = contact->moment_on_needle(k);
     }
     if (opt.contact == ContactModel::TipNodes) res.contact_force[k] = -res.indenter_force[k] * nd.direction;
     if (res.contact_area[k] > 0) res.mean_contact_pressure[k] = res.indenter_force[k] / res.contact_area[k];

@@ -1,5 +1,6 @@
 #include "surface_contact.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -25,6 +26,7 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
         direction, std::make_unique<RigidSurfaceDistance>(needle.surface, direction, needle.edge_radius),
         std::vector<double>(count, 0.0), std::vector<double>(count, std::numeric_limits<double>::infinity()),
         std::vector<double>(count, 0.0), std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
+        std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         std::vector<char>(count, 1),  // the needle starts above the tissue
         at_rest, std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         NeedleEdgeContact(top, stiffness_,
@@ -50,6 +52,7 @@ double SurfaceContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const
       const int a = top_nodes_[t];
       const double k = stiffness_[t];
       const Eigen::Vector3d q = relative(nodes, u, d, nd, t);
+      nd.position_now[t] = q;
       nd.force_now[t] = 0;
       nd.gap_now[t] = std::numeric_limits<double>::infinity();
       if (friction_ > 0) {  // the frozen Coulomb law (coulomb_friction.hpp); zero where the bound is
@@ -125,6 +128,14 @@ Eigen::Vector3d SurfaceContact::force_on_needle(size_t needle) const {
   const NeedleContact& nd = needles_[needle];
   Eigen::Vector3d sum = nd.edges.force_on_needle();
   for (size_t t = 0; t < top_nodes_.size(); ++t) sum += nd.traction_now[t] - nd.force_now[t] * nd.normal_now[t];
+  return sum;
+}
+
+Eigen::Vector3d SurfaceContact::moment_on_needle(size_t needle) const {
+  const NeedleContact& nd = needles_[needle];
+  Eigen::Vector3d sum = nd.edges.moment_on_needle();
+  for (size_t t = 0; t < top_nodes_.size(); ++t)
+    sum += nd.position_now[t].cross(nd.traction_now[t] - nd.force_now[t] * nd.normal_now[t]);
   return sum;
 }
 

@@ -63,6 +63,9 @@ public:
   }
   // The tissue's resultant force on a needle at the last evaluation, N: both passes, with friction.
   Eigen::Vector3d force_on_needle(size_t needle) const;
+  // Its moment about the origin of the needle's frame at zero displacement (the needle as placed: the contact points
+  // taken relative to the needle), N m.
+  Eigen::Vector3d moment_on_needle(size_t needle) const;
   // The second pass's share of it along -direction (the needle's points against the tissue's faces), N.
   double edge_axial_force(size_t needle) const {
     return -needles_[needle].edges.force_on_needle().dot(needles_[needle].direction);
@@ -78,6 +81,7 @@ private:
     std::vector<double> gap_now;    // signed gap per top node at the last evaluation, m
     std::vector<double> force_now;  // contact force per top node, N
     std::vector<Eigen::Vector3d> normal_now;
+    std::vector<Eigen::Vector3d> position_now;   // per top node: relative() at the last evaluation, m
     std::vector<char> ahead;        // per top node, under the needle's leading faces at the last converged state
                                     // (see RigidSurfaceDistance::signed_distance)
     std::vector<FrictionState> friction;         // per top node

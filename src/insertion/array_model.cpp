@@ -134,6 +134,14 @@ IndentationStep whole_step(const IndentationStep& solved, const ArrayModel& mode
   step.contact_area *= model.factor;
   step.strain_energy *= model.factor;
   step.external_work *= model.factor;
+  if (model.reduced) {
+    // With the mirror images of the solved part: the force's components normal to a symmetry plane (y; x too for a
+    // quarter) cancel, and so do the moment's components in it (a moment is a pseudo-vector).
+    const bool quarter = model.factor == 4.0;
+    step.lateral_force = model.factor * Eigen::Vector3d(quarter ? 0.0 : solved.lateral_force.x(), 0.0,
+                                                        solved.lateral_force.z());
+    step.moment = model.factor * Eigen::Vector3d(0.0, quarter ? 0.0 : solved.moment.y(), 0.0);
+  }
   step.needle_force.assign(model.source.size(), 0.0);
   step.needle_contact_area.assign(model.source.size(), 0.0);
   for (std::size_t k = 0; k < model.source.size(); ++k) {

@@ -12,6 +12,7 @@
 #include "needlekit/mesh/tet_count_estimate.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
 #include "array_model.hpp"
+#include "needle_loads.hpp"
 #include "needle_outcomes.hpp"
 
 namespace needlekit::insertion {
@@ -39,9 +40,11 @@ mesh::LayeredBlockOptions block_to_mesh(const IndentationCase& c) {
 
 std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
 
-IndentationStep step_of(const fem::StepResult& solved, double depth) {
+IndentationStep step_of(const fem::StepResult& solved, double depth, const detail::NeedleLoads& loads) {
   IndentationStep step;
   step.depth = depth;
+  step.lateral_force = loads.lateral_force;
+  step.moment = loads.moment;
   step.needle_force = solved.indenter_force;
   step.needle_contact_area = solved.contact_area;
   for (double f : solved.indenter_force) step.force += f;
@@ -78,12 +81,58 @@ PuncturePoint puncture_in_first_step(fem::QuasiStaticSolver& solver, const Inden
     const double middle = 0.5 * (below.depth + above.depth);
     const fem::StepResult solved = solver.advance_to(lowest + middle);
     if (!solved.converged) break;  // keep the bracket found so far
-    const IndentationStep step = step_of(solved, middle);
+    const IndentationStep step = step_of(solved, middle, {});
     const PunctureSample sample{middle, step.force, step.contact_area, step.strain_energy};
     (puncture_point({sample}, c.puncture) ? above : below) = sample;
   }
   const std::optional<PuncturePoint> located = puncture_point({below, above}, c.puncture);
   return located ? *located : fired;
+}
+
+// How the needle mesh is placed over a site (the header's "Frames" and "Angled insertion"): tip-down by the
+// half-turn about x, (x, y, z) -> (x, −y, z_tip − z) (a proper rotation: the outward orientation is kept), the tip's
+// centre at the origin; turned and tilted (detail::needle_rotation); the tip's centre over the site and the lowest
+// point of the needle (of its mesh with sharp edges, which holds the rounded one) at the site's tip height.
+class NeedlePlacement {
+ public:
+  explicit NeedlePlacement(const IndentationCase& c) : rotation_(detail::needle_rotation(c)) {
+    double bottom = std::numeric_limits<double>::infinity();
+    tip_ = -bottom;
+    for (const Eigen::Vector3d& v : c.needle.vertices) tip_ = std::max(tip_, v.z()), bottom = std::min(bottom, v.z());
+    // The tip's (x, y): the centroid of the vertices on the tip (the axis for cylinders and cones, the tip face's
+    // centre for bevels).
+    int on_tip = 0;
+    for (const Eigen::Vector3d& v : c.needle.vertices) {
+      if (v.z() >= tip_ - 1e-9 * (tip_ - bottom)) {
+        tip_centre_ += v.head<2>();
+        ++on_tip;
+      }
+    }
+    tip_centre_ /= std::max(on_tip, 1);
+    lowest_ = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& v : c.needle.vertices) lowest_ = std::min(lowest_, turned(v).z());
+  }
+  // The needle-frame point v over `site`, m.
+  Eigen::Vector3d operator()(const Eigen::Vector3d& v, const NeedleSite& site) const {
+    const Eigen::Vector3d t = turned(v);
+    return {t.x() + site.position.x(), t.y() + site.position.y(), t.z() - lowest_ + site.tip_height};
+  }
+
+ private:
+  Eigen::Vector3d turned(const Eigen::Vector3d& v) const {
+    return rotation_ * Eigen::Vector3d(v.x() - tip_centre_.x(), -(v.y() - tip_centre_.y()), tip_ - v.z());
+  }
+  Eigen::Matrix3d rotation_;
+  Eigen::Vector2d tip_centre_ = Eigen::Vector2d::Zero();
+  double tip_ = 0, lowest_ = 0;
+};
+
+// m: each needle's base centre (the needle frame's origin, on its axis) as placed at zero displacement.
+std::vector<Eigen::Vector3d> placed_bases(const IndentationCase& c) {
+  const NeedlePlacement place(c);
+  std::vector<Eigen::Vector3d> bases;
+  for (const NeedleSite& site : c.needles) bases.push_back(place(Eigen::Vector3d::Zero(), site));
+  return bases;
 }
 
 // The warm start's field at `depth` (the same load step of the earlier run), if it has one of this mesh's size.
@@ -96,6 +145,31 @@ const std::vector<Eigen::Vector3d>* warm_start_at(const std::vector<StepDisplace
     }
   }
   return nullptr;
+}
+
+// loading.angle and loading.azimuth: finite, 0 <= angle < 90 deg, and a tilt only with true contact and without
+// a reduced array model (its symmetry planes assume vertical needles).
+void validate_angle(const IndentationCase& c) {
+  const double degrees = c.angle * 180 / M_PI;
+  if (!std::isfinite(c.angle) || !(c.angle >= 0 && c.angle < M_PI / 2)) {
+    throw InvalidInput(fmt::format("loading.angle: {:.6g} deg is outside [0, 90) deg, expected the needle's axis "
+                                   "from the skin's normal, 0 <= angle < 90 deg",
+                                   degrees));
+  }
+  if (!std::isfinite(c.azimuth)) {
+    throw InvalidInput("loading.azimuth: not finite, expected an angle in the block's x-y plane from +x");
+  }
+  if (c.angle == 0) return;
+  if (c.solver.contact != fem::ContactModel::Surface) {
+    throw InvalidInput(fmt::format("loading.angle: {:.6g} deg with contact = \"tip-nodes\", whose nodes follow a flat "
+                                   "tip straight down; expected angle = \"0 deg\" or model.contact = \"surface\"",
+                                   degrees));
+  }
+  if (c.array && c.array->symmetry != ArraySymmetry::None) {
+    throw InvalidInput(fmt::format("loading.angle: {:.6g} deg with array.symmetry = \"{}\", whose symmetry planes "
+                                   "need vertical needles; expected angle = \"0 deg\" or no array.symmetry",
+                                   degrees, name_of(kArraySymmetryNames, c.array->symmetry)));
+  }
 }
 
 }  // namespace
@@ -160,11 +234,12 @@ void validate(const IndentationCase& c) {
   if (!std::isfinite(c.depth) || !(c.depth > 0)) {
     throw InvalidInput(fmt::format("loading.depth: {} is not positive, expected a depth > 0", um(c.depth)));
   }
+  validate_angle(c);
   const double height = tissue_height(c);
-  if (height > 0 && !(c.depth < height)) {
+  if (height > 0 && !(c.depth * std::cos(c.angle) < height)) {
     throw InvalidInput(fmt::format("loading.depth: {} reaches through the {} high tissue block, expected a depth below "
-                                   "its height (tissue.height or the layers' thicknesses)",
-                                   um(c.depth), um(height)));
+                                   "its height (tissue.height or the layers' thicknesses){}",
+                                   um(c.depth), um(height), c.angle > 0 ? " over the cosine of loading.angle" : ""));
   }
   if (!c.tissue_mesh) {  // the mesh sizes under the case file's keys (the CLI's overrides land here too)
     for (const auto& [key, size] : {std::pair{"mesh.size_at_tip", c.block.size_at_site},
@@ -191,6 +266,10 @@ void validate(const IndentationCase& c) {
   validate(c.puncture);
 }
 
+Eigen::Vector3d needle_axis(const IndentationCase& c) {
+  return {std::sin(c.angle) * std::cos(c.azimuth), std::sin(c.angle) * std::sin(c.azimuth), -std::cos(c.angle)};
+}
+
 double effective_edge_radius(const IndentationCase& c) {
   if (!c.geometry || c.solver.contact != fem::ContactModel::Surface) return 0.0;
   return c.edge_radius.value_or(needle::default_edge_radius(*c.geometry));
@@ -212,22 +291,7 @@ bool meshes_coarse_level(const IndentationCase& c) {
 }
 
 std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
-  double tip = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& v : c.needle.vertices) {
-    tip = std::max(tip, v.z());
-    bottom = std::min(bottom, v.z());
-  }
-  // The tip's (x, y): the centroid of the vertices on the tip (the axis for cylinders and cones, the tip face's
-  // centre for bevels).
-  Eigen::Vector2d tip_centre = Eigen::Vector2d::Zero();
-  int on_tip = 0;
-  for (const Eigen::Vector3d& v : c.needle.vertices) {
-    if (v.z() >= tip - 1e-9 * (tip - bottom)) {
-      tip_centre += v.head<2>();
-      ++on_tip;
-    }
-  }
-  tip_centre /= std::max(on_tip, 1);
+  const NeedlePlacement place(c);
   const double edge_radius = effective_edge_radius(c);
   geometry::TriangleMesh body = c.needle;  // with rounded edges the eroded core, in the same needle frame
   if (edge_radius > 0) {
@@ -240,12 +304,8 @@ std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
     fem::Indenter indenter;
     indenter.surface = body;
     indenter.edge_radius = edge_radius;
-    // Half-turn about x (a proper rotation: the outward orientation is kept), tip down at z = tip_height, the tip's
-    // centre over the site.
-    for (Eigen::Vector3d& v : indenter.surface.vertices) {
-      v = Eigen::Vector3d(v.x() - tip_centre.x() + site.position.x(), -(v.y() - tip_centre.y()) + site.position.y(),
-                          tip - v.z() + site.tip_height);
-    }
+    indenter.direction = needle_axis(c);
+    for (Eigen::Vector3d& v : indenter.surface.vertices) v = place(v, site);
     indenters.push_back(std::move(indenter));
   }
   return indenters;
@@ -288,7 +348,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
 
   report("setup", 0.0);
   const Clock::time_point setup_start = Clock::now();
-  const double lowest = lowest_tip_height(c);
+  const double lowest = detail::travel_to_surface(c, lowest_tip_height(c));  // m, along the needle's axis
   fem::SolverOptions solver_options = c.solver;
   if (options.progress) {  // Newton iterations move the bar within the current step
     const auto user_progress = c.solver.progress;
@@ -299,6 +359,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   }
   solver_options.boundary = m.solver.boundary;
   fem::QuasiStaticSolver solver(tissue, placed_indenters(m), solver_options, coarse ? &*coarse : nullptr);
+  const std::vector<Eigen::Vector3d> bases = placed_bases(m);
   result.nodes = static_cast<int>(solver.nodes().size());
   result.dofs = solver.free_dof_count();
   result.linear_solver = solver.linear_solver();
@@ -333,7 +394,8 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       if (!partial) break;
     }
     const double step_depth = partial ? reached : depth;
-    IndentationStep step = detail::whole_step(step_of(solved, step_depth), array_model);
+    IndentationStep step = detail::whole_step(step_of(solved, step_depth, detail::needle_loads(solved, needle_axis(c), bases)),
+                                              array_model);
     // External work of the needles, trapezoidal over the converged steps (the needles move only along z).
     const double previous_depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
     const double previous_force = result.steps.empty() ? 0.0 : result.steps.back().force;
@@ -365,6 +427,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     if (result.puncture && c.stop_at_puncture && (!c.array || needles.all_punctured())) break;
   }
   result.needles = needles.needles();
+  result.bending = detail::bending_check(c, result.steps);
   if (c.array) result.array = needles.array_outcome(result.steps);
   if (!failed) {
     if (result.puncture) {

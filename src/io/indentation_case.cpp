@@ -327,6 +327,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   result.geometry = needle_read.geometry;
   result.needle_mesh = needle_read.mesh_options;
   result.edge_radius = needle_read.edge_radius;
+  if (needle.optional("material")) result.material = material_of(needle, "material");
   // [tissue] and [mesh]: the reader shared with `needlekit tissue-mesh` (tissue_config.hpp).
   top.required("tissue", "a table [tissue] with a preset or [[tissue.layers]]");
   const TissueCase tissue = tissue_case_of(root, file, base_directory);
@@ -355,8 +356,15 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     }
   }
 
-  const Section loading = top.required_subsection("loading", {"depth", "steps", "continue_after_puncture"});
+  const Section loading =
+      top.required_subsection("loading", {"depth", "steps", "continue_after_puncture", "angle", "azimuth"});
   result.depth = positive_quantity(loading, "depth", Dimension::Length);
+  if (const toml::node* node = loading.optional("angle")) {  // range and contact: insertion::validate
+    result.angle = quantity_of(loading, *node, "angle", Dimension::Angle);
+  }
+  if (const toml::node* node = loading.optional("azimuth")) {
+    result.azimuth = quantity_of(loading, *node, "azimuth", Dimension::Angle);
+  }
   if (const toml::node* node = loading.optional("steps")) {
     result.steps = integer_in(loading, *node, "steps", 1, limits::kMaxLoadSteps);
   }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <utility>
 
@@ -93,12 +94,13 @@ VtuGrid needle_grid(const insertion::IndentationCase& indentation_case, double i
 std::string force_depth_csv(const insertion::IndentationResult& result) {
   std::ostringstream out;
   out << "depth_um,force_N,contact_area_um2,contact_pressure_MPa,max_contact_pressure_MPa,contact_nodes,"
-         "strain_energy_J,external_work_J\n";
-  out << "0,0,0,0,0,0,0,0\n";
+         "strain_energy_J,external_work_J,lateral_force_x_N,lateral_force_y_N,moment_Nm\n";
+  out << "0,0,0,0,0,0,0,0,0,0,0\n";
   for (const insertion::IndentationStep& s : result.steps) {
-    out << fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g},{:.9g}\n", s.depth * 1e6, s.force,
-                       s.contact_area * 1e12, s.contact_pressure * 1e-6, s.max_contact_pressure * 1e-6,
-                       s.contact_nodes, s.strain_energy, s.external_work);
+    out << fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", s.depth * 1e6,
+                       s.force, s.contact_area * 1e12, s.contact_pressure * 1e-6, s.max_contact_pressure * 1e-6,
+                       s.contact_nodes, s.strain_energy, s.external_work, s.lateral_force.x(), s.lateral_force.y(),
+                       s.moment.norm());
   }
   return out.str();
 }
@@ -150,24 +152,45 @@ nlohmann::json puncture_json(const insertion::IndentationCase& c, const insertio
   return json;
 }
 
+namespace {
+// The ch. 4 bending check of the last step's lateral load (null: no parametric needle, material with an allowable
+// stress, or step).
+nlohmann::json bending_json(const insertion::IndentationResult& result) {
+  if (!result.bending) return nullptr;
+  const insertion::BendingCheck& b = *result.bending;
+  return {{"lateral_load_N", b.lateral_load},
+          {"critical_bending_load_N", b.critical_load},
+          {"margin", std::isfinite(b.margin) ? nlohmann::json(b.margin) : nlohmann::json(nullptr)}};
+}
+}  // namespace
+
 nlohmann::json indentation_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
   nlohmann::json json;
   json["name"] = c.name;
   json["status"] = insertion::to_string(result.status);
   json["reason"] = result.reason;
   json.update(puncture_json(c, result));
-  std::vector<double> depth, force, pressure, energy, work;
+  std::vector<double> depth, force, pressure, energy, work, lateral_x, lateral_y, moment;
   std::vector<int> iterations;
   for (const insertion::IndentationStep& s : result.steps) {
     depth.push_back(s.depth * 1e6);
     force.push_back(s.force);
+    lateral_x.push_back(s.lateral_force.x());
+    lateral_y.push_back(s.lateral_force.y());
+    moment.push_back(s.moment.norm());
     pressure.push_back(s.contact_pressure * 1e-6);
     energy.push_back(s.strain_energy);
     work.push_back(s.external_work);
     iterations.push_back(s.newton_iterations);
   }
   json["depth_um"] = depth;
-  json["force_N"] = force;
+  json["force_N"] = force;  // along the needle's axis
+  json["lateral_force_x_N"] = lateral_x;
+  json["lateral_force_y_N"] = lateral_y;
+  json["moment_Nm"] = moment;  // about the needle's base
+  json["angle_deg"] = c.angle * 180 / M_PI;
+  json["azimuth_deg"] = c.azimuth * 180 / M_PI;
+  json["bending"] = bending_json(result);
   json["contact_pressure_MPa"] = pressure;
   json["strain_energy_J"] = energy;
   json["external_work_J"] = work;

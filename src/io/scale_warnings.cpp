@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "needlekit/core/plausible_scale.hpp"
 
@@ -81,6 +82,12 @@ std::vector<std::string> indentation_scale_warnings(const insertion::Indentation
                                    units::readable_length(length),
                                    c.geometry ? "" : ": is needle.mesh_unit right (a needle STL in um declared as mm "
                                                      "is 1000x too large)?"));
+  }
+  if (c.angle > insertion::kSteepAngle) {
+    warnings.push_back(fmt::format("loading.angle = {:.4g} deg is steeper than 45 deg from the skin's normal: the "
+                                   "needle slides along the surface more than it enters, and the block's sides (fixed) "
+                                   "come nearer to the tip's path",
+                                   c.angle * 180 / M_PI));
   }
   const double height = insertion::tissue_height(c);
   if (height > 0 && needle.z() > height) {

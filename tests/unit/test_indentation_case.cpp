@@ -433,3 +433,39 @@ TEST(IndentationCase, ToughnessFromTwoInsertions) {
 }
 
 }  // namespace
+
+namespace {
+
+// [loading] angle and azimuth (angled insertion): SI radians from degrees, the needle placed tilted with its lowest
+// point at the surface and moving along its axis; a tilt under the tip-node rule, an angle of 90 deg or more, or a
+// bare number are input errors naming the key and its line.
+TEST(IndentationCase, AngleAndAzimuthTiltTheNeedle) {
+  const std::string surface = replaced(kCase, "contact = \"tip-nodes\"", "contact = \"surface\"");
+  const std::string angled = replaced(surface, "steps = 20\n", "steps = 20\nangle = \"30 deg\"\nazimuth = \"90 deg\"\n");
+  const insertion::IndentationCase c = parse(angled);
+  EXPECT_NEAR(c.angle, M_PI / 6, 1e-15);
+  EXPECT_NEAR(c.azimuth, M_PI / 2, 1e-15);
+  const Eigen::Vector3d axis = insertion::needle_axis(c);
+  EXPECT_NEAR((axis - Eigen::Vector3d(0, 0.5, -std::sqrt(3.0) / 2)).norm(), 0, 1e-15) << "towards +y, 30 deg down";
+  const std::vector<fem::Indenter> placed = insertion::placed_indenters(c);
+  ASSERT_EQ(placed.size(), 1u);
+  EXPECT_NEAR((placed[0].direction - axis).norm(), 0, 1e-15);
+  double lowest = 1;
+  for (const Eigen::Vector3d& v : placed[0].surface.vertices) lowest = std::min(lowest, v.z() - placed[0].edge_radius);
+  // The sharp cylinder's lowest rim point is at the surface; the rounded one lies inside it, at most the edge radius
+  // higher (the rim's rounding seen at 30 deg).
+  EXPECT_GE(lowest, -1e-12);
+  EXPECT_LT(lowest, placed[0].edge_radius);
+  EXPECT_THAT(error_of(replaced(angled, "contact = \"surface\"", "contact = \"tip-nodes\"")),
+              HasSubstr("key 'loading.angle': 30 deg with contact = \"tip-nodes\""));
+  EXPECT_THAT(error_of(replaced(angled, "angle = \"30 deg\"", "angle = \"90 deg\"")),
+              HasSubstr("case.toml:28: key 'loading.angle': 90 deg is outside [0, 90) deg"));
+  EXPECT_THAT(error_of(replaced(angled, "angle = \"30 deg\"", "angle = 30")),
+              HasSubstr("case.toml:28: key 'loading.angle'"));
+  EXPECT_THAT(error_of(replaced(angled, "angle = \"30 deg\"", "angle = \"30 um\"")),
+              HasSubstr("case.toml:28: key 'loading.angle'"));
+  // Upright with the tip-node rule stays valid.
+  EXPECT_NO_THROW(parse(replaced(kCase, "steps = 20\n", "steps = 20\nangle = \"0 deg\"\n")));
+}
+
+}  // namespace

@@ -73,6 +73,10 @@ struct StepResult {
   std::vector<Eigen::Vector3d> contact_force;  // N, per needle: the tissue's resultant force on the needle (Surface:
                                                // normal and friction forces of both passes; TipNodes: -indenter_force
                                                // along the direction)
+  // N m, per needle: the moment of the same forces about the point of the needle that was at the tissue frame's
+  // origin at zero displacement (the forces' points taken relative to the needle, so that the moment about a point p
+  // of the needle as placed is contact_moment - p x contact_force)
+  std::vector<Eigen::Vector3d> contact_moment;
 };
 
 // Per-element outputs (one value per tetrahedron, averaged over its quadrature points) for VTU.

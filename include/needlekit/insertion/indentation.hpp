@@ -9,6 +9,14 @@
 // face) is over (site.x, site.y) at z = tip_height in the tissue frame of tet_mesh.hpp (top surface z = 0, tissue
 // below, needles moving in −z). The block is refined around each site, i.e. under each tip. Depth = needle displacement − the smallest tip height.
 //
+// Angled insertion (IndentationCase::angle, azimuth; docs/indentation.md "Angled insertion"). The needle placed
+// tip-down as above (a bevel's face normal then towards +x) is turned about the vertical through its tip's centre by
+// the azimuth φ, then tilted about the horizontal line through that centre perpendicular to the azimuth, so that its
+// axis, pointing to the tip, is a = (sin θ cos φ, sin θ sin φ, −cos θ): the tip moves towards the azimuth as it goes
+// down. Then it is lifted or lowered so that its lowest point (a rim corner of a tilted flat tip) is at tip_height.
+// It moves along a; the depth is its travel along a beyond first touching the undeformed surface (the tip's vertical
+// depth is depth · cos θ). At θ = 0 every quantity is the vertical one above, bit for bit.
+//
 // Stable API (used by the post-puncture model and the `insert` command): IndentationCase, IndentationOptions,
 // IndentationResult, run_indentation, pre_puncture_curve.
 #pragma once
@@ -23,6 +31,7 @@
 #include "needlekit/insertion/force_curve.hpp"
 #include "needlekit/insertion/needle_array.hpp"
 #include "needlekit/insertion/puncture_criteria.hpp"
+#include "needlekit/materials/needle_material.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
@@ -51,12 +60,26 @@ struct IndentationCase {
   std::optional<NeedleArray> array;
   mesh::LayeredBlockOptions block;           // the tissue block (insertion_sites are taken from `needles`)
   std::optional<mesh::TetMesh> tissue_mesh;  // when set, used as is instead of meshing `block`
-  double depth = 200e-6;                     // m, > 0: final depth of the tip below the undeformed surface
+  double depth = 200e-6;                     // m, > 0: final depth of the tip below the undeformed surface (along
+                                             // the needle's axis when it is tilted)
+  // rad, [0, π/2): the needle's axis from the skin's normal (surface contact only; above kSteepAngle a note).
+  double angle = 0;
+  // rad: the direction of the tilt in the block's x–y plane, from +x (the way the tip travels sideways); the needle is
+  // turned about its axis with it, a bevel's face normal towards the azimuth.
+  double azimuth = 0;
+  // The needle's material, for the bending check of the lateral load (analysis/bending.hpp); unset: no check.
+  std::optional<materials::NeedleMaterial> material;
   int steps = 20;                            // >= 1: equal load steps from 0 to `depth`
   fem::SolverOptions solver;                 // law, element order, contact model, boundary, tolerances
   PunctureOptions puncture;                  // criteria evaluated after each step (none: never punctures)
   bool stop_at_puncture = true;              // false: continue to `depth` after the puncture point
 };
+
+// rad: angles steeper than this from the normal get a note (the dissertation's §5.2 designs angled insertion up to 45°).
+inline constexpr double kSteepAngle = 0.25 * 3.14159265358979323846;
+
+// The needle's axis, pointing to its tip (the direction it moves in): (sin θ cos φ, sin θ sin φ, −cos θ).
+Eigen::Vector3d needle_axis(const IndentationCase& indentation_case);
 
 // Throws InvalidInput naming the case file's key: no needle or an empty needle mesh, a tip height < 0 (the needle
 // would start inside the tissue), a site outside the block, depth <= 0 or through the block's height, mesh sizes
@@ -119,6 +142,10 @@ struct IndentationStep {
   double max_contact_pressure = 0;   // Pa, largest nodal contact pressure
   int contact_nodes = 0;             // nodes in contact, all needles (of the model solved: a reduced array's)
   double strain_energy = 0;          // J, stored in the tissue (Δ = ½uᵀKu of Eq 3.17)
+  // N, the tissue's force on the needles across their axis (its component along the axis is `force`), block axes.
+  Eigen::Vector3d lateral_force = Eigen::Vector3d::Zero();
+  // N m, the moment of the tissue's forces on the needles about each needle's base centre (on its axis), block axes.
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   double external_work = 0;          // J, work of the needles since the start (trapezoidal over the steps)
   int newton_iterations = 0;         // of this step (all substeps)
   int cutbacks = 0;                  // step halvings needed
@@ -183,6 +210,14 @@ struct ArrayOutcome {
   double mean_penetrated_fraction = 0;     // [0, 1], mean_inserted_depth / the needle's length
 };
 
+// The ch. 4 bending check (dissertation §5.2, Eqs 5.7/5.8) on the FE's lateral load at the last step: the needle
+// as a cantilever loaded across its axis at the tip.
+struct BendingCheck {
+  double lateral_load = 0;          // N, |lateral_force| at the last converged step
+  double critical_load = 0;         // N, analysis::critical_bending_load with the material's allowable stress
+  double margin = 0;                // critical_load / lateral_load (infinite for no lateral load); >= 1: safe
+};
+
 struct IndentationResult {
   IndentationStatus status = IndentationStatus::ReachedDepth;
   std::string reason;                         // why the run stopped (always set)
@@ -190,6 +225,8 @@ struct IndentationResult {
   std::optional<PuncturePoint> puncture;      // empty: no criterion fired within the simulated depth
   std::vector<NeedleOutcome> needles;         // one per needle of the case (of the whole array)
   std::optional<ArrayOutcome> array;          // with IndentationCase::array
+  // With a parametric needle whose material has an allowable stress, after at least one step.
+  std::optional<BendingCheck> bending;
   std::vector<StepDisplacement> displacements;  // per converged load step, with IndentationOptions::keep_displacements
   int warm_started_steps = 0;                 // load steps that started from IndentationOptions::warm_start
   int elements = 0;                           // tetrahedra of the tissue mesh
