@@ -105,6 +105,22 @@ Members:
     @property
     def value(self) -> int: ...
 
+class BendingCheck:
+    """The ch. 4 bending check (Eqs 5.7/5.8) of the last step's lateral load."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def critical_load(self) -> float:
+        """N"""
+    @property
+    def lateral_load(self) -> float:
+        """N"""
+    @property
+    def margin(self) -> float:
+        """critical_load / lateral_load (>= 1: safe)"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class BoundaryCondition:
     """Members:
 
@@ -1555,10 +1571,20 @@ class IndentationCase:
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
+    def angle(self) -> float:
+        """rad, [0, pi/2): the needle's axis from the skin's normal ("15 deg"; surface contact only)"""
+    @angle.setter
+    def angle(self, value: Any) -> None: ...
+    @property
     def array(self) -> Optional[NeedleArray]:
         """a NeedleArray: `needles` then holds the whole array"""
     @array.setter
     def array(self, value: Any) -> None: ...
+    @property
+    def azimuth(self) -> float:
+        """rad: the direction of the tilt in the block's x-y plane from +x ("90 deg"); the needle turns with it, a bevel's face normal towards the azimuth"""
+    @azimuth.setter
+    def azimuth(self, value: Any) -> None: ...
     @property
     def block(self) -> LayeredBlockOptions:
         ...
@@ -1566,7 +1592,7 @@ class IndentationCase:
     def block(self, value: Any) -> None: ...
     @property
     def depth(self) -> float:
-        """m, final depth"""
+        """m, final depth (along the needle's axis when it is tilted)"""
     @depth.setter
     def depth(self, value: Any) -> None: ...
     @property
@@ -1579,6 +1605,11 @@ class IndentationCase:
         ...
     @geometry.setter
     def geometry(self, value: Any) -> None: ...
+    @property
+    def material(self) -> Optional[NeedleMaterial]:
+        """NeedleMaterial or None: for the bending check of the lateral load (Eqs 5.7/5.8)"""
+    @material.setter
+    def material(self, value: Any) -> None: ...
     @property
     def name(self) -> str:
         ...
@@ -1651,6 +1682,9 @@ class IndentationResult:
     @property
     def array(self) -> Optional[ArrayOutcome]:
         """an ArrayOutcome for an array case, else None"""
+    @property
+    def bending(self) -> Optional[BendingCheck]:
+        """BendingCheck or None (no material with allowable_stress)"""
     @property
     def contact_pressure(self) -> numpy.ndarray:
         """Pa"""
@@ -1742,8 +1776,14 @@ class IndentationStep:
     def force(self) -> float:
         """N"""
     @property
+    def lateral_force(self) -> numpy.ndarray:
+        """N, the tissue's force on the needles across their axis, block axes (x, y, z)"""
+    @property
     def max_contact_pressure(self) -> float:
         """Pa"""
+    @property
+    def moment(self) -> numpy.ndarray:
+        """N m, the tissue's moment on the needles about each needle's base centre, block axes"""
     @property
     def needle_force(self) -> List[float]:
         """N per needle"""
