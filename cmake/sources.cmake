@@ -302,6 +302,7 @@ set(NEEDLEKIT_EXAMPLE_TEST_SOURCES
 )
 
 set(NEEDLEKIT_MPI_TEST_SOURCES
+  tests/mpi/test_petsc_array.cpp
   tests/mpi/test_petsc_backend.cpp
 )
 

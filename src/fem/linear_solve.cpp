@@ -9,6 +9,11 @@
 
 namespace needlekit::fem::detail {
 
+const std::vector<char>& LinearSolve::assembled_elements() const {
+  static const std::vector<char> every_element;
+  return every_element;
+}
+
 TangentLayout tangent_layout(SolverBackend backend, LinearSolver solver, bool nodal_average) {
   TangentLayout layout;
   if (backend == SolverBackend::Petsc) return layout;

@@ -8,7 +8,9 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "needlekit/fem/solver_options.hpp"
 #include "tangent_matrix.hpp"
@@ -27,6 +29,18 @@ public:
   // Of the Cholesky factor in use (two-grid: the coarse level's): its entries and the flops of one factorization.
   virtual double factor_nonzeros() const = 0;
   virtual double factor_flops() const = 0;
+
+  // Distributed assembly (the PETSc backend; the built-in strategies keep these defaults: one process assembles
+  // everything). The assembly (quasi_static_solver.cpp) visits only the elements flagged here, per position of
+  // TangentInputs::assembly_order (empty: all); its element sums (energy, internal force, the predictor's K_fp du_p)
+  // are then partial and summed over the processes by sum_over_processes, the lowest inverted element found by
+  // lowest_over_processes. Once the elements' tangent entries are in the matrix's values, and before the terms every
+  // process adds alike (contact, the nodal average's patch term), it calls element_part_assembled.
+  virtual const std::vector<char>& assembled_elements() const;
+  // In place, the sums over the processes, the same values on every process.
+  virtual void sum_over_processes(std::span<double> /*partial*/) {}
+  virtual int lowest_over_processes(int value) { return value; }
+  virtual void element_part_assembled() {}
 };
 
 // How the tangent must store the nodal average's patch term for `solver` (tangent_matrix.hpp); the PETSc backend

@@ -38,6 +38,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
   };
   const int nq = space.points;
   const auto& free_index = dofs.free_index;
+  const std::vector<char>& assembled_here = linear_solve->assembled_elements();  // empty: every element
   if (want_force) fint.setZero(ndof);
   if (want_tangent) tangent->zero();
   std::vector<double>& values = tangent->values();
@@ -52,6 +53,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
         size_t position = colouring.block_begin[first_block + block];  // in the assembly order
         for (const int e : colouring.block(first_block + block)) {
           const size_t at = position++;
+          if (!assembled_here.empty() && !assembled_here[at]) continue;  // another process's element
           const int* c = &space.assembly.connectivity[at * N];
           for (int a = 0; a < N; ++a) ue.col(a) = uu.segment<3>(3 * c[a]);
           const auto* g =
@@ -132,6 +134,8 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
   }
   Eval ev = space.nodes_per_element == 4 ? element_pass<4>(uu, want_force, want_tangent, dup, kdup)
                                          : element_pass<10>(uu, want_force, want_tangent, dup, kdup);
+  if (!linear_solve->assembled_elements().empty()) sum_element_parts(ev, want_force, kdup);
+  if (ev.valid && want_tangent) linear_solve->element_part_assembled();
   ev.strain_energy += volumetric_energy;
   if (ev.valid && contact)
     ev.contact_energy = contact->evaluate(space.nodes, uu, disp, want_force, want_tangent, fcontact,
@@ -146,6 +150,17 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
     if (kdup) nodal->add_prescribed_coupling(dofs.free_index, *dup, *kdup);
   }
   return ev;
+}
+
+void QuasiStaticSolver::Impl::sum_element_parts(Eval& ev, bool want_force, Eigen::VectorXd* kdup) {
+  // Every process takes part in every sum, whether or not it found an inverted element.
+  ev.inverted_element = linear_solve->lowest_over_processes(ev.valid ? std::numeric_limits<int>::max()
+                                                                     : ev.inverted_element);
+  ev.valid = ev.inverted_element == std::numeric_limits<int>::max();
+  if (!ev.valid) return;
+  linear_solve->sum_over_processes({&ev.strain_energy, 1});
+  if (want_force) linear_solve->sum_over_processes({fint.data(), static_cast<size_t>(fint.size())});
+  if (kdup) linear_solve->sum_over_processes({kdup->data(), static_cast<size_t>(kdup->size())});
 }
 
 void QuasiStaticSolver::Impl::add_bulk_preconditioner() {

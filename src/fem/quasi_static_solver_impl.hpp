@@ -79,6 +79,9 @@ struct QuasiStaticSolver::Impl {
   // the system's values; with dup the product K_fp dup of the prescribed dofs into kdup (the linear predictor).
   Eval evaluate(const Eigen::VectorXd& uu, double disp, bool want_force, bool want_tangent,
                 const Eigen::VectorXd* dup = nullptr, Eigen::VectorXd* kdup = nullptr);
+  // The PETSc backend on several processes, after element_pass over this process's elements: the lowest inverted
+  // element, and if there is none the energy, internal force and K_fp du_p summed over the processes' elements.
+  void sum_element_parts(Eval& ev, bool want_force, Eigen::VectorXd* kdup);
   // The split preconditioner's bulk term (split_preconditioned_solve.hpp) into the tangent's preconditioner values.
   void add_bulk_preconditioner();
   Eigen::VectorXd free_residual() const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "../conjugate_gradients.hpp"
 #include "../morton_order.hpp"
@@ -14,6 +15,16 @@ namespace {
 
 void check(PetscErrorCode code, const char* call) {
   if (code != 0) throw std::runtime_error(std::string("PETSc: ") + call + " failed with error " + std::to_string(code));
+}
+
+struct Ranks {
+  PetscMPIInt rank = 0, size = 1;
+};
+Ranks ranks() {
+  Ranks r;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &r.rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &r.size);
+  return r;
 }
 
 // Whether the command line (or PETSC_OPTIONS) sets this option: then it overrides the solver's own choice.
@@ -34,7 +45,9 @@ std::unique_ptr<LinearSolve> make_petsc_linear_solve(TangentMatrix& matrix, cons
 PetscLinearSolve::PetscLinearSolve(TangentMatrix& matrix, const TangentInputs& inputs, const SolverOptions& options)
     : matrix_(matrix), options_(options) {
   number_dofs(inputs);
+  partition_elements(inputs);
   collect_owned_rows();
+  collect_sent_entries(inputs);
   create_matrix();
   set_near_null_space(inputs);
   create_solver();
@@ -45,6 +58,7 @@ PetscLinearSolve::~PetscLinearSolve() {
   KSPDestroy(&ksp_);
   VecScatterDestroy(&gather_);
   VecDestroy(&gathered_);
+  VecDestroy(&diagonal_);
   VecDestroy(&solution_);
   VecDestroy(&rhs_);
   MatDestroy(&k_);
@@ -63,9 +77,7 @@ void PetscLinearSolve::number_dofs(const TangentInputs& in) {
   dof_of_free_.assign(static_cast<size_t>(matrix_.free_count()), -1);
   for (size_t dof = 0; dof < in.free_index.size(); ++dof)
     if (in.free_index[dof] >= 0) dof_of_free_[static_cast<size_t>(in.free_index[dof])] = static_cast<int>(dof);
-  PetscMPIInt rank = 0, size = 1;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  const auto [rank, size] = ranks();
   const int64_t n = static_cast<int64_t>(in.nodes.size());
   const int64_t first = rank * n / size, last = (rank + 1) * n / size;
   if (last == first)
@@ -77,6 +89,27 @@ void PetscLinearSolve::number_dofs(const TangentInputs& in) {
     const size_t row = static_cast<size_t>(first_row_) + l;
     owned_rows_[l].free = in.free_index[3 * static_cast<size_t>(node_order_[row / 3]) + row % 3];
   }
+}
+
+// The elements in the Morton order of their centroids, cut into one contiguous range of equal count per rank: the
+// same cut for any thread count, and neighbouring elements mostly on one rank.
+void PetscLinearSolve::partition_elements(const TangentInputs& in) {
+  const size_t count = in.assembly_order.size();
+  const auto npe = static_cast<size_t>(in.nodes_per_element);
+  std::vector<Eigen::Vector3d> centroids(count, Eigen::Vector3d::Zero());
+  for (size_t e = 0; e < count; ++e)
+    for (size_t a = 0; a < npe; ++a)
+      centroids[e] += in.nodes[static_cast<size_t>(in.connectivity[e * npe + a])] / static_cast<double>(npe);
+  Eigen::Vector3d low = centroids.front(), high = low;
+  for (const Eigen::Vector3d& x : centroids) low = low.cwiseMin(x), high = high.cwiseMax(x);
+  const std::vector<int> order = morton_order(centroids, low, high);
+  const auto [rank, size] = ranks();
+  std::vector<char> mine(count, 0);
+  const size_t first = static_cast<size_t>(rank) * count / static_cast<size_t>(size);
+  const size_t last = static_cast<size_t>(rank + 1) * count / static_cast<size_t>(size);
+  for (size_t position = first; position < last; ++position) mine[static_cast<size_t>(order[position])] = 1;
+  assembled_.resize(count);
+  for (size_t at = 0; at < count; ++at) assembled_[at] = mine[static_cast<size_t>(in.assembly_order[at])];
 }
 
 // K's upper triangle mirrored into the full rows this rank owns; a prescribed dof's row is the identity.
@@ -100,6 +133,33 @@ void PetscLinearSolve::collect_owned_rows() {
     if (owned_rows_[l].free < 0) add(first_row_ + static_cast<PetscInt>(l), first_row_ + static_cast<PetscInt>(l), -1);
 }
 
+// The entries of this rank's elements that fall in rows of other ranks (at the partition's boundary): per element,
+// its upper slots (tangent_matrix.hpp) in the element's dof order, each entry placed at (row, column) and its
+// mirror (column, row).
+void PetscLinearSolve::collect_sent_entries(const TangentInputs& in) {
+  const int npe = in.nodes_per_element;
+  const PetscInt owned_end = first_row_ + static_cast<PetscInt>(owned_rows_.size());
+  const auto owned = [&](PetscInt row) { return row >= first_row_ && row < owned_end; };
+  std::vector<std::tuple<int64_t, PetscInt, PetscInt>> sent;
+  for (size_t at = 0; at < assembled_.size(); ++at) {
+    if (!assembled_[at]) continue;
+    const int* nodes = &in.connectivity[static_cast<size_t>(in.assembly_order[at]) * static_cast<size_t>(npe)];
+    const auto row_of = [&](int local) { return row_of_dof_[3 * static_cast<size_t>(nodes[local / 3]) + local % 3]; };
+    const int32_t* slot = matrix_.element_slots(at);
+    for (int col = 0; col < 3 * npe; ++col)
+      for (int row = 0; row <= col; ++row, ++slot) {
+        if (*slot < 0) continue;
+        const PetscInt a = row_of(row), b = row_of(col);
+        if (!owned(a)) sent.emplace_back(*slot, a, b);
+        if (a != b && !owned(b)) sent.emplace_back(*slot, b, a);
+      }
+  }
+  std::sort(sent.begin(), sent.end());
+  sent.erase(std::unique(sent.begin(), sent.end()), sent.end());
+  for (const auto& [position, row, column] : sent) sent_entries_.push_back({position, row, column});
+  sent_values_.assign(sent_entries_.size(), 0.0);
+}
+
 void PetscLinearSolve::create_matrix() {
   const PetscInt owned = static_cast<PetscInt>(owned_rows_.size());
   std::vector<PetscInt> diagonal_block(owned_rows_.size(), 0), off_diagonal_block(owned_rows_.size(), 0);
@@ -116,6 +176,7 @@ void PetscLinearSolve::create_matrix() {
   check(MatSetOption(k_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
   check(MatSetOption(k_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
   check(MatCreateVecs(k_, &solution_, &rhs_), "MatCreateVecs");
+  check(VecDuplicate(solution_, &diagonal_), "VecDuplicate");
   check(VecScatterCreateToAll(solution_, &gather_, &gathered_), "VecScatterCreateToAll");
 }
 
@@ -149,7 +210,16 @@ void PetscLinearSolve::create_solver() {
   rtol_from_options_ = option_given("-ksp_rtol");
 }
 
-void PetscLinearSolve::insert_values() {
+void PetscLinearSolve::element_part_assembled() {
+  const std::vector<double>& values = matrix_.values();
+  for (size_t i = 0; i < sent_entries_.size(); ++i)
+    sent_values_[i] = values[static_cast<size_t>(sent_entries_[i].position)];
+}
+
+// The owned rows of this rank's values (its elements' part, and the contact and patch terms every rank has) and its
+// elements' entries in other ranks' rows, added to the zeroed matrix; MatAssemblyEnd sums them at their owners.
+void PetscLinearSolve::add_values() {
+  check(MatZeroEntries(k_), "MatZeroEntries");
   const std::vector<double>& values = matrix_.values();
   std::vector<PetscScalar> row_values;
   for (size_t l = 0; l < owned_rows_.size(); ++l) {
@@ -159,11 +229,33 @@ void PetscLinearSolve::insert_values() {
       row_values[j] = row.positions[j] < 0 ? 1.0 : values[static_cast<size_t>(row.positions[j])];
     const PetscInt global = first_row_ + static_cast<PetscInt>(l);
     check(MatSetValues(k_, 1, &global, static_cast<PetscInt>(row.columns.size()), row.columns.data(),
-                       row_values.data(), INSERT_VALUES),
+                       row_values.data(), ADD_VALUES),
           "MatSetValues");
   }
+  for (size_t i = 0; i < sent_entries_.size(); ++i)
+    check(MatSetValues(k_, 1, &sent_entries_[i].row, 1, &sent_entries_[i].column, &sent_values_[i], ADD_VALUES),
+          "MatSetValues");
   check(MatAssemblyBegin(k_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(k_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
+// Rank 0 sums and sends the sums to every rank: all ranks get the same bits (an all-reduce may add in a different
+// order on each rank), so that every rank's Newton loop takes the same branches.
+void PetscLinearSolve::sum_over_processes(std::span<double> partial) {
+  const auto [rank, size] = ranks();
+  if (size == 1) return;
+  const int count = static_cast<int>(partial.size());
+  if (rank == 0)
+    MPI_Reduce(MPI_IN_PLACE, partial.data(), count, MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+  else
+    MPI_Reduce(partial.data(), nullptr, count, MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(partial.data(), count, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+}
+
+int PetscLinearSolve::lowest_over_processes(int value) {
+  int lowest = value;
+  MPI_Allreduce(&value, &lowest, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  return lowest;
 }
 
 bool PetscLinearSolve::krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
@@ -199,17 +291,19 @@ bool PetscLinearSolve::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, It
   const double tolerance = std::max(forcing, options_.linear_tolerance);
   rec.factorized = true;
   rec.linear_iterations = 0;
-  insert_values();
+  add_values();
   if (krylov_solve(rhs, du, rec, tolerance)) return true;
-  std::vector<double>& values = matrix_.values();
-  const std::vector<double> unshifted = values;
+  check(MatGetDiagonal(k_, diagonal_), "MatGetDiagonal");
+  Vec shifted = nullptr;
+  check(VecDuplicate(diagonal_, &shifted), "VecDuplicate");
   bool ok = false;
   for (size_t shift = 0; shift < kDiagonalShifts.size() && !ok; ++shift) {
-    shift_diagonal(matrix_.pattern(), unshifted, kDiagonalShifts[shift], values);
-    insert_values();
+    check(VecCopy(diagonal_, shifted), "VecCopy");
+    check(VecScale(shifted, 1 + kDiagonalShifts[shift]), "VecScale");
+    check(MatDiagonalSet(k_, shifted, INSERT_VALUES), "MatDiagonalSet");
     ok = krylov_solve(rhs, du, rec, tolerance);
   }
-  values = unshifted;
+  check(VecDestroy(&shifted), "VecDestroy");
   return ok;
 }
 

@@ -1,17 +1,23 @@
 // Internal: the PETSc backend's linear solve (linear_solve.hpp), K du = rhs across the ranks of MPI_COMM_WORLD with
 // KSPCG preconditioned by PCGAMG and the rigid-body near-null space (docs/fem_solver.md, "PETSc backend").
 //
-// Every rank holds the same mesh and tangent (the Newton loop is replicated). The PETSc matrix is over all dofs,
-// 3 per node (block size 3: GAMG aggregates nodes and the rigid-body modes are per node), the nodes in Morton order
-// and cut into contiguous ranges of equal size, one per rank; a prescribed dof is an identity row and column, so that
-// the free rows are K's. Each rank inserts the rows it owns (preallocated exactly), PETSc solves, and the solution
-// is gathered to every rank (VecScatterCreateToAll). Options: KSPCG, PCGAMG, relative tolerance the Newton forcing
-// term on the unpreconditioned residual (the built-in solves' test); -ksp_* / -pc_* on the command line override
-// them (KSPSetFromOptions).
+// Every rank holds the same mesh and runs the same Newton loop; the element work and the solve are shared. The
+// elements are cut by the Morton order of their centroids into contiguous ranges of equal count, one per rank (the
+// same cut for any thread count); each rank assembles its own (assembled_elements), and the assembly sums the
+// partial energy and forces over the ranks. The PETSc matrix is over all dofs, 3 per node (block size 3: GAMG
+// aggregates nodes and the rigid-body modes are per node), the nodes in Morton order and cut into contiguous ranges
+// of equal size, one per rank; a prescribed dof is an identity row and column, so that the free rows are K's. It is
+// a MatMPIAIJ preallocated exactly from K's pattern. Each rank adds (ADD_VALUES) its elements' entries of the rows it
+// owns together with the terms every rank computes alike (contact, the nodal average's patch term: added once, by
+// the owner of the row), and its elements' entries of other ranks' rows, which PETSc sends to their owners in
+// MatAssemblyEnd. PETSc solves, and the solution is gathered to every rank (VecScatterCreateToAll). Options: KSPCG,
+// PCGAMG, relative tolerance the Newton forcing term on the unpreconditioned residual (the built-in solves' test);
+// -ksp_* / -pc_* on the command line override them (KSPSetFromOptions).
 #pragma once
 #include <petscksp.h>
 
 #include <Eigen/Core>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -30,6 +36,10 @@ public:
   std::string failure_reason() const override;
   double factor_nonzeros() const override { return 0; }  // no Cholesky factor
   double factor_flops() const override { return 0; }
+  const std::vector<char>& assembled_elements() const override { return assembled_; }
+  void sum_over_processes(std::span<double> partial) override;
+  int lowest_over_processes(int value) override;
+  void element_part_assembled() override;
 
 private:
   // One owned row of K: its free index (-1: a prescribed dof, an identity row), and its entries as PETSc columns
@@ -39,12 +49,19 @@ private:
     std::vector<PetscInt> columns;
     std::vector<int64_t> positions;
   };
+  // An entry of this rank's elements in another rank's row: its position in the tangent's values, its PETSc place.
+  struct SentEntry {
+    int64_t position;
+    PetscInt row, column;
+  };
   void number_dofs(const TangentInputs& inputs);
+  void partition_elements(const TangentInputs& inputs);
   void collect_owned_rows();
+  void collect_sent_entries(const TangentInputs& inputs);
   void create_matrix();
   void set_near_null_space(const TangentInputs& inputs);
   void create_solver();
-  void insert_values();  // the owned rows of the tangent's current values into k_
+  void add_values();  // this rank's part of the tangent's current values into k_
   bool krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
 
   static constexpr PetscInt kMaxIterations = 1000;
@@ -56,8 +73,11 @@ private:
   std::vector<int> dof_of_free_;      // per free index: its dof
   PetscInt first_row_ = 0;            // the rows [first_row_, first_row_ + owned_rows_.size()) are this rank's
   std::vector<OwnedRow> owned_rows_;
+  std::vector<char> assembled_;          // per position of the assembly order: whether this rank assembles it
+  std::vector<SentEntry> sent_entries_;  // this rank's element entries in rows of other ranks
+  std::vector<double> sent_values_;      // their element part, kept by element_part_assembled
   Mat k_ = nullptr;
-  Vec rhs_ = nullptr, solution_ = nullptr, gathered_ = nullptr;
+  Vec rhs_ = nullptr, solution_ = nullptr, gathered_ = nullptr, diagonal_ = nullptr;
   VecScatter gather_ = nullptr;
   KSP ksp_ = nullptr;
   bool rtol_from_options_ = false;  // -ksp_rtol given: it replaces the Newton forcing term
