@@ -93,6 +93,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/io/patch_view.cpp
   src/io/patch_writers.cpp
   src/io/result_writers.cpp
+  src/io/robust_design_run.cpp
   src/io/scale_warnings.cpp
   src/io/tet_mesh_vtu.cpp
   src/io/tissue_config.cpp

@@ -44,7 +44,7 @@ std::string needle_map_script() {
 }
 
 // DIR/NAME_needle_map.png from NAME_needles.csv (scripts/plot_needle_map.py writes it under a temporary name).
-std::string write_needle_map(const std::filesystem::path& directory, const insertion::IndentationCase& c) {
+std::filesystem::path write_needle_map(const std::filesystem::path& directory, const insertion::IndentationCase& c) {
   const std::filesystem::path png = directory / (c.name + "_needle_map.png");
   if (run_program({"/usr/bin/python3", needle_map_script(), (directory / (c.name + "_needles.csv")).string(),
                    png.string(), "--title", c.name}) != 0) {
@@ -52,7 +52,7 @@ std::string write_needle_map(const std::filesystem::path& directory, const inser
                               "plot)",
                               png.string(), needle_map_script()));
   }
-  return png.string();
+  return png;
 }
 
 // The array's totals and which needles punctured, for the text output.
@@ -111,8 +111,9 @@ void run_indent(const IndentArguments& arguments) {
   const insertion::IndentationResult result = insertion::run_indentation(indentation_case, options);
   progress.finish();
   if (writer) writer->finish(result);
-  std::string map_png;
-  if (writer && result.array && !arguments.no_plot) map_png = write_needle_map(arguments.out_dir, indentation_case);
+  if (writer && result.array && !arguments.no_plot) {
+    writer->remember(write_needle_map(arguments.out_dir, indentation_case));
+  }
   // A load step that did not converge: the completed steps are kept and printed, the exit code is 3.
   const bool failed = result.status == insertion::IndentationStatus::SolverFailed;
   if (arguments.json) {
@@ -150,7 +151,7 @@ void run_indent(const IndentArguments& arguments) {
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
     const bool series = !result.steps.empty();  // the .pvd exists once a step was written
-    fmt::print("wrote {} files to {}{}\n", writer->files().size() + (map_png.empty() ? 0 : 1), arguments.out_dir,
+    fmt::print("wrote {} files to {}{}\n", writer->files().size(), arguments.out_dir,
                series ? fmt::format(" (open {0}.pvd in ParaView, {0}_view.html in a browser)", indentation_case.name)
                       : "");
   }

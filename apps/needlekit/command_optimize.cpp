@@ -11,6 +11,7 @@
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/json_text.hpp"
+#include "needlekit/io/robust_design_run.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "progress_bar.hpp"
@@ -91,21 +92,22 @@ void run_robust(const OptimizeArguments& arguments, const io::SpaceFile& file, a
                                    "the grid by brute force)",
                                    arguments.space_path));
   }
-  uncertainty::RobustDesignOptions options;
-  options.min_success_probability = file.robust->min_success_probability;
-  options.sampling = file.robust->sampling;
-  options.sampling.threads = arguments.threads;
+  io::RobustDesignRunOptions options;
   options.optimizer = optimizer;
-  options.optimizer.progress = nullptr;
-  uncertainty::RobustDesignResult result;
+  options.top = arguments.top;
+  options.threads = arguments.threads;
+  ProgressBar progress("optimize (robust)");
+  options.progress = [&progress](double fraction) {  // Ctrl-C stops the run
+    progress.update(fraction);
+    return !interrupt_requested();
+  };
+  nlohmann::json json;
   try {
-    result = uncertainty::robust_design(file.space, file.robust->inputs, file.robust->correlations, options);
+    json = io::robust_design_run_json(file, options);
   } catch (const InvalidInput& error) {
     throw InvalidInput(fmt::format("{}: {}", arguments.space_path, error.what()));
   }
-  nlohmann::json json = io::robust_design_json(file.space, options, result);
-  json["top"].erase(json["top"].begin() + std::min<std::ptrdiff_t>(arguments.top, std::ssize(json["top"])),
-                    json["top"].end());  // the listing keeps --top designs; all were candidates
+  progress.finish();
   if (!arguments.out_path.empty()) io::write_text_file_atomically(arguments.out_path, io::json_text(json));
   if (arguments.json) {
     fmt::print("{}", io::json_text(json));

@@ -42,8 +42,10 @@ void add_serve_command(CLI::App& app) {
                  "no authentication (docs/serve.md)\n",
                  options->host);
     }
-    const std::filesystem::path root = resources_root({"web/design/index.html", "data/meshes", "examples"});
+    const std::filesystem::path root =
+        resources_root({"web/design/index.html", "web/viewer/needlekit_viewer.js", "data/meshes", "examples"});
     options->web_dir = root / "web" / "design";
+    options->viewer_dir = root / "web" / "viewer";
     options->mesh_dir = root / "data" / "meshes";
     options->examples_dir = root / "examples";
     serve(*options, [&](int port) {

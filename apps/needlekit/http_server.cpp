@@ -25,7 +25,8 @@ struct Asset {
   std::string bytes;
 };
 
-// URL path -> file: the page's own files and the two three.js classic scripts. Nothing else is served.
+// URL path -> file: the page's own files, the 3D viewer of the patch fit and the two three.js classic scripts. Nothing
+// else is served.
 std::map<std::string, Asset> read_assets(const ServeOptions& options) {
   const struct {
     const char* url;
@@ -39,6 +40,8 @@ std::map<std::string, Asset> read_assets(const ServeOptions& options) {
       {"/three/three.min.js", options.three_dir / "three.min.js", "text/javascript; charset=utf-8"},
       {"/three/OrbitControls.js", options.three_dir / "examples" / "js" / "controls" / "OrbitControls.js",
        "text/javascript; charset=utf-8"},
+      {"/viewer/needlekit_viewer.js", options.viewer_dir / "needlekit_viewer.js", "text/javascript; charset=utf-8"},
+      {"/viewer/needlekit_viewer.css", options.viewer_dir / "needlekit_viewer.css", "text/css; charset=utf-8"},
   };
   std::map<std::string, Asset> assets;
   for (const auto& a : allowed) assets[a.url] = {a.type, read_file_bytes(a.file, "web asset")};
@@ -192,7 +195,9 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
            [&] { send_json(res, 201, meshes.add_upload(req.body, req.get_param_value("format"))); });
   });
   server.Post("/api/patch", [&](const httplib::Request& req, httplib::Response& res) {
-    answer(req, res, max_body, [&] { submit(res, "patch", patch_work(req.body, meshes)); });
+    answer(req, res, max_body, [&] {
+      submit(res, "patch", patch_work(req.body, meshes, req.get_param_value("view") == "true"));
+    });
   });
   server.Get(R"(/api/jobs/(\d{1,18}))", [&jobs](const httplib::Request& req, httplib::Response& res) {
     if (const auto status = jobs.status(req.matches[1])) {

@@ -13,6 +13,7 @@ struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8737;                                   // 0: any free port
   std::filesystem::path web_dir;                     // web/design: index.html, design.js, design.css
+  std::filesystem::path viewer_dir;                  // web/viewer: needlekit_viewer.js, .css (the patch fit in 3D)
   std::filesystem::path mesh_dir;                    // data/meshes: the body meshes patch jobs may use, by name
   std::filesystem::path examples_dir;                // examples: patch_*.toml suggest a unit and centre per mesh
   std::filesystem::path three_dir = "/usr/share/javascript/three";  // libjs-three

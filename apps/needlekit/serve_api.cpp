@@ -20,7 +20,9 @@
 #include "needlekit/io/json_config.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/patch_run.hpp"
+#include "needlekit/io/patch_view.hpp"
 #include "needlekit/io/result_writers.hpp"
+#include "needlekit/io/robust_design_run.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "needlekit/materials/needle_material.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
@@ -37,6 +39,21 @@ nlohmann::json names_json(const EnumTable<Value, N>& table) {
 
 nlohmann::json optional_value(const std::optional<double>& value, double scale) {
   return value ? nlohmann::json(*value * scale) : nlohmann::json(nullptr);
+}
+
+// A space with min_success_probability: `needlekit optimize --json`'s robust design (the grid ranked by brute force,
+// then the best candidates checked under uncertainty, best first).
+JobWork robust_design_work(std::shared_ptr<const io::SpaceFile> file, const OptimizeRequest& request) {
+  if (request.certified) {
+    throw InvalidInput("space.json: certified=true does not apply with min_success_probability (robust design ranks "
+                       "the grid by brute force), expected certified=false");
+  }
+  io::RobustDesignRunOptions options;
+  options.top = request.top;
+  return [file, options](JobProgress& progress) mutable {
+    options.progress = [&progress](double fraction) { return progress.report(fraction); };
+    return io::rounded_numbers(io::robust_design_run_json(*file, options));
+  };
 }
 
 }  // namespace
@@ -84,10 +101,7 @@ JobWork optimize_work(std::string_view body, const OptimizeRequest& request) {
     throw InvalidInput(fmt::format("top: {} is out of range, expected an integer in [1, 100]", request.top));
   }
   auto file = std::make_shared<const io::SpaceFile>(io::parse_space_json(body, "space.json"));
-  if (file->robust) {
-    throw InvalidInput("space.json: min_success_probability (robust design) is not offered by the API, expected "
-                       "`needlekit optimize` for a robust design");
-  }
+  if (file->robust) return robust_design_work(file, request);
   analysis::OptimizerOptions options;
   options.method = request.certified ? analysis::SearchMethod::Certified : analysis::SearchMethod::BruteForce;
   options.top = request.top;
@@ -200,14 +214,19 @@ nlohmann::json MeshRegistry::add_upload(std::string_view bytes, std::string_view
   return entry;
 }
 
-JobWork patch_work(std::string_view body, const MeshRegistry& meshes) {
+JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_view) {
   auto c = std::make_shared<const io::PatchCase>(io::parse_patch_case_json(body, "patch.json", meshes.meshes()));
-  return [c](JobProgress& progress) {
+  return [c, with_view](JobProgress& progress) {
     const io::PatchSurface surface = io::read_patch_surface(*c);
     if (!progress.report(0.5)) throw Interrupted();  // the fit has no progress of its own: read, then fit
     const patch::FitAndEvaluateOptions options{c->placement, c->fit, c->evaluation, true};
     const patch::FitAndEvaluateResult result = patch::fit_and_evaluate(surface.surface, c->design, options);
-    return io::rounded_numbers(io::patch_case_summary(*c, result, surface.warnings));
+    nlohmann::json summary = io::rounded_numbers(io::patch_case_summary(*c, result, surface.warnings));
+    if (with_view) {
+      summary["view"] = io::patch_view(c->mesh.stem().string(), surface.surface, result.design, result.fit,
+                                       result.evaluation);
+    }
+    return summary;
   };
 }
 

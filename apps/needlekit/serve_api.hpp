@@ -67,8 +67,9 @@ private:
   std::uint64_t next_upload_ = 1;
 };
 
-// POST /api/patch: a patch case whose [surface] mesh is a name of `meshes`; the job's result is what
-// `needlekit patch CASE.toml --json` prints.
-JobWork patch_work(std::string_view body, const MeshRegistry& meshes);
+// POST /api/patch[?view=true]: a patch case whose [surface] mesh is a name of `meshes`; the job's result is what
+// `needlekit patch CASE.toml --json` prints, and with `with_view` also "view": the fit's 3D view (io/patch_view.hpp,
+// the data of `needlekit patch --out`'s patch_view.js) for the page's viewer.
+JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_view = false);
 
 }  // namespace needlekit::cli

@@ -306,6 +306,10 @@ void IndentationWriter::finish(const insertion::IndentationResult& result) {
     remember(path);
   };
   write_curves(result);
+  if (view_ && view_->steps() > 0 && !result.needles.empty()) {  // the view again, with each needle's puncture state
+    view_->set_outcomes(result.needles);
+    write("_view.js", view_script(view_->json()));
+  }
   write("_puncture.json", io::json_text(puncture_json(case_, result)));
   if (!result.needles.empty()) {
     write("_needles.csv", needles_csv(case_, result));

@@ -47,6 +47,38 @@ std::vector<int> kept_steps(int total, int count) {
   return kept;
 }
 
+// The columns of a needle's outcome (IndentationView::set_outcomes), in the order append_outcome writes them.
+const nlohmann::json kOutcomeColumns = nlohmann::json::array(
+    {{{"key", "status"}, {"label", "puncture state"}, {"unit", ""}, {"per_step", true}},
+     {{"key", "depth_um"}, {"label", "tip depth"}, {"unit", "um"}, {"per_step", true}},
+     {{"key", "inserted_depth_um"}, {"label", "inserted depth"}, {"unit", "um"}, {"per_step", true}, {"colour", true}},
+     {{"key", "puncture_step"}, {"label", "punctured at step"}, {"unit", ""}},
+     {{"key", "puncture_depth_um"}, {"label", "puncture depth"}, {"unit", "um"}}});
+
+// A needle's outcome at the stored steps `kept` (indices of the run's converged steps), appended to its table row.
+// Its inserted depth at a step is its travel beyond its puncture depth once punctured (insertion::NeedleOutcome's
+// inserted_depth at the last step), else 0.
+void append_outcome(nlohmann::json& row, const insertion::NeedleOutcome& outcome, const std::vector<int>& kept) {
+  nlohmann::json state = nlohmann::json::array(), depth = nlohmann::json::array(), inserted = nlohmann::json::array();
+  for (int k : kept) {
+    const bool punctured = outcome.puncture_step > 0 && outcome.puncture_step <= k + 1;  // puncture_step counts from 1
+    state.push_back(punctured ? "punctured" : "intact");
+    if (k >= static_cast<int>(outcome.depth.size())) {
+      depth.push_back(nullptr);
+      inserted.push_back(nullptr);
+      continue;
+    }
+    depth.push_back(outcome.depth[k] * 1e6);
+    const double puncture_depth = outcome.puncture ? outcome.puncture->depth : outcome.depth[k];
+    inserted.push_back(punctured ? std::max(outcome.depth[k] - puncture_depth, 0.0) * 1e6 : 0.0);
+  }
+  row.push_back(state);
+  row.push_back(depth);
+  row.push_back(inserted);
+  row.push_back(outcome.puncture_step > 0 ? nlohmann::json(outcome.puncture_step) : nlohmann::json(nullptr));
+  row.push_back(outcome.puncture ? nlohmann::json(outcome.puncture->depth * 1e6) : nlohmann::json(nullptr));
+}
+
 std::vector<float> floats(const Eigen::Vector3d& v) {
   return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
@@ -67,6 +99,8 @@ void IndentationView::add_step(const insertion::IndentationStep& step, const fem
   add_step(step, solver.indenter_displacement(),
            surface_step(boundary_, tissue_, solver.displacement(), solver.contact_pressure(), fields.von_mises_stress));
 }
+
+void IndentationView::set_outcomes(std::vector<insertion::NeedleOutcome> needles) { outcomes_ = std::move(needles); }
 
 void IndentationView::add_step(const insertion::IndentationStep& step, double indenter_displacement,
                                SurfaceStep surface) {
@@ -193,6 +227,7 @@ nlohmann::json IndentationView::needles_json(const std::vector<int>& kept) const
     }
     const insertion::NeedleSite& site = case_.needles[n];
     rows.push_back({n + 1, site.position.x() * 1e6, site.position.y() * 1e6, site.tip_height * 1e6, force});
+    if (n < outcomes_.size()) append_outcome(rows.back(), outcomes_[n], kept);
   }
   nlohmann::json columns = nlohmann::json::array(
       {{{"key", "needle"}, {"label", "needle"}, {"unit", ""}},
@@ -200,6 +235,9 @@ nlohmann::json IndentationView::needles_json(const std::vector<int>& kept) const
        {{"key", "y_um"}, {"label", "y"}, {"unit", "um"}},
        {{"key", "tip_height_um"}, {"label", "tip height"}, {"unit", "um"}},
        {{"key", "force_N"}, {"label", "force"}, {"unit", "N"}, {"per_step", true}, {"colour", true}}});
+  if (!outcomes_.empty()) {
+    for (nlohmann::json column : kOutcomeColumns) columns.push_back(std::move(column));
+  }
   const Eigen::Vector3d direction =
       indenters.empty() ? Eigen::Vector3d(0, 0, -1) : indenters.front().direction.normalized();
   return {{"meshes", meshes},

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 
 namespace needlekit::uncertainty {
 
@@ -42,7 +43,10 @@ RobustDesignResult robust_design(const analysis::DesignSpace& space, const std::
   analysis::OptimizerOptions optimizer = options.optimizer;
   optimizer.method = analysis::SearchMethod::BruteForce;
   optimizer.top = options.max_candidates;
+  constexpr double ranking = RobustDesignOptions::kRankingShare;
+  if (options.progress) optimizer.progress = [&](double f) { return options.progress(ranking * f); };
   result.nominal = analysis::optimize_design(space, optimizer);
+  if (result.nominal.status == analysis::OptimizerStatus::Cancelled) throw Interrupted();
   if (result.nominal.top.empty()) {
     result.reason = fmt::format("no feasible nominal design: {}", result.nominal.reason);
     return result;
@@ -50,7 +54,14 @@ RobustDesignResult robust_design(const analysis::DesignSpace& space, const std::
   DesignUncertaintyOptions study;
   study.sampling = options.sampling;
   study.sampling.sobol_indices = false;
+  const double candidates = static_cast<double>(result.nominal.top.size());
   for (const analysis::DesignCandidate& candidate : result.nominal.top) {
+    if (options.progress) {
+      const double checked = static_cast<double>(result.checked.size());
+      study.sampling.progress = [&options, checked, candidates](double f) {
+        return options.progress(ranking + (1 - ranking) * (checked + f) / candidates);
+      };
+    }
     const DesignUncertaintyResult r =
         design_uncertainty(candidate_case(space, candidate, optimizer), inputs, correlations, study);
     const OutputSummary& success = r.event(DesignEvent::Success);
@@ -60,6 +71,7 @@ RobustDesignResult robust_design(const analysis::DesignSpace& space, const std::
       break;
     }
   }
+  if (options.progress) options.progress(1.0);  // the answer is complete: a late stop changes nothing
   const double best = result.nominal.top.front().performance_index;
   if (result.robust) {
     result.status = RobustStatus::Found;

@@ -2,9 +2,13 @@
 for the same design to the printed digits, as a value moves and as the form changes; an out-of-range value shows the
 CLI's message next to its field; the TOML it downloads is read by `needlekit evaluate`; the optimizer and the
 uncertainty analysis run with a progress bar; the console stays free of errors. Screenshots go under the build tree."""
+import io
 import json
+import re
 
 import pytest
+from PIL import Image, ImageStat
+from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
@@ -129,7 +133,36 @@ def test_the_optimizer_and_the_uncertainty_analysis_run_with_a_progress_bar(page
     screenshot(page, "design_page_uncertainty")
 
 
-def test_the_patch_tab_fits_a_patch_as_the_cli_does(page, tmp_path):
+def test_a_robust_design_runs_with_a_progress_bar(page):
+    """A level of P(success) makes the optimizer a robust design (the uncertainty inputs of the page): the design found
+    meets the level, after a progress bar that ends full."""
+    page.find_element(By.ID, "r-min-success").send_keys("0.9")
+    samples = page.find_element(By.ID, "u-samples")
+    samples.clear()
+    samples.send_keys("256")
+    space = page.execute_script("return window.needlekitDesign.spaceJson()")
+    assert space["min_success_probability"] == 0.9 and space["sampling"]["samples"] == 256
+    page.find_element(By.ID, "run-optimize").click()
+    WebDriverWait(page, 150).until(lambda d: "robust: P(success) =" in d.find_element(By.ID, "optimize-result").text
+                                   or "error" in d.find_element(By.ID, "optimize-result").get_attribute("class"))
+    shown = page.find_element(By.ID, "optimize-result").text
+    assert page.find_element(By.ID, "optimize-progress").get_attribute("value") == "1", shown
+    probability = float(shown.split("robust: P(success) = ")[1].split()[0])
+    assert probability >= 0.9, shown
+    screenshot(page, "design_page_robust")
+    page.find_element(By.ID, "r-min-success").clear()
+    assert "min_success_probability" not in page.execute_script("return window.needlekitDesign.spaceJson()")
+
+
+def printed(value):
+    """`value` to the 4 significant digits the page prints (Number.toPrecision(4)), as a number."""
+    return float(f"{value:.4g}")
+
+
+RANGE = re.compile(r"^(\S+) \.\. (\S+) (\S+) \(mean (\S+)\)$")
+
+
+def test_the_patch_tab_fits_a_patch_as_the_cli_does_and_shows_it_in_3d(page, tmp_path):
     meshes = [o.get_attribute("value") for o in page.find_elements(By.CSS_SELECTOR, "#p-mesh option")]
     assert "vh_male_head_neck_loop2.obj" in meshes
     Select(page.find_element(By.ID, "p-mesh")).select_by_value("vh_male_head_neck_loop2.obj")
@@ -143,7 +176,38 @@ def test_the_patch_tab_fits_a_patch_as_the_cli_does(page, tmp_path):
     expected = cli_json("patch", str(path))
     assert page.find_element(By.ID, "patch-result").text == \
         f"done: {expected['penetrating']} of {expected['needles']} needles penetrate"
+    # Every number of the table is the CLI's to the digits printed.
+    rows = {r.find_elements(By.TAG_NAME, "td")[0].text: r.find_elements(By.TAG_NAME, "td")[1].text
+            for r in page.find_elements(By.CSS_SELECTOR, "#patch-numbers tr")}
+    assert rows["needles penetrating / buckled / bent"] == \
+        f"{expected['penetrating']} / {expected['buckled']} / {expected['bent']} of {expected['needles']}"
+    assert rows["fit"].startswith(f"{expected['kind']}: {expected['status']}")
+    for label, key in [("insertion angle", "angle_deg"), ("buckling force |F|/cos", "buckling_force_N"),
+                       ("bending force |F| tan", "bending_force_N"), ("travel x (Eq 5.12)", "travel_um"),
+                       ("performance index", "performance_index_per_um")]:
+        low, high, _, mean = RANGE.match(rows[label]).groups()
+        assert [float(low), float(high), float(mean)] == \
+            [printed(expected[key][k]) for k in ("min", "max", "mean")], (label, rows[label], expected[key])
+    assert float(rows["spring energy"].split()[1]) == printed(expected["spring_energy_mJ"]["total"])
+    # The fit in 3D: the body, the springs and one cylinder per needle, drawn (not blank), a needle's numbers on a
+    # click.
+    host = page.find_element(By.CSS_SELECTOR, "#patch-view.nk-view")  # the viewer mounts into the element itself
+    page.execute_script("arguments[0].scrollIntoView({block: 'center'})", host)
+    canvas = host.find_element(By.CSS_SELECTOR, ".nk-canvas")
+    image = Image.open(io.BytesIO(canvas.screenshot_as_png)).convert("L")
+    assert ImageStat.Stat(image).stddev[0] > 5, "the patch's 3D view is blank"
+    view = "window.needlekitDesign.patchView()"
+    assert page.execute_script(f"return {view}.needleMeshes.length") == expected["needles"]
+    assert page.execute_script(f"return {view}.data.kind") == "patch"
+    x, y = page.execute_script(f"""
+        var v = {view}, box = new THREE.Box3().setFromObject(v.needleMeshes[0]);
+        var p = box.getCenter(new THREE.Vector3()).project(v.camera), r = v.canvas.getBoundingClientRect();
+        return [(p.x / 2) * r.width, (-p.y / 2) * r.height];""")
+    ActionChains(page).move_to_element_with_offset(canvas, int(round(x)), int(round(y))).click().perform()
+    info = host.find_element(By.CSS_SELECTOR, ".nk-info")
+    assert info.is_displayed() and "buckling force" in info.text, info.text
     assert console_errors(page) == [] or all("400" in e["message"] for e in console_errors(page))
+    screenshot(page, "design_page_patch_3d")
     page.execute_script("document.getElementById('patch-numbers').scrollIntoView()")
     screenshot(page, "design_page_patch")
 

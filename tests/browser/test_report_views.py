@@ -1,7 +1,8 @@
 """The 3D views (docs/views.md) in a real browser, opened from file:// with no network: every view of the report of
 `needlekit reproduce --quick` renders (its canvas is not blank), follows its load-step slider (an FE run) or its
 colour select and a click on a needle (a patch fit), and the console stays free of errors; the same for the
-NAME_view.html and patch_view.html that `indent --out` and `patch --out` write. Screenshots go under the build tree
+NAME_view.html and patch_view.html that `indent --out` and `patch --out` write, and for the view of a needle array,
+whose needles show their puncture state and depth per step as the run's JSON has them. Screenshots go under the build tree
 (chromium_session.screenshot).
 """
 import io
@@ -156,4 +157,52 @@ def test_the_view_page_of_patch_out(tmp_path):
         driver.get((out / "patch_view.html").as_uri())
         wait_for_views(driver, 1)
         check_views(driver, "patch_view")
+        assert console_errors(driver) == []
+
+
+def test_the_view_page_of_an_array_run(tmp_path):
+    """A coarse 3 x 3 array (examples/indent_array_3x3.toml): the needles are coloured by their puncture state, the
+    legend counts the needles the run's JSON says punctured by each step, the depth colours differ, and a click on a
+    needle shows its position, force, depth and puncture step."""
+    out = tmp_path / "array"
+    run = subprocess.run([CLI, "indent", str(SOURCE / "examples" / "indent_array_3x3.toml"), "--out", str(out),
+                          "--size-at-tip", "60 um", "--size-far", "400 um", "--steps", "3", "--no-plot"],
+                         capture_output=True, text=True, timeout=240)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    result = json.loads((out / "array_3x3_result.json").read_text())
+    needles = result["needles"]
+    assert len(needles) == 9 and len(result["depth_um"]) == 3
+    with chromium() as driver:
+        driver.get((out / "array_3x3_view.html").as_uri())
+        wait_for_views(driver, 1)
+        host = driver.find_element(By.CSS_SELECTOR, ".nk-view")
+        select = Select(host.find_element(By.CSS_SELECTOR, ".nk-field"))
+        assert select.first_selected_option.text == "needles: puncture state"
+        slider = host.find_element(By.CSS_SELECTOR, ".nk-step")
+        for step in range(3):
+            move_slider(driver, slider, step)
+            chips = {c.get_attribute("data-status"): int(c.text.split()[-1])
+                     for c in host.find_elements(By.CSS_SELECTOR, ".nk-colour-bar .nk-chip")}
+            punctured = sum(1 for n in needles if n["punctured"] and n["puncture_step"] <= step + 1)
+            assert chips.get("punctured", 0) == punctured and chips.get("intact", 0) == 9 - punctured, (step, chips)
+        screenshot(driver, "array_view_state_last_step")
+        check_views(driver, "array_view")  # not blank, follows the slider
+        canvas = host.find_element(By.CSS_SELECTOR, ".nk-canvas")
+        by_state = canvas_image(canvas)
+        select.select_by_visible_text("needles: inserted depth (um)")
+        assert difference(by_state, canvas_image(canvas)) > 0.01, "the depth colours look like the state colours"
+        bar = host.find_element(By.CSS_SELECTOR, ".nk-colour-bar").text
+        inserted = [n["inserted_depth_um"] for n in needles]  # at the last step, shown now
+        assert bar.split() == ["needles:", "inserted", "depth", "(um)", f"{min(inserted):.4g}", f"{max(inserted):.4g}"]
+        screenshot(driver, "array_view_depth")
+        text = click_a_needle(driver, host, 0)
+        for label in ("x (um)", "y (um)", "force (N)", "tip depth (um)", "puncture state", "punctured at step"):
+            assert label in text, f"a click on a needle shows '{text}'"
+        first = needles[0]
+        rows = dict(line.rsplit(" ", 1) for line in text.splitlines()[1:])
+        assert float(rows["x (um)"]) == pytest.approx(first["x_um"], rel=1e-3)
+        assert float(rows["force (N)"]) == pytest.approx(first["force_N"][-1], rel=1e-3)
+        assert float(rows["tip depth (um)"]) == pytest.approx(first["depth_um"][-1], rel=1e-3)
+        assert rows["punctured at step"] == (str(first["puncture_step"]) if first["punctured"] else "–")
+        screenshot(driver, "array_view_clicked")
         assert console_errors(driver) == []

@@ -178,12 +178,19 @@ def run_job(server, route, body):
     return wait_for_job(server, job["id"], lambda j: j["state"] not in ("queued", "running"))
 
 
-def test_an_optimize_job_gives_the_clis_optimum(server):
-    path = EXAMPLES / "optimize_fig_6_20_cone_solid.toml"
-    seen = run_job(server, "/api/optimize?top=5", space_of(path))
+def done_job(server, route, body):
+    """Runs a job to its end, which must be done with a fraction that never decreased and ended at 1; returns the
+    statuses seen."""
+    seen = run_job(server, route, body)
     assert seen[-1]["state"] == "done", seen[-1]
     fractions = [j["fraction"] for j in seen]
     assert fractions == sorted(fractions) and fractions[-1] == 1.0
+    return seen
+
+
+def test_an_optimize_job_gives_the_clis_optimum(server):
+    path = EXAMPLES / "optimize_fig_6_20_cone_solid.toml"
+    seen = done_job(server, "/api/optimize?top=5", space_of(path))
     result, expected = seen[-1]["result"], cli_json("optimize", str(path), "--top", "5")
     assert result["best"] == expected["best"]
     assert [t["details"] for t in result["top"]] == [t["details"] for t in expected["top"]]
@@ -263,6 +270,19 @@ def test_another_host_is_served_with_a_warning():
     finally:
         assert stop_server(other) == 130
     assert "warning: serving on 127.0.0.2 exposes the design API" in other.process.stderr.read()
+
+
+def test_a_robust_design_job_gives_the_clis_answer_with_its_progress(server):
+    path = EXAMPLES / "optimize_robust_cone_su8.toml"
+    seen = done_job(server, "/api/optimize?top=3", space_of(path))
+    assert seen[-1]["progress_reports"] > 2  # the ranking, then each candidate's sampling
+    result, expected = seen[-1]["result"], cli_json("optimize", str(path), "--top", "3")
+    for answer in (result, expected):
+        del answer["seconds"]  # a wall time
+    assert result == expected
+    assert result["robust"]["status"] == "found"
+    status, answer = server.json("POST", "/api/optimize?certified=true", space_of(path))
+    assert status == 400 and "does not apply with min_success_probability" in answer["error"], answer
 
 
 def patch_case_of(path):

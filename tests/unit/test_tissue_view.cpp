@@ -167,10 +167,10 @@ TEST(TissueViewSurface, FieldsAtKnownNodes) {
   EXPECT_THROW(io::nodal_average(tissue, std::vector<double>(3, 0.0)), InvalidInput);
 }
 
-TEST(IndentationView, StepsNeedlesAndTheTableInTheView) {
-  const mesh::TetMesh tissue = block(4, 4, 2);
-  const insertion::IndentationCase c = cylinder_case(2);
-  io::IndentationView view(c);
+namespace {
+
+// Three steps of two needles pushed k um down (the whole block moving with them), 0.04 k N and 0.06 k N on each.
+void add_three_steps(io::IndentationView& view, const mesh::TetMesh& tissue) {
   view.set_mesh(tissue);
   std::vector<double> zero_pressure(tissue.nodes.size(), 0.0), stress(tissue.tets.size(), 5.0);
   for (int k = 1; k <= 3; ++k) {
@@ -181,6 +181,15 @@ TEST(IndentationView, StepsNeedlesAndTheTableInTheView) {
     step.needle_force = {0.04 * k, 0.06 * k};
     view.add_step(step, 1e-6 * k, io::surface_step(view.surface(), tissue, u, zero_pressure, stress));
   }
+}
+
+}  // namespace
+
+TEST(IndentationView, StepsNeedlesAndTheTableInTheView) {
+  const mesh::TetMesh tissue = block(4, 4, 2);
+  const insertion::IndentationCase c = cylinder_case(2);
+  io::IndentationView view(c);
+  add_three_steps(view, tissue);
   const nlohmann::json json = view.json();
   EXPECT_EQ(json["kind"], "indentation");
   EXPECT_EQ(json["steps"].size(), 3u);
@@ -199,6 +208,41 @@ TEST(IndentationView, StepsNeedlesAndTheTableInTheView) {
   EXPECT_NEAR(json["needles"]["table"]["rows"][1][4][2].get<double>(), 0.18, 1e-12);  // needle 2's force at step 3
   const std::string script = io::view_script(json);
   EXPECT_THAT(script, testing::StartsWith("(window.needlekitViews = window.needlekitViews || []).push({"));
+}
+
+// An array's view: after set_outcomes each needle's row holds its puncture state, tip depth and inserted depth at every
+// stored step, the step it punctured in and its puncture depth.
+TEST(IndentationView, EachNeedlesPunctureStateAndDepthFollowTheSteps) {
+  const mesh::TetMesh tissue = block(4, 4, 2);
+  const insertion::IndentationCase c = cylinder_case(2);
+  io::IndentationView view(c);
+  add_three_steps(view, tissue);
+  std::vector<insertion::NeedleOutcome> outcomes(2);
+  outcomes[0].depth = {1e-6, 2e-6, 3e-6};
+  outcomes[1].depth = {0.5e-6, 1e-6, 1.5e-6};
+  outcomes[0].puncture_step = 2;  // needle 1 punctures in step 2 at 1.5 um and travels 1.5 um further
+  outcomes[0].puncture = insertion::PuncturePoint{1.5e-6, 0.07, insertion::PunctureCriterion::CriticalPressure};
+  outcomes[0].inserted_depth = 1.5e-6;
+  view.set_outcomes(outcomes);
+  const nlohmann::json table = view.json()["needles"]["table"];
+  std::map<std::string, std::size_t> column;
+  for (std::size_t i = 0; i < table["columns"].size(); ++i) column[table["columns"][i]["key"]] = i;
+  ASSERT_EQ(table["columns"].size(), 10u);
+  EXPECT_EQ(table["columns"][column["inserted_depth_um"]]["colour"], true);
+  const nlohmann::json& first = table["rows"][0];
+  const nlohmann::json& second = table["rows"][1];
+  EXPECT_EQ(first[column["status"]], nlohmann::json({"intact", "punctured", "punctured"}));
+  EXPECT_EQ(second[column["status"]], nlohmann::json({"intact", "intact", "intact"}));
+  EXPECT_NEAR(first[column["depth_um"]][2].get<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(second[column["depth_um"]][1].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(first[column["puncture_step"]], 2);
+  EXPECT_TRUE(second[column["puncture_step"]].is_null());
+  EXPECT_NEAR(first[column["puncture_depth_um"]].get<double>(), 1.5, 1e-9);
+  // Inserted: 0 before the puncture, then the travel beyond 1.5 um; at the last step the outcome's inserted depth.
+  EXPECT_EQ(first[column["inserted_depth_um"]][0], 0.0);
+  EXPECT_NEAR(first[column["inserted_depth_um"]][1].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(first[column["inserted_depth_um"]][2].get<double>(), outcomes[0].inserted_depth * 1e6, 1e-9);
+  EXPECT_EQ(second[column["inserted_depth_um"]], nlohmann::json({0.0, 0.0, 0.0}));
 }
 
 // A 300k-tetrahedron block (60 x 60 x 14 hexes x 6) with 30 load steps stays within 5 MB; a smaller budget keeps the

@@ -3,6 +3,10 @@
 // spread the robust design is the deterministic optimum at no cost.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/uncertainty/robust_design.hpp"
 
 using namespace needlekit;
@@ -22,14 +26,17 @@ analysis::DesignSpace su8_cones() {
   return space;
 }
 
+// Lognormal skin and insertions at up to 15 deg: the deterministic optimum of su8_cones is not robust there.
+std::vector<uncertainty::DesignUncertainInput> variable_skin_at_an_angle() {
+  return {{"tissue.alpha", {DistributionKind::Lognormal, 0, 0, 0.0183, 0.3}},
+          {"insertion.angle", {DistributionKind::Uniform, 0, 0, 0, 0, 0, 15 * M_PI / 180}}};
+}
+
 }  // namespace
 
 TEST(RobustDesign, BestNominalDesignThatMeetsTheLevel) {
   const analysis::DesignSpace space = su8_cones();
-  const std::vector<uncertainty::DesignUncertainInput> inputs{
-      {"tissue.alpha", {DistributionKind::Lognormal, 0, 0, 0.0183, 0.3}},
-      {"insertion.angle", {DistributionKind::Uniform, 0, 0, 0, 0, 0, 15 * M_PI / 180}},
-  };
+  const std::vector<uncertainty::DesignUncertainInput> inputs = variable_skin_at_an_angle();
   uncertainty::RobustDesignOptions options;
   options.min_success_probability = 0.99;
   options.sampling.samples = 512;
@@ -74,4 +81,34 @@ TEST(RobustDesign, UnreachableLevelIsReportedWithWhatWasChecked) {
   EXPECT_EQ(r.checked.size(), 5u);
   EXPECT_FALSE(r.robust);
   EXPECT_NE(r.reason.find("none of the 5 best nominal designs"), std::string::npos) << r.reason;
+}
+
+// The progress callback: the ranking is the first fifth, every candidate's sampling follows in order, the fractions
+// never decrease and end at 1, the answer is the one without a callback; a callback that says stop ends the run.
+TEST(RobustDesign, ProgressRisesToOneAndAStopInterrupts) {
+  const analysis::DesignSpace space = su8_cones();
+  const std::vector<uncertainty::DesignUncertainInput> inputs = variable_skin_at_an_angle();
+  uncertainty::RobustDesignOptions options;
+  options.min_success_probability = 0.99;
+  options.sampling.samples = 256;
+  const uncertainty::RobustDesignResult quiet = uncertainty::robust_design(space, inputs, {}, options);
+  std::vector<double> fractions;
+  options.progress = [&fractions](double f) {
+    fractions.push_back(f);
+    return true;
+  };
+  const uncertainty::RobustDesignResult r = uncertainty::robust_design(space, inputs, {}, options);
+  ASSERT_EQ(r.checked.size(), quiet.checked.size());
+  ASSERT_TRUE(r.robust && quiet.robust);
+  EXPECT_EQ(r.robust->candidate.performance_index, quiet.robust->candidate.performance_index);
+  ASSERT_GE(fractions.size(), 3u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_EQ(fractions.back(), 1.0);
+  EXPECT_LE(fractions.front(), uncertainty::RobustDesignOptions::kRankingShare);
+  // The first candidate's sampling ends at 0.2 + 0.8 / K: before the second one's starts.
+  const double first_candidate_end = 0.2 + 0.8 / static_cast<double>(r.nominal.top.size());
+  EXPECT_TRUE(std::any_of(fractions.begin(), fractions.end(),
+                          [&](double f) { return std::abs(f - first_candidate_end) < 1e-12; }));
+  options.progress = [](double f) { return f < 0.1; };  // stop during the ranking
+  EXPECT_THROW(uncertainty::robust_design(space, inputs, {}, options), Interrupted);
 }

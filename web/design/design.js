@@ -11,6 +11,7 @@
   let evaluateTimer = null;
   let evaluateSequence = 0;
   let view = null;
+  let patchView = null;  // the last fit's 3D view (web/viewer/needlekit_viewer.js)
 
   // ---- the design as JSON (the same keys and unit strings as a design TOML file) --------------------------------
 
@@ -208,8 +209,17 @@
     };
     if (d.needle.shape !== "cylinder") ranges.base_diameter = rangeOf("r-base_diameter");
     if (hollow) ranges.bore_diameter = rangeOf("r-bore_diameter");
-    return { shape: d.needle.shape, hollow: hollow, material: d.needle.material, tissue: d.tissue.model,
-             target_depth: d.insertion.target_depth, ranges: ranges };
+    const space = { shape: d.needle.shape, hollow: hollow, material: d.needle.material, tissue: d.tissue.model,
+                    target_depth: d.insertion.target_depth, ranges: ranges };
+    // Robust design: the level, and the uncertainty analysis's inputs and sampling.
+    const level = $("r-min-success").value.trim();
+    if (level !== "") {
+      const u = uncertaintyJson();
+      space.min_success_probability = /^[0-9.eE+-]+$/.test(level) ? Number(level) : level;
+      space.uncertain = u.uncertain;
+      space.sampling = u.sampling;
+    }
+    return space;
   }
 
   function uncertaintyJson() {
@@ -260,13 +270,19 @@
 
   function showOptimum(result) {
     const out = $("optimize-result");
-    const b = result.best;
+    const b = result.robust ? result.robust.design : result.best;
+    if (result.robust && !b) { out.textContent = `robust design: ${result.robust.status}: ${result.robust.reason}`; return; }
     if (!b) { out.textContent = `${result.status}: ${result.reason}`; return; }
     out.innerHTML = "";
     out.append(`${result.status}: n = ${b.needles_per_row}, D1 = ${b.tip_diameter_um} um, D2 = ${b.base_diameter_um} um` +
                (b.bore_diameter_um > 0 ? `, D3 = ${b.bore_diameter_um} um` : "") +
                `, w = ${b.width_um} um, L = ${b.length_um} um: PI = ${Number(b.performance_index_per_um).toPrecision(6)}` +
                ` 1/um (${result.grid_points} grid points, ${Number(result.seconds).toFixed(2)} s) `);
+    if (result.robust) {
+      out.append(`robust: P(success) = ${Number(b.success_probability).toFixed(4)} >= ` +
+                 `${result.robust.min_success_probability} after ${result.robust.candidates_checked} candidates; ` +
+                 `it costs ${Number(result.robust.index_cost_percent).toPrecision(3)} % of the nominal optimum's index `);
+    }
     const use = document.createElement("button");
     use.type = "button";
     use.id = "use-optimum";
@@ -326,6 +342,8 @@
       row.insertCell().textContent = value;
     }
     $("patch-result").textContent = `done: ${s.penetrating} of ${s.needles} needles penetrate`;
+    if (patchView) patchView.dispose();
+    patchView = s.view ? window.needlekitViewer.mount(s.view, $("patch-view")) : null;
   }
 
   // An OBJ, STL or PLY file from this computer: the server keeps it in its own temporary file and lists it.
@@ -403,7 +421,7 @@
     $("p-mesh").addEventListener("change", () => chooseMesh(meshes));
     chooseMesh(meshes);
     $("upload-mesh").addEventListener("click", () => upload(meshes));
-    $("run-patch").addEventListener("click", () => runJob("patch", "/api/patch", patchJson(), showPatch));
+    $("run-patch").addEventListener("click", () => runJob("patch", "/api/patch?view=true", patchJson(), showPatch));
     view = makeView();
     for (const slider of document.querySelectorAll("input[type=range]")) {
       slider.addEventListener("input", () => {
@@ -436,6 +454,7 @@
   }
 
   // For scripts and the browser tests: the design as the page would send it, and as the TOML it downloads.
-  window.needlekitDesign = { designJson, patchJson, tomlText: () => tomlText(designJson()), evaluate };
+  window.needlekitDesign = { designJson, patchJson, spaceJson, tomlText: () => tomlText(designJson()), evaluate,
+                              patchView: () => patchView };
   window.addEventListener("DOMContentLoaded", start);
 })();

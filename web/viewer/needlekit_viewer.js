@@ -10,8 +10,10 @@
                  [0.164, 0.471, 0.558], [0.128, 0.567, 0.551], [0.135, 0.659, 0.518], [0.267, 0.749, 0.441],
                  [0.478, 0.821, 0.318], [0.741, 0.873, 0.150], [0.993, 0.906, 0.144]];
   var NEEDLE_GREY = [0.55, 0.57, 0.62];
+  // A patch needle's status (src/io/patch_view.cpp) and an array needle's puncture state (src/io/indentation_view.cpp).
   var STATUS_COLOURS = {ok: [0.20, 0.63, 0.17], no_surface: [0.6, 0.6, 0.6], short: [0.99, 0.55, 0.38],
-                        too_shallow: [0.99, 0.75, 0.44], buckles: [0.89, 0.10, 0.11], bends: [0.60, 0.31, 0.64]};
+                        too_shallow: [0.99, 0.75, 0.44], buckles: [0.89, 0.10, 0.11], bends: [0.60, 0.31, 0.64],
+                        intact: [0.19, 0.42, 0.74], punctured: [0.84, 0.15, 0.16]};
 
   function colourAt(t) {
     if (!(t >= 0)) t = 0;
@@ -80,6 +82,7 @@
 
   View.prototype.buildPage = function (host) {
     var view = this, data = this.data;
+    this.host = host;
     host.classList.add("nk-view");
     host.setAttribute("data-view-name", data.name);
     element("div", "nk-title", host, data.title);
@@ -97,6 +100,10 @@
         option.value = String(i);
       });
       this.select.addEventListener("change", function () { view.refresh(); });
+      // An FE run with each needle's puncture state (an array) opens on it.
+      if (data.kind === "indentation") {
+        choices.forEach(function (choice, i) { if (choice.kind === "status") view.select.value = String(i); });
+      }
     }
     this.choices = choices;
     if (data.steps.length > 1) {
@@ -125,9 +132,9 @@
       table.columns.forEach(function (column, index) {
         if (column.colour) choices.push({kind: "needle", column: index, label: "needles: " + column.label, unit: column.unit});
       });
-      if (table.columns.some(function (c) { return c.key === "status"; })) {
-        choices.push({kind: "status", label: "needles: status", unit: ""});
-      }
+      table.columns.forEach(function (column) {
+        if (column.key === "status") choices.push({kind: "status", label: "needles: " + column.label, unit: ""});
+      });
     }
     return choices;
   };
@@ -313,18 +320,22 @@
     });
   };
 
+  // The legend names the states the column holds (at any step), with the count of needles in each at this step.
   View.prototype.needleStatusColours = function () {
-    var table = this.data.needles.table, column = -1;
+    var view = this, table = this.data.needles.table, column = -1;
     table.columns.forEach(function (c, i) { if (c.key === "status") column = i; });
+    var states = this.needleMeshes.map(function (mesh) { return view.cell(table.rows[mesh.userData.needle], column); });
+    var present = {};
+    table.rows.forEach(function (row) { [].concat(row[column]).forEach(function (s) { present[s] = 0; }); });
+    states.forEach(function (s) { present[s] += 1; });
     this.bar.innerHTML = "";
     element("span", "nk-bar-label", this.bar, "status:");
-    Object.keys(STATUS_COLOURS).forEach(function (name) {
-      var c = STATUS_COLOURS[name], chip = element("span", "nk-chip", this.bar, name);
+    Object.keys(STATUS_COLOURS).filter(function (name) { return name in present; }).forEach(function (name) {
+      var c = STATUS_COLOURS[name], chip = element("span", "nk-chip", this.bar, name + " " + present[name]);
+      chip.setAttribute("data-status", name);
       chip.style.borderColor = "rgb(" + c.map(function (x) { return Math.round(255 * x); }).join(",") + ")";
     }, this);
-    return this.needleMeshes.map(function (mesh) {
-      return STATUS_COLOURS[table.rows[mesh.userData.needle][column]] || NEEDLE_GREY;
-    });
+    return states.map(function (s) { return STATUS_COLOURS[s] || NEEDLE_GREY; });
   };
 
   // A click on a needle shows its row of the table.
@@ -360,6 +371,14 @@
     this.renderer.render(this.scene, this.camera);
   };
 
+  // Frees the WebGL context and empties the host (a page that shows one fit after another).
+  View.prototype.dispose = function () {
+    this.controls.dispose();
+    this.renderer.dispose();
+    this.renderer.forceContextLoss();
+    this.host.innerHTML = "";
+  };
+
   // Mounts every view of window.needlekitViews: into the element with data-needlekit-view="NAME" if the page has
   // one, else into a new element appended to `container`.
   function mountAll(container) {
@@ -375,5 +394,10 @@
     return mounted;
   }
 
-  window.needlekitViewer = {mountAll: mountAll, decode: decode, mounted: []};
+  // One view of `data` (a needlekit-view/1 object, e.g. the "view" of a patch job of `needlekit serve`) in `host`.
+  function mount(data, host) {
+    return new View(data, host);
+  }
+
+  window.needlekitViewer = {mountAll: mountAll, mount: mount, decode: decode, mounted: []};
 })();

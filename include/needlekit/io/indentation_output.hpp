@@ -53,9 +53,9 @@ nlohmann::json indentation_json(const insertion::IndentationCase& indentation_ca
 // Writes DIR/NAME.pvd, DIR/NAME_step_KKK.vtu (tissue), DIR/NAME_needles_step_KKK.vtu, NAME_force_depth.csv and
 // NAME_solver_steps.csv after each step, so that a run that stops keeps every completed step, with NAME_result.json
 // of the steps so far and "status": "incomplete" (a run that was interrupted or killed leaves it so); finish()
-// rewrites the CSV files and writes NAME_puncture.json, the per-needle NAME_needles.csv and NAME_needle_map.vtu
-// (io/array_output.hpp) and the final NAME_result.json. Every file is written to a
-// temporary name and renamed. The constructor creates the directory (IoError naming it when it cannot be written).
+// rewrites the CSV files and the view (with each needle's puncture state and depth) and writes NAME_puncture.json,
+// the per-needle NAME_needles.csv and NAME_needle_map.vtu (io/array_output.hpp) and the final NAME_result.json. Every
+// file is written to a temporary name and renamed. The constructor creates the directory (IoError naming it when it cannot be written).
 class IndentationWriter {
 public:
   IndentationWriter(std::filesystem::path directory, const insertion::IndentationCase& indentation_case);
@@ -68,6 +68,8 @@ public:
   void finish(const insertion::IndentationResult& result);
   // Every file written so far.
   const std::vector<std::filesystem::path>& files() const { return files_; }
+  // Counts a file the caller wrote beside the outputs (the array's needle-map PNG) among files().
+  void remember(const std::filesystem::path& path);
 
 private:
   std::filesystem::path directory_;
@@ -79,7 +81,6 @@ private:
   insertion::IndentationResult partial_;  // the steps written so far
   std::optional<IndentationView> view_;
   ViewerFiles viewer_files_;
-  void remember(const std::filesystem::path& path);
   void write_curves(const insertion::IndentationResult& result);
   void write_result(const nlohmann::json& json);
 };

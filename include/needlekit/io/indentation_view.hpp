@@ -34,6 +34,13 @@ public:
   // (N) and the surface values (surface_step).
   void add_step(const insertion::IndentationStep& step, double indenter_displacement, SurfaceStep surface);
 
+  // Each needle's outcome over the run (IndentationResult::needles, one per needle of the case, its per-step values
+  // indexed as the steps added): the table then also holds, per needle, its puncture state ("status": "intact" or
+  // "punctured", per step), its tip depth below the undeformed surface ("depth_um", per step), its inserted depth
+  // (its travel beyond its puncture depth, "inserted_depth_um", per step, a colour), the step it punctured in
+  // ("puncture_step", null when it did not) and its puncture depth.
+  void set_outcomes(std::vector<insertion::NeedleOutcome> needles);
+
   const TissueViewSurface& surface() const { return boundary_; }
   int steps() const { return static_cast<int>(steps_.size()); }
   // The view as JSON: {"format": "needlekit-view/1", "kind": "indentation", "name", "title", "steps": [{"label",
@@ -53,6 +60,7 @@ private:
   mesh::TetMesh tissue_;
   TissueViewSurface boundary_;
   std::vector<Step> steps_;
+  std::vector<insertion::NeedleOutcome> outcomes_;
   nlohmann::json needles_json(const std::vector<int>& kept) const;
 };
 

@@ -8,6 +8,7 @@
 // design failed the check. Only the `max_candidates` best designs are checked; if none of them meets the level
 // the result says so (status NotFound) with what was checked.
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,12 @@ struct RobustDesignOptions {
   PropagationOptions sampling;            // per candidate (Sobol' indices are not computed)
   analysis::OptimizerOptions optimizer;   // brute force; `top` is replaced by max_candidates
   int max_candidates = 2000;              // >= 1: nominal designs checked at most, best first
+  // Called with the fraction done in [0, 1], never decreasing, from one thread at a time: the nominal ranking is the
+  // first kRankingShare of it, candidate c of K ranked the part (c, c + 1) / K of the rest (1 once a design meets the
+  // level). Return false to stop: robust_design throws needlekit::Interrupted. It replaces optimizer.progress and
+  // sampling.progress.
+  std::function<bool(double)> progress;
+  static constexpr double kRankingShare = 0.2;
 };
 
 enum class RobustStatus {
@@ -52,7 +59,7 @@ DesignCase candidate_case(const analysis::DesignSpace& space, const analysis::De
                           const analysis::OptimizerOptions& optimizer);
 
 // Throws InvalidInput for an invalid space or inputs (as optimize_design and design_uncertainty), a level outside
-// (0, 1] or max_candidates < 1.
+// (0, 1] or max_candidates < 1; Interrupted when options.progress returns false.
 RobustDesignResult robust_design(const analysis::DesignSpace& space, const std::vector<DesignUncertainInput>& inputs,
                                  const std::vector<Correlation>& correlations, const RobustDesignOptions& options = {});
 
