@@ -87,6 +87,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/io/json_config.cpp
   src/io/json_text.cpp
   src/io/mesh_attribution.cpp
+  src/io/parameter_reference.cpp
   src/io/patch_config.cpp
   src/io/patch_run.cpp
   src/io/patch_uncertainty_config.cpp
@@ -169,6 +170,7 @@ set(NEEDLEKIT_CLI_SOURCES
   apps/needlekit/blas_kernels.cpp
   apps/needlekit/child_process.cpp
   apps/needlekit/command_calibrate.cpp
+  apps/needlekit/command_describe.cpp
   apps/needlekit/command_evaluate.cpp
   apps/needlekit/command_indent.cpp
   apps/needlekit/command_insert.cpp
@@ -219,6 +221,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_line_search.cpp
   tests/unit/test_needle_array.cpp
   tests/unit/test_optimizer_progress.cpp
+  tests/unit/test_parameter_tables.cpp
   tests/unit/test_patch.cpp
   tests/unit/test_performance_index.cpp
   tests/unit/test_post_puncture.cpp

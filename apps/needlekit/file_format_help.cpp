@@ -5,7 +5,9 @@
 
 #include "needlekit/analysis/buckling.hpp"
 #include "needlekit/analysis/puncture_force_law.hpp"
+#include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
@@ -22,16 +24,17 @@ std::string quoted_list(const std::vector<std::string>& names) {
   return text;
 }
 
-// "  residual_tolerance = 1e-06   in (0, 1): meaning" per [solver] setting, from its declaration.
+// "  residual_tolerance = 1e-06   in (0, 1): meaning" per [solver] setting that is not a choice (the choices are
+// listed with their names), from fem::kSolverParameters.
 std::string solver_settings_help() {
   std::string text;
-  const auto line = [&](const auto& parameter) {
-    text += fmt::format("  {:<34} {}: {}\n", fmt::format("{} = {:g}", parameter.key,
-                                                           static_cast<double>(parameter.default_value())),
-                        parameter.range(), parameter.meaning);
-  };
-  for (const auto& parameter : io::kSolverTolerances) line(parameter);
-  for (const auto& parameter : io::kSolverCounts) line(parameter);
+  constexpr std::string_view kGroup = "solver.";
+  for (const ParameterText& parameter : parameter_texts(fem::kSolverParameters, io::case_solver_defaults())) {
+    if (!parameter.key.starts_with(kGroup) || parameter.kind == "choice") continue;
+    const std::string_view key = std::string_view(parameter.key).substr(kGroup.size());
+    text += fmt::format("  {:<34} {}: {}\n", fmt::format("{} = {}", key, parameter.default_text),
+                        parameter.range, parameter.meaning);
+  }
   return text;
 }
 
@@ -137,21 +140,24 @@ std::string indentation_case_help() {
                boundary = {}
                (default sides-and-bottom-fixed)
   [solver]     optional: predictor = {}, linear_solver = {},
-               volumetric = {}, and the settings below (shown with their defaults)
+               volumetric = {}, backend = {}, and the settings below (shown with their defaults;
+               `needlekit describe solver.KEY` for one, docs/reference.md for all)
   [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = {{ first = "a.csv",
                second = "b.csv", crack_area = "6661 um2" }} (Eq 3.16 from two insertions; CSV depth_um,force_N)
 Choices:
-{}{}{}{}{}{}{}{}{}Settings of [solver]:
+{}{}{}{}{}{}{}{}{}{}Settings of [solver]:
 {})",
       needle::kTypicalEdgeRadius * 1e6, needle::kTypicalEdgeRadius * 1e6, choices_of(insertion::kArrayLayoutNames),
       choices_of(insertion::kArraySymmetryNames), array_settings_help(), quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
       choices_of(fem::kContactModelNames), choices_of(fem::kElementOrderNames), choices_of(fem::kBoundaryConditionNames),
-      choices_of(io::kPredictorNames), choices_of(fem::kLinearSolverNames),
-      choices_of(fem::kVolumetricFormulationNames), meanings_of(fem::kMaterialLawNames, "law"),
+      choices_of(fem::kPredictorNames), choices_of(fem::kLinearSolverNames),
+      choices_of(fem::kVolumetricFormulationNames), choices_of(fem::kSolverBackendNames),
+      meanings_of(fem::kMaterialLawNames, "law"),
       meanings_of(fem::kContactModelNames, "contact"), meanings_of(fem::kElementOrderNames, "element"),
-      meanings_of(fem::kBoundaryConditionNames, "boundary"), meanings_of(io::kPredictorNames, "predictor"),
+      meanings_of(fem::kBoundaryConditionNames, "boundary"), meanings_of(fem::kPredictorNames, "predictor"),
       meanings_of(fem::kLinearSolverNames, "linear_solver"),
-      meanings_of(fem::kVolumetricFormulationNames, "volumetric"), meanings_of(insertion::kArrayLayoutNames, "layout"),
+      meanings_of(fem::kVolumetricFormulationNames, "volumetric"), meanings_of(fem::kSolverBackendNames, "backend"),
+      meanings_of(insertion::kArrayLayoutNames, "layout"),
       meanings_of(insertion::kArraySymmetryNames, "symmetry"), solver_settings_help());
 }
 

@@ -9,6 +9,7 @@
 #include <exception>
 
 #include "blas_kernels.hpp"
+#include "command_describe.hpp"
 #include "commands.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   needlekit::cli::add_uncertainty_command(app);
   needlekit::cli::add_calibrate_command(app);
   needlekit::cli::add_serve_command(app);
+  needlekit::cli::add_describe_command(app);
   app.footer("Run `needlekit COMMAND --help` for the options and input formats of a command.");
 
   try {

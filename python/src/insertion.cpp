@@ -1,6 +1,8 @@
 // needlekit/insertion: indentation cases and runs (progress callbacks, GIL released, Ctrl-C stops the run, optional
 // ParaView output), puncture points, post-puncture loads and the complete insertion curve.
 #include "common.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
+#include "parameters.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/insertion/insertion_curve.hpp"
@@ -80,26 +82,15 @@ void bind_indentation(py::module_& m) {
       .value("SymmetryPlanes", fem::BoundaryCondition::SymmetryPlanes)
       .value("QuarterSymmetry", fem::BoundaryCondition::QuarterSymmetry)
       .value("HalfSymmetry", fem::BoundaryCondition::HalfSymmetry);
+  py::enum_<fem::VolumetricFormulation>(m, "VolumetricFormulation")
+      .value("Automatic", fem::VolumetricFormulation::Automatic)
+      .value("Element", fem::VolumetricFormulation::Element)
+      .value("NodalAverage", fem::VolumetricFormulation::NodalAverage);
+  py::enum_<fem::SolverBackend>(m, "SolverBackend")
+      .value("Builtin", fem::SolverBackend::Builtin)
+      .value("Petsc", fem::SolverBackend::Petsc);
   py::class_<SolverOptions> solver(m, "SolverOptions", "The FE solver's law, elements, contact and tolerances (§3.4).");
-  def_keyword_init<SolverOptions>(solver);
-  solver.def_readwrite("law", &SolverOptions::law)
-      .def_readwrite("order", &SolverOptions::order)
-      .def_readwrite("contact", &SolverOptions::contact)
-      .def_readwrite("boundary", &SolverOptions::boundary)
-      .def_readwrite("residual_tolerance", &SolverOptions::residual_tolerance, "(0, 1)")
-      .def_readwrite("displacement_tolerance", &SolverOptions::displacement_tolerance, "(0, 1)")
-      .def_readwrite("energy_tolerance", &SolverOptions::energy_tolerance, "(0, 1)")
-      .def_readwrite("max_iterations", &SolverOptions::max_iterations, ">= 0 (0: 25, or 60 with surface contact)")
-      .def_readwrite("max_cutbacks", &SolverOptions::max_cutbacks, ">= 0")
-      .def_readwrite("linear_solver", &SolverOptions::linear_solver)
-      .def_readwrite("penalty_factor", &SolverOptions::penalty_factor, "> 0")
-      .def_readwrite("friction", &SolverOptions::friction, ">= 0: Coulomb coefficient (surface contact)")
-      .def_readwrite("two_pass", &SolverOptions::two_pass, "surface contact: the needle's sharp edges against the tissue's faces too")
-      .def_readwrite("penetration_tolerance", &SolverOptions::penetration_tolerance, "(0, 1)")
-      .def_readwrite("volumetric_stabilization", &SolverOptions::volumetric_stabilization,
-                     ">= 0: with the nodal-averaged volume, the bulk modulus each tetrahedron keeps, in multiples of "
-                     "its shear modulus")
-      .def_readwrite("threads", &SolverOptions::threads, "0: all cores");
+  def_parameters<SolverOptions>(solver, fem::kSolverParameters);  // every field but the progress callback
 
   py::class_<NeedleSite> site(m, "NeedleSite");
   def_keyword_init<NeedleSite>(site);

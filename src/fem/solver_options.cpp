@@ -1,10 +1,8 @@
 // Names of the solver's enums and the validation of its options.
-#include <cmath>
-#include <sstream>
-
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/parallel_session.hpp"
 #include "needlekit/fem/solver_options.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
 
 namespace needlekit::fem {
 
@@ -33,16 +31,6 @@ VolumetricFormulation volumetric_formulation_from_string(const std::string& t, c
   return value_of(kVolumetricFormulationNames, t, what);
 }
 
-namespace {
-template <class T>
-void check(bool ok, const char* field, T value, const char* expected) {
-  if (ok) return;
-  std::ostringstream s;
-  s << "solver " << field << " = " << value << ": expected " << expected;
-  throw InvalidInput(s.str());
-}
-}  // namespace
-
 int newton_iteration_limit(const SolverOptions& o) {
   if (o.max_iterations > 0) return o.max_iterations;
   return o.contact == ContactModel::Surface ? kSurfaceContactNewtonIterations : kNewtonIterations;
@@ -59,24 +47,7 @@ bool nodal_average_applies(const SolverOptions& o, double poisson_ratio) {
 }
 
 void SolverOptions::validate() const {
-  check(residual_tolerance > 0 && residual_tolerance < 1, "residual_tolerance", residual_tolerance, "(0, 1)");
-  check(displacement_tolerance > 0 && displacement_tolerance < 1, "displacement_tolerance", displacement_tolerance,
-        "(0, 1)");
-  check(energy_tolerance > 0 && energy_tolerance < 1, "energy_tolerance", energy_tolerance, "(0, 1)");
-  check(max_iterations >= 0, "max_iterations", max_iterations, ">= 0");
-  check(max_cutbacks >= 0, "max_cutbacks", max_cutbacks, ">= 0");
-  check(penalty_factor > 0, "penalty_factor", penalty_factor, "> 0");
-  check(penetration_tolerance > 0 && penetration_tolerance < 1, "penetration_tolerance", penetration_tolerance,
-        "(0, 1)");
-  check(max_augmentations >= 0, "max_augmentations", max_augmentations, ">= 0");
-  check(friction >= 0 && std::isfinite(friction), "friction", friction, ">= 0");
-  check(boundary_tolerance >= 0, "boundary_tolerance", boundary_tolerance, ">= 0");
-  check(max_reuse_iterations >= 1, "max_reuse_iterations", max_reuse_iterations, ">= 1");
-  check(linear_tolerance > 0 && linear_tolerance < 1, "linear_tolerance", linear_tolerance, "(0, 1)");
-  check(threads >= 0, "threads", threads, ">= 0");
-  check(volumetric_stabilization >= 0 && std::isfinite(volumetric_stabilization), "volumetric_stabilization",
-        volumetric_stabilization, ">= 0");
-  check(two_grid_refresh_iterations >= 1, "two_grid_refresh_iterations", two_grid_refresh_iterations, ">= 1");
+  check_ranges(kSolverParameters, *this, "solver");  // each number against its row's range
   if (!backend_compiled(backend))
     throw InvalidInput("solver backend = \"" + to_string(backend) + "\": this build has no such backend, expected " +
                        compiled_backend_names() + " (PETSc: configure with -DNEEDLEKIT_WITH_PETSC=ON)");

@@ -4,8 +4,10 @@
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
-#include "tissue_config_toml.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/io/toml_config.hpp"
+#include "tissue_config_toml.hpp"
+#include "toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -188,63 +190,12 @@ void apply_array(const toml::table& root, const Section& top, const Section& sec
 
 // ---- the rest -----------------------------------------------------------------------------------------------------
 
-void read_model(const Section& section, fem::SolverOptions& solver) {
-  if (const toml::node* node = section.optional("law")) {
-    solver.law = choice_of(section, *node, "law", fem::kMaterialLawNames);
-  }
-  if (const toml::node* node = section.optional("contact")) {
-    solver.contact = choice_of(section, *node, "contact", fem::kContactModelNames);
-  }
-  if (const toml::node* node = section.optional("element")) {
-    solver.order = choice_of(section, *node, "element", fem::kElementOrderNames);
-  }
-  if (const toml::node* node = section.optional("boundary")) {
-    solver.boundary = choice_of(section, *node, "boundary", fem::kBoundaryConditionNames);
-  }
-}
-
-// [solver]: Newton tolerances and strategy (fem::SolverOptions; defaults and meanings in quasi_static_solver.hpp).
-// Into c.solver; c's tissue tells whether the nodal-averaged volume applies to any of its layers.
+// [solver]: the rows of fem::kSolverParameters in group "solver", then the checks between them. Into c.solver; c's
+// tissue tells whether the nodal-averaged volume applies to any of its layers.
 void read_solver(const Section& section, insertion::IndentationCase& c) {
   fem::SolverOptions& solver = c.solver;
-  for (const auto& parameter : kSolverTolerances) {  // declared once in indentation_case.hpp
-    if (const toml::node* node = section.optional(parameter.key)) {
-      if (!node->is_number()) {
-        section.fail(*node, parameter.key,
-                     fmt::format("{} is not a number, expected a number {}", describe(*node), parameter.range()));
-      }
-      const double value = *node->value<double>();
-      if (!parameter.accepts(value)) {
-        section.fail(*node, parameter.key,
-                     fmt::format("{} is out of range, expected a number {}", describe(*node), parameter.range()));
-      }
-      solver.*parameter.field = value;
-    }
-  }
-  for (const auto& parameter : kSolverCounts) {
-    if (const toml::node* node = section.optional(parameter.key)) {
-      const std::int64_t value = integer_of(section, *node, parameter.key);
-      if (!parameter.accepts(static_cast<double>(value)) || value > INT_MAX) {
-        section.fail(*node, parameter.key,
-                     fmt::format("{} is out of range, expected an integer {}", value, parameter.range()));
-      }
-      solver.*parameter.field = static_cast<int>(value);
-    }
-  }
-  if (const toml::node* node = section.optional("two_pass")) {
-    solver.two_pass = boolean_of(section, *node, "two_pass");
-  }
-  if (const toml::node* node = section.optional("predictor")) {
-    solver.extrapolate_predictor = choice_of(section, *node, "predictor", kPredictorNames);
-  }
-  if (const toml::node* node = section.optional("linear_solver")) {
-    solver.linear_solver = choice_of(section, *node, "linear_solver", fem::kLinearSolverNames);
-  }
-  if (const toml::node* node = section.optional("volumetric")) {
-    solver.volumetric = choice_of(section, *node, "volumetric", fem::kVolumetricFormulationNames);
-  }
+  read_parameters(section, fem::kSolverParameters, "solver", solver);
   if (const toml::node* node = section.optional("backend")) {
-    solver.backend = choice_of(section, *node, "backend", fem::kSolverBackendNames);
     if (!fem::backend_compiled(solver.backend)) {
       section.fail(*node, "backend",
                    fmt::format("\"{}\" is not in this build, expected {} (PETSc: configure with "
@@ -266,7 +217,7 @@ void read_solver(const Section& section, insertion::IndentationCase& c) {
     }
   }
   if (solver.contact != fem::ContactModel::Surface) {  // settings of the surface contact: not silently ignored
-    for (std::string_view key : {"penalty_factor", "penetration_tolerance", "friction", "two_pass"}) {
+    for (std::string_view key : {"penalty_factor", "penetration_tolerance", "max_augmentations", "friction", "two_pass"}) {
       if (const toml::node* node = section.optional(key)) {
         section.fail(*node, key,
                      fmt::format("applies only to [model] contact = \"surface\", but contact = \"{}\"; remove it",
@@ -306,6 +257,13 @@ double two_insertion_toughness_of(const Section& puncture, const toml::node& nod
 
 }  // namespace
 
+fem::SolverOptions case_solver_defaults() {
+  fem::SolverOptions options;
+  options.law = fem::MaterialLaw::NeoHookean;
+  options.contact = fem::ContactModel::Surface;
+  return options;
+}
+
 insertion::IndentationCase parse_indentation_case_toml(std::string_view text, std::string_view source_name,
                                                        const std::filesystem::path& base_directory) {
   const std::string file(source_name);
@@ -316,8 +274,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   insertion::IndentationCase result;
   result.name = std::filesystem::path(file).stem().string();
   if (const toml::node* node = top.optional("name")) result.name = text_of(top, *node, "name", "a case name");
-  result.solver.law = fem::MaterialLaw::NeoHookean;
-  result.solver.contact = fem::ContactModel::Surface;
+  result.solver = case_solver_defaults();
 
   const Section needle = top.required_subsection(
       "needle", {"shape", "tip_diameter", "base_diameter", "bore_diameter", "length", "material", "mesh", "mesh_unit",
@@ -371,14 +328,12 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   if (const toml::node* node = loading.optional("continue_after_puncture")) {
     result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
   }
-  if (const auto model = top.optional_subsection("model", {"law", "contact", "element", "boundary"})) {
-    read_model(*model, result.solver);
+  if (const toml::node* node = top.optional("model")) {
+    read_parameters(top.subsection(*node, "model", keys_of_group(fem::kSolverParameters, "model")),
+                    fem::kSolverParameters, "model", result.solver);
   }
   if (const toml::node* node = top.optional("solver")) {
-    std::vector<std::string_view> keys{"predictor", "linear_solver", "volumetric", "two_pass", "backend"};
-    for (const auto& parameter : kSolverTolerances) keys.push_back(parameter.key);
-    for (const auto& parameter : kSolverCounts) keys.push_back(parameter.key);
-    read_solver(top.subsection(*node, "solver", keys), result);
+    read_solver(top.subsection(*node, "solver", keys_of_group(fem::kSolverParameters, "solver")), result);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
     result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);

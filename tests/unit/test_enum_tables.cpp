@@ -11,7 +11,7 @@
 #include "needlekit/analysis/sensitivity_sweep.hpp"
 #include "needlekit/core/enum_table.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
-#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/patch_placement.hpp"
@@ -70,7 +70,7 @@ TEST(EnumTables, EveryTableIsWellFormedAndToStringReadsIt) {
   expect_well_formed(analysis::kEffectiveLengthNames);
   expect_well_formed(analysis::kSweepParameterNames);
   for (const auto& entry : analysis::kSweepParameterNames) EXPECT_EQ(analysis::to_string(entry.value), entry.name);
-  expect_well_formed(io::kPredictorNames);
+  expect_well_formed(fem::kPredictorNames);
 }
 
 TEST(EnumTables, ChoicesAndMeaningsAreFormattedForTheHelp) {

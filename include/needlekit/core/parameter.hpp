@@ -1,16 +1,29 @@
 // One declaration per parameter (FEBio's parameter lists are the model): the key it has in files, the field of the
-// Options struct it sets (whose initializer is the default: declared there, nowhere else), its valid range and a
-// one-line meaning. The config readers, their range checks and the CLI help all read the declaration.
+// Options struct it sets (whose initializer is the default: declared there, nowhere else), its valid range, its unit
+// and a one-line meaning. An Options struct's table is a std::tuple of such rows, one per field, of three kinds:
+//   Parameter<Options, double|int>  a number, with its range and (for a quantity) its dimension
+//   Flag<Options>                   true or false
+//   Choice<Options, Enum, N>        one of the names of an enum's table (core/enum_table.hpp)
+// The config readers, their range checks, the validation of the struct, the CLI help, `needlekit describe`,
+// docs/reference.md and the Python keyword arguments all read the table (core/parameter_text.hpp turns rows into
+// text), and a test checks with field_count that every field of the struct has a row.
 //
-//   inline constexpr Parameter<fem::SolverOptions, double> kResidualTolerance{
-//       "residual_tolerance", &fem::SolverOptions::residual_tolerance, 0, 1, Bound::Open, Bound::Open, "..."};
+//   inline constexpr std::tuple kSolverParameters{
+//       Parameter<SolverOptions, double>{"residual_tolerance", &SolverOptions::residual_tolerance, 0, 1, Bound::Open,
+//                                        Bound::Open, "Newton: ...", "solver"},
+//       Flag<SolverOptions>{"two_pass", &SolverOptions::two_pass, "surface contact: ...", "solver"}, ...};
 #pragma once
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 #include <string_view>
+#include <tuple>
+
+#include "needlekit/core/enum_table.hpp"
+#include "needlekit/core/units.hpp"
 
 namespace needlekit {
 
@@ -26,6 +39,11 @@ struct Parameter {
   Bound min_bound = Bound::Closed;
   Bound max_bound = Bound::Closed;
   std::string_view meaning;
+  std::string_view group = "";  // the table of the file it is written in ("solver"); "" for none
+  units::Dimension dimension = units::Dimension::Dimensionless;  // a quantity: written with a unit in files
+  std::string_view name = "";   // the field's name in C++ and Python where it is not the key
+
+  std::string_view attribute() const { return name.empty() ? key : name; }
 
   // The default: the field's initializer in Options.
   Value default_value() const { return Options{}.*field; }
@@ -49,5 +67,67 @@ struct Parameter {
     return "any";
   }
 };
+
+template <class Options>
+struct Flag {
+  std::string_view key;
+  bool Options::*field;
+  std::string_view meaning;
+  std::string_view group = "";
+  std::string_view name = "";
+
+  std::string_view attribute() const { return name.empty() ? key : name; }
+};
+
+template <class Options, class Value, std::size_t N>
+struct Choice {
+  std::string_view key;
+  Value Options::*field;
+  const EnumTable<Value, N>* names;
+  std::string_view meaning;
+  std::string_view group = "";
+  std::string_view name = "";
+
+  std::string_view attribute() const { return name.empty() ? key : name; }
+};
+
+// Calls visit(row) for every row of a table (a std::tuple of rows), in order.
+template <class Table, class Visit>
+constexpr void for_each_parameter(const Table& table, Visit&& visit) {
+  std::apply([&](const auto&... row) { (visit(row), ...); }, table);
+}
+
+// The number of fields of an aggregate: what Boost.PFR's tuple_size gives (Debian 12's default Boost, 1.74, predates
+// PFR, and libboost1.81-dev would replace it for every build on the machine). T{f, f, ...} with one more `f` that
+// converts to any field type until the braces no longer initialize T.
+namespace detail {
+struct AnyField {
+  template <class T>
+  constexpr operator T&() const noexcept {  // only named in unevaluated requires-expressions
+    return *static_cast<T*>(nullptr);
+  }
+};
+}  // namespace detail
+template <class T, class... Fields>
+consteval std::size_t field_count() {
+  if constexpr (requires { T{Fields{}..., detail::AnyField{}}; }) {
+    return field_count<T, Fields..., detail::AnyField>();
+  } else {
+    return sizeof...(Fields);
+  }
+}
+
+// Throws InvalidInput "WHAT KEY = VALUE: expected RANGE" for the first number of `options` outside its row's range.
+template <class Options, class Table>
+void check_ranges(const Table& table, const Options& options, std::string_view what) {
+  for_each_parameter(table, [&](const auto& row) {
+    if constexpr (requires { row.accepts(0.0); }) {
+      const double value = static_cast<double>(options.*row.field);
+      if (!row.accepts(value)) {
+        throw InvalidInput(fmt::format("{} {} = {:g}: expected {}", what, row.attribute(), value, row.range()));
+      }
+    }
+  });
+}
 
 }  // namespace needlekit

@@ -1,0 +1,36 @@
+// Python properties from a parameter table (core/parameter.hpp): every row of the table becomes a property of the
+// bound class, named after the field, with its unit, range, meaning and default as its docstring; the class's
+// docstring lists every keyword of its constructor. Quantities accept strings with units ("1e-9 m") as well as SI floats.
+#pragma once
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "common.hpp"
+#include "needlekit/core/parameter_text.hpp"
+
+namespace needlekit::python {
+
+template <class Options, class Class, class Table>
+void def_parameters(Class& cls, const Table& table) {
+  const std::vector<ParameterText> texts = parameter_texts<Options>(table);
+  std::string keywords;
+  std::size_t index = 0;
+  for_each_parameter(table, [&](const auto& row) {
+    const ParameterText& text = texts[index++];
+    const std::string doc = docstring_of(text);
+    const char* name = row.attribute().data();  // the views of the table's string literals end in '\0'
+    keywords += fmt::format("\n  {}: {}", text.name, doc);
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(row.field)>, double Options::*>) {
+      if (row.dimension != Dimension::Dimensionless) {
+        def_quantity(cls, name, row.field, row.dimension, doc.c_str());
+        return;
+      }
+    }
+    cls.def_readwrite(name, row.field, doc.c_str());
+  });
+  def_keyword_init<Options>(cls);
+  cls.doc() = std::string(py::str(cls.doc())) + "\n\nKeywords (every field):" + keywords;
+}
+
+}  // namespace needlekit::python

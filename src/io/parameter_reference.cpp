@@ -1,0 +1,89 @@
+#include "needlekit/io/parameter_reference.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "needlekit/core/errors.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/io/indentation_case.hpp"
+
+namespace needlekit::io {
+namespace {
+
+std::string escaped_for_table(std::string text) {
+  std::string escaped;
+  for (char c : text) {
+    if (c == '|') escaped += '\\';
+    escaped += c;
+  }
+  return escaped;
+}
+
+std::string description_of(const ParameterText& parameter, std::string_view options) {
+  std::string text = fmt::format("{}\n  {}\n", parameter.key, parameter.meaning);
+  text += fmt::format("  kind:    {}\n", parameter.kind);
+  text += fmt::format("  unit:    {}\n", parameter.unit.empty() ? "none" : parameter.unit);
+  text += fmt::format("  default: {}\n", parameter.default_text);
+  text += fmt::format("  range:   {}\n", parameter.range);
+  text += fmt::format("  Python:  {}.{}\n", options, parameter.name);
+  if (!parameter.choices.empty()) text += "  choices:\n" + parameter.choices;
+  return text;
+}
+
+}  // namespace
+
+std::vector<ParameterGroup> parameter_reference() {
+  return {
+      {"indentation cases (`needlekit indent`), [model] and [solver]", "SolverOptions",
+       parameter_texts(fem::kSolverParameters, case_solver_defaults())},
+  };
+}
+
+std::vector<std::string> parameter_keys() {
+  std::vector<std::string> keys;
+  for (const ParameterGroup& group : parameter_reference()) {
+    for (const ParameterText& parameter : group.parameters) keys.push_back(parameter.key);
+  }
+  return keys;
+}
+
+std::string described(std::string_view key) {
+  for (const ParameterGroup& group : parameter_reference()) {
+    for (const ParameterText& parameter : group.parameters) {
+      if (parameter.key == key) return description_of(parameter, group.options);
+    }
+  }
+  throw InvalidInput(fmt::format("describe: unknown parameter '{}', expected one of: {}", key,
+                                 fmt::join(parameter_keys(), ", ")));
+}
+
+std::string described_all() {
+  std::string text;
+  for (const ParameterGroup& group : parameter_reference()) {
+    text += fmt::format("# {} ({})\n", group.title, group.options);
+    for (const ParameterText& parameter : group.parameters) text += description_of(parameter, group.options);
+  }
+  return text;
+}
+
+std::string reference_markdown() {
+  std::string text =
+      "# Parameter reference\n\n"
+      "Generated from the parameter tables (include/needlekit/core/parameter.hpp) by\n"
+      "`needlekit describe --all --markdown > docs/reference.md`; do not edit by hand (a test fails when this file\n"
+      "is out of date). `needlekit describe KEY` prints one entry. Quantities are written with a unit in files\n"
+      "(\"230 um\"); Python takes the field names of the last column in SI units.\n";
+  for (const ParameterGroup& group : parameter_reference()) {
+    text += fmt::format("\n## {}\n\n| key | kind | default | range | meaning | Python `{}.` |\n"
+                        "| --- | --- | --- | --- | --- | --- |\n",
+                        group.title, group.options);
+    for (const ParameterText& parameter : group.parameters) {
+      text += fmt::format("| `{}` | {} | `{}` | {} | {} | `{}` |\n", parameter.key, parameter.kind,
+                          parameter.default_text, escaped_for_table(parameter.range),
+                          escaped_for_table(parameter.meaning), parameter.name);
+    }
+  }
+  return text;
+}
+
+}  // namespace needlekit::io

@@ -1,0 +1,118 @@
+// The parameter tables (core/parameter.hpp): every field of every tabled struct has exactly one row, the case reader
+// accepts exactly the keys of the rows and reads each default back as the default, validation and the reader refuse
+// a number outside its row's range naming the range, and docs/reference.md is what the tables generate.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "needlekit/core/parameter_text.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/parameter_reference.hpp"
+
+namespace {
+
+using namespace needlekit;
+using testing::HasSubstr;
+
+// Each row sets a different field: with field_count (the static_assert beside the table), one row per field.
+template <class Options, class Table>
+void expect_one_row_per_field(const Table& table, std::size_t callbacks) {
+  EXPECT_EQ(std::tuple_size_v<Table> + callbacks, field_count<Options>());
+  const Options options{};
+  std::set<const void*> fields;
+  std::set<std::string_view> keys, names;
+  for_each_parameter(table, [&](const auto& row) {
+    EXPECT_TRUE(fields.insert(&(options.*row.field)).second) << row.key << ": a second row for one field";
+    EXPECT_TRUE(keys.insert(row.key).second) << row.key;
+    EXPECT_TRUE(names.insert(row.attribute()).second) << row.attribute();
+    EXPECT_FALSE(row.meaning.empty()) << row.key;
+  });
+}
+
+TEST(ParameterTables, EveryFieldOfSolverOptionsHasOneRow) {
+  expect_one_row_per_field<fem::SolverOptions>(fem::kSolverParameters, fem::kSolverCallbackFields);
+}
+
+// field_count on aggregates like the option structs (a callback, a string, nested aggregates: one field each).
+struct ThreeFields {
+  double number = 1;
+  std::string text;
+  std::function<void(int)> callback;
+};
+static_assert(field_count<ThreeFields>() == 3);
+struct NestedFields {
+  ThreeFields inner;
+  int count = 0;
+};
+static_assert(field_count<NestedFields>() == 2);
+
+const std::string kCase = "[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n"
+                          "[tissue]\npreset = \"silicone-0.2mpa\"\n[loading]\ndepth = \"10 um\"\n";
+
+// A case that writes every key of [model] and [solver] with its default: the reader knows every key of the table
+// (an unknown key is an error) and reads each default back.
+TEST(ParameterTables, TheCaseReaderReadsEveryKeyOfTheSolverTableAtItsDefault) {
+  std::string model = "[model]\n", solver = "[solver]\n";
+  const std::vector<ParameterText> texts = parameter_texts(fem::kSolverParameters, io::case_solver_defaults());
+  for (const ParameterText& text : texts) {
+    const std::size_t dot = text.key.find('.');
+    ASSERT_NE(dot, std::string::npos) << text.key << ": every row of SolverOptions is written in a case file";
+    (text.key.substr(0, dot) == "model" ? model : solver) +=
+        fmt::format("{} = {}\n", text.key.substr(dot + 1), text.default_text);
+  }
+  const insertion::IndentationCase read = io::parse_indentation_case_toml(kCase + model + solver, "case.toml");
+  const std::vector<ParameterText> read_texts = parameter_texts(fem::kSolverParameters, read.solver);
+  ASSERT_EQ(read_texts.size(), texts.size());
+  for (std::size_t i = 0; i < texts.size(); ++i) EXPECT_EQ(read_texts[i].default_text, texts[i].default_text);
+}
+
+TEST(ParameterTables, ValidationAndTheReaderRefuseANumberOutsideItsRangeNamingTheRange) {
+  for_each_parameter(fem::kSolverParameters, [&](const auto& row) {
+    if constexpr (requires { row.accepts(0.0); }) {
+      SCOPED_TRACE(std::string(row.key));
+      fem::SolverOptions options;
+      options.*row.field = -1;  // below every row's range
+      EXPECT_THAT([&] { options.validate(); },
+                  testing::ThrowsMessage<InvalidInput>(
+                      HasSubstr(fmt::format("solver {} = -1: expected {}", row.attribute(), row.range()))));
+      const std::string value = row.dimension == units::Dimension::Length ? "\"-1 um\"" : "-1";
+      EXPECT_THAT([&] { io::parse_indentation_case_toml(kCase + fmt::format("[{}]\n{} = {}\n", row.group, row.key,
+                                                                            value), "case.toml"); },
+                  testing::ThrowsMessage<InvalidInput>(testing::AllOf(HasSubstr(fmt::format("'{}.{}'", row.group, row.key)),
+                                                             HasSubstr(row.range()))));
+    }
+  });
+}
+
+TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {
+  const std::string friction = io::described("solver.friction");
+  EXPECT_THAT(friction, HasSubstr("Coulomb friction coefficient"));
+  EXPECT_THAT(friction, HasSubstr("unit:    none"));
+  EXPECT_THAT(friction, HasSubstr("default: 0\n"));
+  EXPECT_THAT(friction, HasSubstr("range:   >= 0\n"));
+  EXPECT_THAT(friction, HasSubstr("Python:  SolverOptions.friction"));
+  EXPECT_THAT(io::described("solver.boundary_tolerance"), HasSubstr("default: \"1e-09 m\""));
+  // The defaults of case files: neo-Hookean and surface contact, not the struct's.
+  EXPECT_THAT(io::described("model.law"), HasSubstr("default: \"neo-hookean\""));
+  EXPECT_THAT(io::described("model.element"), HasSubstr("Python:  SolverOptions.order"));
+  EXPECT_THAT([] { io::described("solver.no_such_key"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown parameter 'solver.no_such_key', expected one "
+                                                             "of: model.law, model.element")));
+}
+
+TEST(ParameterTables, DocsReferenceIsWhatTheTablesGenerate) {
+  std::ifstream file(std::string(NEEDLEKIT_SOURCE_DIR) + "/docs/reference.md");
+  std::stringstream text;
+  text << file.rdbuf();
+  EXPECT_EQ(text.str(), io::reference_markdown())
+      << "docs/reference.md is out of date: needlekit describe --all --markdown > docs/reference.md";
+  for (const std::string& key : io::parameter_keys()) EXPECT_THAT(text.str(), HasSubstr("| `" + key + "` |"));
+}
+
+}  // namespace
