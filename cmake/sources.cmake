@@ -66,6 +66,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/insertion/complete_insertion.cpp
   src/insertion/force_curve.cpp
   src/insertion/indentation.cpp
+  src/insertion/indentation_validation.cpp
   src/insertion/insertion_curve.cpp
   src/insertion/needle_array.cpp
   src/insertion/needle_loads.cpp

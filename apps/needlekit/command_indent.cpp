@@ -68,9 +68,41 @@ void print_array(const insertion::IndentationCase& c, const insertion::Indentati
              array.mean_inserted_depth * 1e6, array.inserted_depth_spread * 1e6, 100 * array.mean_penetrated_fraction);
 }
 
-void run_indent(const IndentArguments& arguments) {
+// The run as text: the mesh, the models, every step, the puncture, the array's totals, the angled insertion's loads
+// and the bending check.
+void print_result(const insertion::IndentationCase& indentation_case, const insertion::IndentationResult& result) {
+  fmt::print("{}: {} tetrahedra, {} nodes, {} unknowns ({} solver); mesh {:.2f} s, total {:.2f} s\n",
+             indentation_case.name, result.elements, result.nodes, result.dofs, fem::to_string(result.linear_solver),
+             result.mesh_seconds, result.total_seconds);
+  fmt::print("models: {}\n", io::fe_models_text(indentation_case));
+  fmt::print("{:>10} {:>12} {:>14} {:>10}\n", "depth_um", "force_N", "pressure_MPa", "newton");
+  for (const insertion::IndentationStep& step : result.steps) {
+    fmt::print("{:>10.4g} {:>12.5g} {:>14.5g} {:>10}\n", step.depth * 1e6, step.force, step.contact_pressure * 1e-6,
+               step.newton_iterations);
+  }
+  if (result.puncture) {
+    fmt::print("puncture: depth {:.4g} um, force {:.5g} N ({})\n", result.puncture->depth * 1e6,
+               result.puncture->force, insertion::to_string(result.puncture->criterion));
+  } else {
+    fmt::print("puncture: none\n");
+  }
+  if (result.array) print_array(indentation_case, result);
+  if (indentation_case.angle > 0 && !result.steps.empty()) {
+    const insertion::IndentationStep& last = result.steps.back();
+    fmt::print("angled insertion ({:.4g} deg from the normal, azimuth {:.4g} deg), last step: axial {:.5g} N, lateral "
+               "({:.5g}, {:.5g}) N, moment about the base {:.5g} N m\n",
+               indentation_case.angle * 180 / M_PI, indentation_case.azimuth * 180 / M_PI, last.force,
+               last.lateral_force.x(), last.lateral_force.y(), last.moment.norm());
+  }
+  if (result.bending) {
+    fmt::print("bending (Eqs 5.7/5.8): lateral load {:.5g} N, critical {:.5g} N, margin {:.4g}\n",
+               result.bending->lateral_load, result.bending->critical_load, result.bending->margin);
+  }
+}
+
+// The case file with the command line's overrides (a quick mode for tests and sweeps: coarser mesh, fewer steps).
+insertion::IndentationCase read_case(const IndentArguments& arguments) {
   insertion::IndentationCase indentation_case = io::read_indentation_case(arguments.case_path);
-  // Command-line overrides (a quick mode for tests and sweeps: coarser mesh, fewer steps).
   if (!arguments.size_at_tip.empty()) {
     indentation_case.block.size_at_site =
         units::parse_quantity(arguments.size_at_tip, units::Dimension::Length, "--size-at-tip");
@@ -90,6 +122,11 @@ void run_indent(const IndentArguments& arguments) {
     indentation_case.azimuth = units::parse_quantity(arguments.azimuth, units::Dimension::Angle, "--azimuth");
   }
   insertion::validate(indentation_case);
+  return indentation_case;
+}
+
+void run_indent(const IndentArguments& arguments) {
+  const insertion::IndentationCase indentation_case = read_case(arguments);
   print_warnings(io::indentation_scale_warnings(indentation_case));
 
   std::optional<io::IndentationWriter> writer;
@@ -121,33 +158,7 @@ void run_indent(const IndentArguments& arguments) {
     if (failed) throw CommandOutcome{ExitCode::NumericalFailure};
     return;
   }
-  fmt::print("{}: {} tetrahedra, {} nodes, {} unknowns ({} solver); mesh {:.2f} s, total {:.2f} s\n",
-             indentation_case.name, result.elements, result.nodes, result.dofs, fem::to_string(result.linear_solver),
-             result.mesh_seconds, result.total_seconds);
-  fmt::print("models: {}\n", io::fe_models_text(indentation_case));
-  fmt::print("{:>10} {:>12} {:>14} {:>10}\n", "depth_um", "force_N", "pressure_MPa", "newton");
-  for (const insertion::IndentationStep& step : result.steps) {
-    fmt::print("{:>10.4g} {:>12.5g} {:>14.5g} {:>10}\n", step.depth * 1e6, step.force, step.contact_pressure * 1e-6,
-               step.newton_iterations);
-  }
-  if (result.puncture) {
-    fmt::print("puncture: depth {:.4g} um, force {:.5g} N ({})\n", result.puncture->depth * 1e6,
-               result.puncture->force, insertion::to_string(result.puncture->criterion));
-  } else {
-    fmt::print("puncture: none\n");
-  }
-  if (result.array) print_array(indentation_case, result);
-  if (indentation_case.angle > 0 && !result.steps.empty()) {
-    const insertion::IndentationStep& last = result.steps.back();
-    fmt::print("angled insertion ({:.4g} deg from the normal, azimuth {:.4g} deg), last step: axial {:.5g} N, lateral "
-               "({:.5g}, {:.5g}) N, moment about the base {:.5g} N m\n",
-               indentation_case.angle * 180 / M_PI, indentation_case.azimuth * 180 / M_PI, last.force,
-               last.lateral_force.x(), last.lateral_force.y(), last.moment.norm());
-  }
-  if (result.bending) {
-    fmt::print("bending (Eqs 5.7/5.8): lateral load {:.5g} N, critical {:.5g} N, margin {:.4g}\n",
-               result.bending->lateral_load, result.bending->critical_load, result.bending->margin);
-  }
+  print_result(indentation_case, result);
   fmt::print("status: {}: {}\n", insertion::to_string(result.status), result.reason);
   if (writer) {
     const bool series = !result.steps.empty();  // the .pvd exists once a step was written

@@ -79,39 +79,34 @@ void answer(const httplib::Request& req, httplib::Response& res, std::size_t max
   }
 }
 
-}  // namespace
-
-void serve(const ServeOptions& options, const std::function<void(int port)>& listening) {
-  const std::map<std::string, Asset> assets = read_assets(options);
-  MeshRegistry meshes(options.mesh_dir, options.examples_dir);
-  const std::size_t max_body = options.max_body_bytes;
-  JobPool jobs(options.job_workers, options.job_queue);
-  httplib::Server server;
+// The server's threads, timeouts and keep-alive, Nagle off (headers and body are two writes: without it Nagle waits
+// for a delayed ACK, 40 ms), and the listening socket: SO_REUSEADDR only (httplib's default SO_REUSEPORT would let
+// another process bind the same port and take a share of the connections); its descriptor goes to
+// `listening_socket`, for a backlog of kListenBacklog instead of the 5 compiled into Debian's libcpp-httplib (listen()
+// again on the bound socket), so that a burst of connections waits instead of being reset.
+void configure(httplib::Server& server, const ServeOptions& options, int& listening_socket) {
   const int http_threads = options.http_threads;
   server.new_task_queue = [http_threads] { return new httplib::ThreadPool(static_cast<std::size_t>(http_threads)); };
   server.set_payload_max_length(options.max_upload_bytes);  // JSON routes check their own, smaller limit
-  server.set_tcp_nodelay(true);  // headers and body are two writes: without it Nagle waits for a delayed ACK (40 ms)
+  server.set_tcp_nodelay(true);
   server.set_read_timeout(5, 0);
   server.set_write_timeout(5, 0);
   server.set_keep_alive_timeout(2);
   server.set_keep_alive_max_count(1000);
-  std::atomic<int> bound_port = 0;
-  // The listening socket: SO_REUSEADDR only (httplib's default SO_REUSEPORT would let another process bind the same
-  // port and take a share of the connections), and a backlog of kListenBacklog instead of the 5 compiled into
-  // Debian's libcpp-httplib (listen() again on the bound socket), so that a burst of connections waits instead of
-  // being reset.
-  int listening_socket = -1;
   server.set_socket_options([&listening_socket](int socket) {
     const int yes = 1;
     setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
     listening_socket = socket;
   });
+}
 
-  // Before routing: a page elsewhere cannot use this server. A POST to /api/ must be application/json (a
-  // cross-origin page then needs a CORS preflight, which is never granted), and on loopback the Host header must be
-  // this server's (a DNS-rebinding page sends its own name). An upload is application/octet-stream, not a
-// CORS-safelisted type either.
-  server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
+// Before routing: a page elsewhere cannot use this server. A POST to /api/ must be application/json (a
+// cross-origin page then needs a CORS preflight, which is never granted), and on loopback the Host header must be
+// this server's (a DNS-rebinding page sends its own name). An upload is application/octet-stream, not a
+// CORS-safelisted type either. Errors without a body get a JSON message; an exception that is not bad input is a
+// defect: 500 for this request, the server goes on.
+void add_guards(httplib::Server& server, const ServeOptions& options, const std::atomic<int>& bound_port) {
+  server.set_pre_routing_handler([&options, &bound_port](const httplib::Request& req, httplib::Response& res) {
     if (loopback(options.host)) {
       const std::string host = req.get_header_value("Host");
       const std::string port = fmt::format(":{}", bound_port.load());
@@ -128,7 +123,6 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
     }
     return httplib::Server::HandlerResponse::Unhandled;
   });
-  // Errors without a body of their own (404, 413, 400 of a malformed request line): a JSON message.
   server.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
     const char* what = res.status == 404   ? "not found"
@@ -137,7 +131,6 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
     res.set_content(json_body(error_json(what)), "application/json");
     return httplib::Server::HandlerResponse::Handled;
   }));
-  // An exception that is not bad input is a defect: 500 for this request, the server goes on.
   server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
     std::string what = "unknown exception";
     try {
@@ -148,7 +141,12 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
     }
     send_json(res, 500, error_json(fmt::format("internal error: {}", what)));
   });
+}
 
+// The allow-listed assets and the JSON API (docs/serve.md); long work goes to the job pool.
+void add_routes(httplib::Server& server, const ServeOptions& options, const std::map<std::string, Asset>& assets,
+                MeshRegistry& meshes, JobPool& jobs) {
+  const std::size_t max_body = options.max_body_bytes;
   for (const auto& [url, asset] : assets) {
     server.Get(url, [&asset = asset](const httplib::Request&, httplib::Response& res) {
       res.set_content(asset.bytes, asset.content_type);
@@ -159,7 +157,7 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
   server.Get("/api/presets", [](const httplib::Request&, httplib::Response& res) {
     send_json(res, 200, presets_json());
   });
-  server.Post("/api/evaluate", [&](const httplib::Request& req, httplib::Response& res) {
+  server.Post("/api/evaluate", [max_body](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] { send_json(res, 200, evaluate_json(req.body)); });
   });
   const auto submit = [&jobs](httplib::Response& res, std::string kind, JobWork work) {
@@ -169,7 +167,7 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
       send_json(res, 503, error_json("the job queue is full, expected a retry once a job has finished"));
     }
   };
-  server.Post("/api/optimize", [&](const httplib::Request& req, httplib::Response& res) {
+  server.Post("/api/optimize", [submit, max_body](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] {
       OptimizeRequest request;
       request.certified = req.get_param_value("certified") == "true";
@@ -184,17 +182,17 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
       submit(res, "optimize", optimize_work(req.body, request));
     });
   });
-  server.Post("/api/uncertainty", [&](const httplib::Request& req, httplib::Response& res) {
+  server.Post("/api/uncertainty", [submit, max_body](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] { submit(res, "uncertainty", uncertainty_work(req.body)); });
   });
   server.Get("/api/meshes", [&meshes](const httplib::Request&, httplib::Response& res) {
     send_json(res, 200, meshes.listing());
   });
-  server.Post("/api/uploads", [&](const httplib::Request& req, httplib::Response& res) {
-    answer(req, res, options.max_upload_bytes,
-           [&] { send_json(res, 201, meshes.add_upload(req.body, req.get_param_value("format"))); });
+  const std::size_t max_upload = options.max_upload_bytes;
+  server.Post("/api/uploads", [&meshes, max_upload](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, max_upload, [&] { send_json(res, 201, meshes.add_upload(req.body, req.get_param_value("format"))); });
   });
-  server.Post("/api/patch", [&](const httplib::Request& req, httplib::Response& res) {
+  server.Post("/api/patch", [submit, max_body, &meshes](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] {
       submit(res, "patch", patch_work(req.body, meshes, req.get_param_value("view") == "true"));
     });
@@ -213,6 +211,20 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
       send_json(res, 404, error_json("no such job"));
     }
   });
+}
+
+}  // namespace
+
+void serve(const ServeOptions& options, const std::function<void(int port)>& listening) {
+  const std::map<std::string, Asset> assets = read_assets(options);
+  MeshRegistry meshes(options.mesh_dir, options.examples_dir);
+  JobPool jobs(options.job_workers, options.job_queue);
+  httplib::Server server;
+  std::atomic<int> bound_port = 0;
+  int listening_socket = -1;
+  configure(server, options, listening_socket);
+  add_guards(server, options, bound_port);
+  add_routes(server, options, assets, meshes, jobs);
 
   const int port = options.port == 0 ? server.bind_to_any_port(options.host)
                                      : (server.bind_to_port(options.host, options.port) ? options.port : -1);

@@ -3535,90 +3535,182 @@ class SobolIndex:
     def value(self) -> float:
         """NaN when undefined"""
 
+class SolverBackend:
+    """Members:
+
+  Builtin
+
+  Petsc"""
+    Builtin: ClassVar[SolverBackend]
+    Petsc: ClassVar[SolverBackend]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class SolverOptions:
-    """The FE solver's law, elements, contact and tolerances (§3.4)."""
+    """The FE solver's law, elements, contact and tolerances (§3.4).
+
+Keywords (every field):
+  law: "neo-hookean" | "svk": constitutive law. Default: "svk".
+  order: "linear" | "quadratic": element order. Default: "linear".
+  contact: "surface" | "tip-nodes": how the needle touches the tissue. Default: "tip-nodes".
+  boundary: "sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" | "quarter-symmetry" | "half-symmetry": the supports on the faces of the mesh's bounding box. Default: "sides-and-bottom-fixed".
+  residual_tolerance: in (0, 1): Newton: residual norm relative to the reaction and internal forces. Default: 1e-06.
+  displacement_tolerance: in (0, 1): Newton: update norm relative to the displacement. Default: 1e-05.
+  energy_tolerance: in (0, 1): Newton: energy norm of the update relative to the first iteration's. Default: 1e-08.
+  max_iterations: >= 0: Newton iterations per (sub)step (0: 25, or 60 with surface contact). Default: 0.
+  max_cutbacks: >= 0: halvings of a load step that did not converge. Default: 8.
+  line_search: true | false: backtracking (Armijo) on the potential energy, with a tangent shift when the factorization is not positive definite. Default: true.
+  linear_predictor: true | false: the first step starts from the linearised elastic solution (§3.4); false: from the previous displacement. Default: true.
+  extrapolate_predictor: "secant" | "linearised": how the steps after the first start. Default: "secant".
+  penalty_factor: > 0: surface contact: penalty stiffness per area = factor * E / h. Default: 100.
+  penetration_tolerance: in (0, 1): surface contact: augmented-Lagrangian updates until the penetration is below this fraction. Default: 0.001.
+  max_augmentations: >= 0: surface contact: augmented-Lagrangian updates per step (0: pure penalty). Default: 6.
+  friction: >= 0: surface contact: Coulomb friction coefficient between needle and tissue (0: frictionless). Default: 0.
+  two_pass: true | false: surface contact: the needle's sharp edges and vertices against the tissue's faces too. Default: false.
+  volumetric: "auto" | "element" | "nodal-average": how linear tetrahedra integrate the volumetric term. Default: "auto".
+  volumetric_stabilization: >= 0: nodal-averaged volume: the bulk modulus each tetrahedron keeps, in multiples of its shear modulus. Default: 1.
+  boundary_tolerance: m, >= 0 m: a node is on a face of the bounding box within this distance (plus 1e-9 of the box diagonal). Default: "1e-09 m".
+  linear_solver: "auto" | "two-grid" | "cholesky-cg" | "cholesky": the built-in backend's linear solver. Default: "auto".
+  backend: "builtin" | "petsc": where the linear solves run. Default: "builtin".
+  two_grid_refresh_iterations: >= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations. Default: 25.
+  max_reuse_iterations: >= 1: cholesky-cg: cap on the CG iterations of one solve on the last factorization. Default: 40.
+  linear_tolerance: in (0, 1): tightest relative residual of CG (inexact Newton stops earlier). Default: 1e-10.
+  threads: >= 0: assembly threads (0: the default, all cores). Default: 0."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
+    def backend(self) -> SolverBackend:
+        """"builtin" | "petsc": where the linear solves run. Default: "builtin"."""
+    @backend.setter
+    def backend(self, value: Any) -> None: ...
+    @property
     def boundary(self) -> BoundaryCondition:
-        ...
+        """"sides-and-bottom-fixed" | "bottom-fixed" | "bottom-fixed-sides-roller" | "symmetry-planes" | "quarter-symmetry" | "half-symmetry": the supports on the faces of the mesh's bounding box. Default: "sides-and-bottom-fixed"."""
     @boundary.setter
     def boundary(self, value: Any) -> None: ...
     @property
+    def boundary_tolerance(self) -> float:
+        """m, >= 0 m: a node is on a face of the bounding box within this distance (plus 1e-9 of the box diagonal). Default: "1e-09 m"."""
+    @boundary_tolerance.setter
+    def boundary_tolerance(self, value: Any) -> None: ...
+    @property
     def contact(self) -> ContactModel:
-        ...
+        """"surface" | "tip-nodes": how the needle touches the tissue. Default: "tip-nodes"."""
     @contact.setter
     def contact(self, value: Any) -> None: ...
     @property
     def displacement_tolerance(self) -> float:
-        """(0, 1)"""
+        """in (0, 1): Newton: update norm relative to the displacement. Default: 1e-05."""
     @displacement_tolerance.setter
     def displacement_tolerance(self, value: Any) -> None: ...
     @property
     def energy_tolerance(self) -> float:
-        """(0, 1)"""
+        """in (0, 1): Newton: energy norm of the update relative to the first iteration's. Default: 1e-08."""
     @energy_tolerance.setter
     def energy_tolerance(self, value: Any) -> None: ...
     @property
+    def extrapolate_predictor(self) -> bool:
+        """"secant" | "linearised": how the steps after the first start. Default: "secant"."""
+    @extrapolate_predictor.setter
+    def extrapolate_predictor(self, value: Any) -> None: ...
+    @property
     def friction(self) -> float:
-        """>= 0: Coulomb coefficient (surface contact)"""
+        """>= 0: surface contact: Coulomb friction coefficient between needle and tissue (0: frictionless). Default: 0."""
     @friction.setter
     def friction(self, value: Any) -> None: ...
     @property
     def law(self) -> MaterialLaw:
-        ...
+        """"neo-hookean" | "svk": constitutive law. Default: "svk"."""
     @law.setter
     def law(self, value: Any) -> None: ...
     @property
+    def line_search(self) -> bool:
+        """true | false: backtracking (Armijo) on the potential energy, with a tangent shift when the factorization is not positive definite. Default: true."""
+    @line_search.setter
+    def line_search(self, value: Any) -> None: ...
+    @property
+    def linear_predictor(self) -> bool:
+        """true | false: the first step starts from the linearised elastic solution (§3.4); false: from the previous displacement. Default: true."""
+    @linear_predictor.setter
+    def linear_predictor(self, value: Any) -> None: ...
+    @property
     def linear_solver(self) -> LinearSolver:
-        ...
+        """"auto" | "two-grid" | "cholesky-cg" | "cholesky": the built-in backend's linear solver. Default: "auto"."""
     @linear_solver.setter
     def linear_solver(self, value: Any) -> None: ...
     @property
+    def linear_tolerance(self) -> float:
+        """in (0, 1): tightest relative residual of CG (inexact Newton stops earlier). Default: 1e-10."""
+    @linear_tolerance.setter
+    def linear_tolerance(self, value: Any) -> None: ...
+    @property
+    def max_augmentations(self) -> int:
+        """>= 0: surface contact: augmented-Lagrangian updates per step (0: pure penalty). Default: 6."""
+    @max_augmentations.setter
+    def max_augmentations(self, value: Any) -> None: ...
+    @property
     def max_cutbacks(self) -> int:
-        """>= 0"""
+        """>= 0: halvings of a load step that did not converge. Default: 8."""
     @max_cutbacks.setter
     def max_cutbacks(self, value: Any) -> None: ...
     @property
     def max_iterations(self) -> int:
-        """>= 0 (0: 25, or 60 with surface contact)"""
+        """>= 0: Newton iterations per (sub)step (0: 25, or 60 with surface contact). Default: 0."""
     @max_iterations.setter
     def max_iterations(self, value: Any) -> None: ...
     @property
+    def max_reuse_iterations(self) -> int:
+        """>= 1: cholesky-cg: cap on the CG iterations of one solve on the last factorization. Default: 40."""
+    @max_reuse_iterations.setter
+    def max_reuse_iterations(self, value: Any) -> None: ...
+    @property
     def order(self) -> ElementOrder:
-        ...
+        """"linear" | "quadratic": element order. Default: "linear"."""
     @order.setter
     def order(self, value: Any) -> None: ...
     @property
     def penalty_factor(self) -> float:
-        """> 0"""
+        """> 0: surface contact: penalty stiffness per area = factor * E / h. Default: 100."""
     @penalty_factor.setter
     def penalty_factor(self, value: Any) -> None: ...
     @property
     def penetration_tolerance(self) -> float:
-        """(0, 1)"""
+        """in (0, 1): surface contact: augmented-Lagrangian updates until the penetration is below this fraction. Default: 0.001."""
     @penetration_tolerance.setter
     def penetration_tolerance(self, value: Any) -> None: ...
     @property
     def residual_tolerance(self) -> float:
-        """(0, 1)"""
+        """in (0, 1): Newton: residual norm relative to the reaction and internal forces. Default: 1e-06."""
     @residual_tolerance.setter
     def residual_tolerance(self, value: Any) -> None: ...
     @property
     def threads(self) -> int:
-        """0: all cores"""
+        """>= 0: assembly threads (0: the default, all cores). Default: 0."""
     @threads.setter
     def threads(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
+    def two_grid_refresh_iterations(self) -> int:
+        """>= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations. Default: 25."""
+    @two_grid_refresh_iterations.setter
+    def two_grid_refresh_iterations(self, value: Any) -> None: ...
+    @property
     def two_pass(self) -> bool:
-        """surface contact: the needle's sharp edges against the tissue's faces too"""
+        """true | false: surface contact: the needle's sharp edges and vertices against the tissue's faces too. Default: false."""
     @two_pass.setter
     def two_pass(self, value: Any) -> None: ...
     @property
+    def volumetric(self) -> VolumetricFormulation:
+        """"auto" | "element" | "nodal-average": how linear tetrahedra integrate the volumetric term. Default: "auto"."""
+    @volumetric.setter
+    def volumetric(self, value: Any) -> None: ...
+    @property
     def volumetric_stabilization(self) -> float:
-        """>= 0: with the nodal-averaged volume, the bulk modulus each tetrahedron keeps, in multiples of its shear modulus"""
+        """>= 0: nodal-averaged volume: the bulk modulus each tetrahedron keeps, in multiples of its shear modulus. Default: 1."""
     @volumetric_stabilization.setter
     def volumetric_stabilization(self, value: Any) -> None: ...
 
@@ -4090,6 +4182,23 @@ class VertexCrossing:
     @property
     def vertex(self) -> int:
         ...
+
+class VolumetricFormulation:
+    """Members:
+
+  Automatic
+
+  Element
+
+  NodalAverage"""
+    Automatic: ClassVar[VolumetricFormulation]
+    Element: ClassVar[VolumetricFormulation]
+    NodalAverage: ClassVar[VolumetricFormulation]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
 
 class WalkMethod:
     """Members:

@@ -19,6 +19,56 @@
 
 namespace needlekit::fem {
 
+namespace {
+
+// Volumetric term on the nodal volume ratios (nodal_volume.hpp) of linear tetrahedron e: force V_e p̄_e J_e h_b and
+// tangent V_e p̄_e J_e (h_b h_c^T - h_c h_b^T); the patch term is added after the element loop.
+void add_nodal_volume_terms(const detail::NodalVolumeAverage& nodal, int e, double volume, bool want_tangent,
+                            Eigen::Matrix<double, 3, 4>& fe, Eigen::Matrix<double, 12, 12>& ke) {
+  const double pv = nodal.element_pressure(e) * volume;
+  const Eigen::Matrix<double, 3, 4>& jh = nodal.element_jh(e);
+  fe += pv * jh;
+  if (!want_tangent) return;
+  const double scale = pv / nodal.element_volume_ratio(e);
+  for (int b = 0; b < 4; ++b)
+    for (int cc = 0; cc < 4; ++cc)
+      ke.template block<3, 3>(3 * b, 3 * cc) +=
+          scale * (jh.col(b) * jh.col(cc).transpose() - jh.col(cc) * jh.col(b).transpose());
+}
+
+// Coupling of an element's free dofs to the prescribed tip dofs: the linear predictor's right-hand side K_fp du_p.
+template <int N>
+void add_prescribed_coupling(const int* c, const std::vector<int>& free_index,
+                             const Eigen::Matrix<double, 3 * N, 3 * N>& ke, const Eigen::VectorXd& dup,
+                             Eigen::VectorXd& kdup) {
+  for (int a = 0; a < N; ++a)
+    for (int i = 0; i < 3; ++i) {
+      const int ra = free_index[3 * c[a] + i];
+      if (ra < 0) continue;
+      for (int b = 0; b < N; ++b)
+        for (int j = 0; j < 3; ++j) {
+          const int dofb = 3 * c[b] + j;
+          if (free_index[dofb] < 0) kdup[ra] += ke(3 * a + i, 3 * b + j) * dup[dofb];
+        }
+    }
+}
+
+// An element's strain energy alone (no force, no tangent) added to `energy`; false if it is inverted.
+template <int N>
+bool add_element_energy(MaterialLaw law, const LameConstants& lame, const Eigen::Matrix<double, 3, N>& ue,
+                        const detail::Grad<N>* g, const double* w, int nq, double& energy) {
+  bool valid = true;
+  for (int q = 0; q < nq; ++q) {
+    const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g[q].transpose();
+    const auto s = stress_response(law, lame, f, false);
+    if (!s.valid) valid = false;
+    else energy += w[q] * s.energy_density;
+  }
+  return valid;
+}
+
+}  // namespace
+
 // ---- assembly -------------------------------------------------------------------------------------------------
 template <int N>
 QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen::VectorXd& uu, bool want_force,
@@ -60,12 +110,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
               reinterpret_cast<const detail::Grad<N>*>(&space.assembly.gradients[at * static_cast<size_t>(nq * 3 * N)]);
           const double* w = &space.assembly.weights[at * static_cast<size_t>(nq)];
           if (!want_force) {  // energy only
-            for (int q = 0; q < nq; ++q) {
-              const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g[q].transpose();
-              const auto s = stress_response(opt.law, space.lame[e], f, false);
-              if (!s.valid) record_inverted(e);
-              else en += w[q] * s.energy_density;
-            }
+            if (!add_element_energy<N>(opt.law, space.lame[e], ue, g, w, nq, en)) record_inverted(e);
             continue;
           }
           double we;
@@ -76,20 +121,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
             continue;
           }
           if constexpr (N == 4) {
-            if (nodal && nodal->treated(e)) {
-              // Volumetric term on the nodal volume ratios (nodal_volume.hpp): force V_e p̄_e J_e h_b and tangent
-              // V_e p̄_e J_e (h_b h_c^T - h_c h_b^T); the patch term is added after the element loop.
-              const double pv = nodal->element_pressure(e) * space.volumes[e];
-              const Eigen::Matrix<double, 3, 4>& jh = nodal->element_jh(e);
-              fe += pv * jh;
-              if (want_tangent) {
-                const double scale = pv / nodal->element_volume_ratio(e);
-                for (int b = 0; b < 4; ++b)
-                  for (int cc = 0; cc < 4; ++cc)
-                    ke.template block<3, 3>(3 * b, 3 * cc) +=
-                        scale * (jh.col(b) * jh.col(cc).transpose() - jh.col(cc) * jh.col(b).transpose());
-              }
-            }
+            if (nodal && nodal->treated(e)) add_nodal_volume_terms(*nodal, e, space.volumes[e], want_tangent, fe, ke);
           }
           en += we;
           for (int a = 0; a < N; ++a) fint.segment<3>(3 * c[a]) += fe.col(a);
@@ -98,18 +130,7 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
           for (int col = 0; col < 3 * N; ++col)
             for (int row = 0; row <= col; ++row, ++slot)
               if (*slot >= 0) values[static_cast<size_t>(*slot)] += ke(row, col);
-          if (!kdup) continue;
-          // Coupling to the prescribed tip dofs: the linear predictor's right-hand side K_fp du_p.
-          for (int a = 0; a < N; ++a)
-            for (int i = 0; i < 3; ++i) {
-              const int ra = free_index[3 * c[a] + i];
-              if (ra < 0) continue;
-              for (int b = 0; b < N; ++b)
-                for (int j = 0; j < 3; ++j) {
-                  const int dofb = 3 * c[b] + j;
-                  if (free_index[dofb] < 0) (*kdup)[ra] += ke(3 * a + i, 3 * b + j) * (*dup)[dofb];
-                }
-            }
+          if (kdup) add_prescribed_coupling<N>(c, free_index, ke, *dup, *kdup);
         }
       });
     });
@@ -269,7 +290,63 @@ std::string str(T v) {
   s << v;
   return s.str();
 }
+
+// A coarse level that interpolates every node of the mesh from nodes it has.
+void check_coarse_level(const mesh::CoarseLevel& coarse, const mesh::TetMesh& mesh) {
+  check(coarse.interpolation.size() == mesh.nodes.size(),
+        "coarse level: " + str(coarse.interpolation.size()) + " interpolated nodes for " + str(mesh.nodes.size()) +
+            " nodes");
+  for (const mesh::NodeInterpolation& parents : coarse.interpolation)
+    for (int k = 0; k < 4; ++k) {
+      const int a = parents.nodes[static_cast<size_t>(k)];
+      if (a < -1 || a >= coarse.nodes || (a == -1 && parents.weights[static_cast<size_t>(k)] != 0))
+        throw InvalidInput("coarse level: parent node " + str(a) + " outside [0, " + str(coarse.nodes) + ")");
+    }
+}
+
+// The nodal-averaged volume on the linear tetrahedra of the layers it applies to; none when no layer needs it.
+std::unique_ptr<detail::NodalVolumeAverage> nodal_average(const mesh::TetMesh& mesh, detail::FunctionSpace& space,
+                                                          const SolverOptions& o) {
+  std::vector<char> treated(mesh.tets.size(), 0);
+  bool any = false;
+  for (size_t e = 0; e < mesh.tets.size(); ++e) {
+    treated[e] = nodal_average_applies(o, mesh.layers[mesh.tet_layer[e]].poisson_ratio);
+    any = any || treated[e];
+  }
+  if (!any) return nullptr;
+  return std::make_unique<detail::NodalVolumeAverage>(space, treated, o.volumetric_stabilization);
+}
+
 }  // namespace
+
+// One needle checked (a surface, a direction, an edge radius for surface contact only, above the tissue) with its
+// gap and tip nodes for the tip-nodes contact model.
+QuasiStaticSolver::Impl::Needle QuasiStaticSolver::Impl::placed_needle(Indenter ind, const std::string& name,
+                                                                      const SolverOptions& o,
+                                                                      const detail::TopSurface& top,
+                                                                      const detail::FunctionSpace& space, double tol) {
+  check(!ind.surface.vertices.empty() && !ind.surface.triangles.empty(), name + ": empty surface mesh");
+  check(ind.direction.norm() > 0 && ind.direction.allFinite(), name + ": direction must be a non-zero vector");
+  Needle nd;
+  nd.direction = ind.direction.normalized();
+  check(std::isfinite(ind.edge_radius) && ind.edge_radius >= 0,
+        name + ": edge radius " + str(ind.edge_radius) + " m, expected a finite length >= 0");
+  check(ind.edge_radius == 0 || o.contact == ContactModel::Surface,
+        name + ": an edge radius applies to surface contact only (the tip-nodes rule takes the tip face as flat)");
+  double zmin = std::numeric_limits<double>::infinity();
+  for (const auto& v : ind.surface.vertices) zmin = std::min(zmin, v.z() - ind.edge_radius);
+  check(zmin >= top.z - tol, name + " starts inside the tissue: its lowest point is at z = " + str(zmin) +
+        " m, below the top surface z = " + str(top.z) + " m");
+  if (o.contact == ContactModel::TipNodes) {
+    check((nd.direction - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9,
+          name + ": the tip-nodes contact model needs the direction (0, 0, -1)");
+    nd.gap = zmin - top.z;
+    const Eigen::Vector3d extent = space.box_max - space.box_min;
+    nd.tip_nodes = detail::tip_nodes(top, space, ind.surface, 1e-6 * extent.norm() + 1e-9);
+  }
+  nd.indenter = std::move(ind);
+  return nd;
+}
 
 QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Indenter> indenters, SolverOptions options,
                                      const mesh::CoarseLevel* coarse)
@@ -282,17 +359,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
         "solver linear_solver = \"two-grid\" needs a coarse level for linear elements: a mesh split from a coarser "
         "one (mesh::refine_uniformly; [mesh] split = true in a case file) or the body meshed again at twice the sizes "
         "(mesh::interpolating_coarse_level; a case file's block gets one)");
-  if (coarse && o.order == ElementOrder::Linear) {
-    check(coarse->interpolation.size() == mesh.nodes.size(),
-          "coarse level: " + str(coarse->interpolation.size()) + " interpolated nodes for " + str(mesh.nodes.size()) +
-              " nodes");
-    for (const mesh::NodeInterpolation& parents : coarse->interpolation)
-      for (int k = 0; k < 4; ++k) {
-        const int a = parents.nodes[static_cast<size_t>(k)];
-        if (a < -1 || a >= coarse->nodes || (a == -1 && parents.weights[static_cast<size_t>(k)] != 0))
-          throw InvalidInput("coarse level: parent node " + str(a) + " outside [0, " + str(coarse->nodes) + ")");
-      }
-  }
+  if (coarse && o.order == ElementOrder::Linear) check_coarse_level(*coarse, mesh);
   m.arena.initialize(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
 
   detail::validate_tissue_mesh(mesh);
@@ -307,28 +374,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   // Needles.
   check(!indenters.empty(), "indentation: no needle given");
   for (size_t k = 0; k < indenters.size(); ++k) {
-    auto& ind = indenters[k];
-    const std::string name = "needle " + str(k + 1);
-    check(!ind.surface.vertices.empty() && !ind.surface.triangles.empty(), name + ": empty surface mesh");
-    check(ind.direction.norm() > 0 && ind.direction.allFinite(), name + ": direction must be a non-zero vector");
-    Impl::Needle nd;
-    nd.direction = ind.direction.normalized();
-    check(std::isfinite(ind.edge_radius) && ind.edge_radius >= 0,
-          name + ": edge radius " + str(ind.edge_radius) + " m, expected a finite length >= 0");
-    check(ind.edge_radius == 0 || o.contact == ContactModel::Surface,
-          name + ": an edge radius applies to surface contact only (the tip-nodes rule takes the tip face as flat)");
-    double zmin = std::numeric_limits<double>::infinity();
-    for (const auto& v : ind.surface.vertices) zmin = std::min(zmin, v.z() - ind.edge_radius);
-    check(zmin >= m.top.z - tol, name + " starts inside the tissue: its lowest point is at z = " + str(zmin) +
-          " m, below the top surface z = " + str(m.top.z) + " m");
-    if (o.contact == ContactModel::TipNodes) {
-      check((nd.direction - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9,
-            name + ": the tip-nodes contact model needs the direction (0, 0, -1)");
-      nd.gap = zmin - m.top.z;
-      nd.tip_nodes = detail::tip_nodes(m.top, m.space, ind.surface, 1e-6 * (hi - lo).norm() + 1e-9);
-    }
-    nd.indenter = std::move(ind);
-    m.needles.push_back(std::move(nd));
+    m.needles.push_back(Impl::placed_needle(std::move(indenters[k]), "needle " + str(k + 1), o, m.top, m.space, tol));
   }
   if (o.contact == ContactModel::Surface) {
     std::vector<Indenter> placed;
@@ -345,15 +391,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   check(!m.dofs.free_dofs.empty(), "tissue mesh: every degree of freedom is constrained");
 
   // Linear tetrahedra near incompressibility: the volumetric term on nodal-averaged volume ratios.
-  if (nodal_average_possible(o)) {
-    std::vector<char> treated(mesh.tets.size(), 0);
-    bool any = false;
-    for (size_t e = 0; e < mesh.tets.size(); ++e) {
-      treated[e] = nodal_average_applies(o, mesh.layers[mesh.tet_layer[e]].poisson_ratio);
-      any = any || treated[e];
-    }
-    if (any) m.nodal = std::make_unique<detail::NodalVolumeAverage>(m.space, treated, o.volumetric_stabilization);
-  }
+  if (nodal_average_possible(o)) m.nodal = nodal_average(mesh, m.space, o);
   LinearSolver solver = o.linear_solver;
   if (solver == LinearSolver::Automatic)
     solver = coarse || m.space.nodes_per_element == 10 ? LinearSolver::TwoGrid : LinearSolver::CholeskyCg;

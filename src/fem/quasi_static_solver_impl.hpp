@@ -31,6 +31,8 @@ struct QuasiStaticSolver::Impl {
     double gap = 0;             // m, TipNodes: distance the needle travels before its tip touches the top surface
     std::vector<int> tip_nodes; // TipNodes
   };
+  static Needle placed_needle(Indenter indenter, const std::string& name, const SolverOptions& options,
+                              const detail::TopSurface& top, const detail::FunctionSpace& space, double tolerance);
 
   // Why a substep failed.
   struct Failure {

@@ -147,43 +147,7 @@ const std::vector<Eigen::Vector3d>* warm_start_at(const std::vector<StepDisplace
   return nullptr;
 }
 
-// loading.angle and loading.azimuth: finite, 0 <= angle < 90 deg, and a tilt only with true contact and without
-// a reduced array model (its symmetry planes assume vertical needles).
-void validate_angle(const IndentationCase& c) {
-  const double degrees = c.angle * 180 / M_PI;
-  if (!std::isfinite(c.angle) || !(c.angle >= 0 && c.angle < M_PI / 2)) {
-    throw InvalidInput(fmt::format("loading.angle: {:.6g} deg is outside [0, 90) deg, expected the needle's axis "
-                                   "from the skin's normal, 0 <= angle < 90 deg",
-                                   degrees));
-  }
-  if (!std::isfinite(c.azimuth)) {
-    throw InvalidInput("loading.azimuth: not finite, expected an angle in the block's x-y plane from +x");
-  }
-  if (c.angle == 0) return;
-  if (c.solver.contact != fem::ContactModel::Surface) {
-    throw InvalidInput(fmt::format("loading.angle: {:.6g} deg with contact = \"tip-nodes\", whose nodes follow a flat "
-                                   "tip straight down; expected angle = \"0 deg\" or model.contact = \"surface\"",
-                                   degrees));
-  }
-  if (c.array && c.array->symmetry != ArraySymmetry::None) {
-    throw InvalidInput(fmt::format("loading.angle: {:.6g} deg with array.symmetry = \"{}\", whose symmetry planes "
-                                   "need vertical needles; expected angle = \"0 deg\" or no array.symmetry",
-                                   degrees, name_of(kArraySymmetryNames, c.array->symmetry)));
-  }
-}
-
 }  // namespace
-
-double tissue_height(const IndentationCase& c) {
-  if (c.tissue_mesh) {
-    double top = -std::numeric_limits<double>::infinity(), bottom = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& p : c.tissue_mesh->nodes) top = std::max(top, p.z()), bottom = std::min(bottom, p.z());
-    return c.tissue_mesh->nodes.empty() ? 0.0 : top - bottom;
-  }
-  double height = 0;
-  for (const mesh::TissueLayer& layer : c.block.layers) height += layer.thickness;
-  return height;
-}
 
 std::string to_string(IndentationStatus status) {
   switch (status) {
@@ -192,78 +156,6 @@ std::string to_string(IndentationStatus status) {
     case IndentationStatus::SolverFailed: return "solver-failed";
   }
   return "unknown";
-}
-
-void validate(const IndentationCase& c) {
-  if (c.needle.triangles.empty() || c.needle.vertices.empty()) {
-    throw InvalidInput("needle: the needle surface mesh is empty, expected a closed triangle mesh");
-  }
-  if (c.edge_radius) {
-    if (!c.geometry) {
-      throw InvalidInput("needle.edge_radius: given for a needle given as a mesh, whose edges are the mesh's; "
-                         "expected edge_radius only with a parametric needle (shape, tip_diameter, ...)");
-    }
-    if (c.solver.contact != fem::ContactModel::Surface) {
-      throw InvalidInput("needle.edge_radius: given with contact = \"tip-nodes\", which takes the tip face as flat; "
-                         "expected contact = \"surface\" or no edge_radius");
-    }
-  }
-  if (c.geometry && c.solver.contact == fem::ContactModel::Surface) {
-    needle::eroded_needle(*c.geometry, effective_edge_radius(c));  // throws for a radius outside its range
-  }
-  if (c.needles.empty()) throw InvalidInput("needles: no needle, expected at least one insertion site");
-  detail::validate_array_case(c);
-  for (std::size_t i = 0; i < c.needles.size(); ++i) {
-    const NeedleSite& site = c.needles[i];
-    if (!site.position.allFinite()) {
-      throw InvalidInput(fmt::format("needles[{}]: the position is not finite, expected finite x and y", i));
-    }
-    if (!std::isfinite(site.tip_height) || site.tip_height < 0) {
-      throw InvalidInput(fmt::format("needles[{}].tip_height: {} is below the surface: the needle would start inside "
-                                     "the tissue, expected a tip height >= 0",
-                                     i, um(site.tip_height)));
-    }
-    if (!c.tissue_mesh && !(std::abs(site.position.x()) < c.block.width / 2 &&
-                            std::abs(site.position.y()) < c.block.length / 2)) {
-      throw InvalidInput(fmt::format("needles[{}]: ({}, {}) is outside the {} x {} block, expected |x| < width/2 and "
-                                     "|y| < length/2",
-                                     i, um(site.position.x()), um(site.position.y()), um(c.block.width),
-                                     um(c.block.length)));
-    }
-  }
-  if (!std::isfinite(c.depth) || !(c.depth > 0)) {
-    throw InvalidInput(fmt::format("loading.depth: {} is not positive, expected a depth > 0", um(c.depth)));
-  }
-  validate_angle(c);
-  const double height = tissue_height(c);
-  if (height > 0 && !(c.depth * std::cos(c.angle) < height)) {
-    throw InvalidInput(fmt::format("loading.depth: {} reaches through the {} high tissue block, expected a depth below "
-                                   "its height (tissue.height or the layers' thicknesses){}",
-                                   um(c.depth), um(height), c.angle > 0 ? " over the cosine of loading.angle" : ""));
-  }
-  if (!c.tissue_mesh) {  // the mesh sizes under the case file's keys (the CLI's overrides land here too)
-    for (const auto& [key, size] : {std::pair{"mesh.size_at_tip", c.block.size_at_site},
-                                    std::pair{"mesh.size_far", c.block.size_far}}) {
-      if (!std::isfinite(size) || !(size > 0)) {
-        throw InvalidInput(fmt::format("{}: {} is not positive, expected a size > 0", key, um(size)));
-      }
-    }
-    if (c.block.size_far < c.block.size_at_site) {
-      throw InvalidInput(fmt::format("mesh.size_far: {} is smaller than mesh.size_at_tip = {}, expected size_far >= "
-                                     "size_at_tip",
-                                     um(c.block.size_far), um(c.block.size_at_site)));
-    }
-  }
-  if (c.solver.linear_solver == fem::LinearSolver::TwoGrid && c.solver.order == fem::ElementOrder::Linear &&
-      c.tissue_mesh) {
-    throw InvalidInput(
-        "solver.linear_solver: \"two-grid\" with linear elements needs a block meshed here (its coarse "
-        "level is the block meshed at coarser sizes), not a tissue mesh file; expected another "
-        "linear_solver, or quadratic elements");
-  }
-  if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
-  c.solver.validate();
-  validate(c.puncture);
 }
 
 Eigen::Vector3d needle_axis(const IndentationCase& c) {
@@ -311,40 +203,133 @@ std::vector<fem::Indenter> placed_indenters(const IndentationCase& c) {
   return indenters;
 }
 
+namespace {
+
+// The run's progress: the stage and the fraction done, with the step count and depth of the result so far.
+class ProgressReport {
+public:
+  ProgressReport(const IndentationCase& c, const IndentationOptions& options, const IndentationResult& result)
+      : case_(c), options_(options), result_(result) {}
+  void operator()(std::string_view stage, double fraction) const {
+    if (!options_.progress) return;
+    IndentationProgress progress;
+    progress.stage = std::string(stage);
+    progress.step = static_cast<int>(result_.steps.size());
+    progress.steps = case_.steps;
+    progress.depth = result_.steps.empty() ? 0.0 : result_.steps.back().depth;
+    progress.fraction = std::clamp(fraction, 0.0, 1.0);
+    options_.progress(progress);
+  }
+
+private:
+  const IndentationCase& case_;
+  const IndentationOptions& options_;
+  const IndentationResult& result_;
+};
+
+struct MeshedTissue {
+  mesh::TetMesh tissue;
+  std::optional<mesh::CoarseLevel> coarse;  // the block's coarse level, if meshed with one (the two-grid solver)
+};
+
+// The case's tissue mesh, or the block of the model solved `m` meshed here (its quality and time into result).
+MeshedTissue tissue_of(const IndentationCase& c, const IndentationCase& m, const ProgressReport& report,
+                       IndentationResult& result) {
+  MeshedTissue meshed;
+  if (c.tissue_mesh) {
+    meshed.tissue = *c.tissue_mesh;
+    result.elements = static_cast<int>(meshed.tissue.tets.size());
+    return meshed;
+  }
+  report("mesh", 0.0);
+  mesh::LayeredBlockOptions block = block_to_mesh(m);
+  block.coarse_level = meshes_coarse_level(m);
+  const Clock::time_point mesh_start = Clock::now();
+  mesh::LayeredBlockResult block_mesh = mesh::layered_block_mesh(block);
+  meshed.tissue = std::move(block_mesh.mesh);
+  meshed.coarse = std::move(block_mesh.coarse);
+  result.quality = std::move(block_mesh.quality);
+  result.mesh_seconds = seconds_since(mesh_start);  // everything: geometry, meshing, quality, conversion
+  result.elements = static_cast<int>(meshed.tissue.tets.size());
+  return meshed;
+}
+
+// A converged (or partly converged) step added to the result, with the needles' external work, trapezoidal over
+// the converged steps.
+void add_step(IndentationStep step, double step_seconds, IndentationResult& result) {
+  const double previous_depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
+  const double previous_force = result.steps.empty() ? 0.0 : result.steps.back().force;
+  const double previous_work = result.steps.empty() ? 0.0 : result.steps.back().external_work;
+  step.external_work = previous_work + 0.5 * (previous_force + step.force) * (step.depth - previous_depth);
+  step.step_seconds = step_seconds;  // wall time of the whole step (the solver's own total leaves out its set-up)
+  result.steps.push_back(step);
+}
+
+// The status and reason of a run that did not fail: punctured (the first needle's, with an array the fraction
+// punctured) or reached the depth.
+void set_outcome(const IndentationCase& c, IndentationResult& result) {
+  if (!result.puncture) {
+    result.status = IndentationStatus::ReachedDepth;
+    result.reason = fmt::format("reached the final depth {} without puncture{}", um(c.depth),
+                                c.puncture.critical_pressure || c.puncture.toughness ? ""
+                                                                                      : " (no puncture criterion given)");
+    return;
+  }
+  const std::string after = result.reason;  // the solver's failure after the puncture, if any
+  result.status = IndentationStatus::Punctured;
+  const double fraction = result.array ? result.array->punctured_fraction.back() : 1.0;
+  result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}{}{}",
+                              to_string(result.puncture->criterion), um(result.puncture->depth),
+                              result.puncture->force,
+                              result.array ? fmt::format(" under the first needle; {:.4g} % of the {} needles "
+                                                         "punctured by depth {}",
+                                                         100 * fraction, c.needles.size(),
+                                                         um(result.steps.back().depth))
+                                           : "",
+                              c.stop_at_puncture ? "" : fmt::format("; continued to {}", um(c.depth)), after);
+}
+
+// What the solver was set up with: its nodes, free dofs, linear solver and nodal-averaged elements.
+void describe_solver(const fem::QuasiStaticSolver& solver, IndentationResult& result) {
+  result.nodes = static_cast<int>(solver.nodes().size());
+  result.dofs = solver.free_dof_count();
+  result.linear_solver = solver.linear_solver();
+  result.nodal_average_elements = solver.nodal_average_elements();
+}
+
+// Why load step k failed, and which steps are kept (with a partly converged step, its deepest converged state).
+std::string failed_step_reason(const IndentationCase& c, int k, double depth, const std::string& solver_reason,
+                               std::size_t completed, bool partial, double reached) {
+  return fmt::format("load step {} of {} (to depth {}) did not converge: {}; {} completed step{} kept{}", k, c.steps,
+                     um(depth), solver_reason, completed, completed == 1 ? "" : "s",
+                     partial ? fmt::format(", the last one the step's deepest converged state at {}", um(reached)) : "");
+}
+
+// The run's puncture after a step: with an array the first needle's (each needle by its own samples), else the
+// criteria on the samples so far (found in the first step: bisected within it).
+void update_puncture(const IndentationCase& c, fem::QuasiStaticSolver& solver, double lowest,
+                     const std::vector<PunctureSample>& samples, const detail::NeedleRecorder& needles,
+                     IndentationResult& result) {
+  if (c.array) {
+    result.puncture = needles.first_puncture(result.steps);
+  } else if (!result.puncture) {
+    result.puncture = puncture_point(samples, c.puncture);
+    if (result.puncture && samples.size() == 1)
+      result.puncture = puncture_in_first_step(solver, c, lowest, samples.front(), *result.puncture);
+  }
+}
+
+}  // namespace
+
 IndentationResult run_indentation(const IndentationCase& c, const IndentationOptions& options) {
   const Clock::time_point start = Clock::now();
   validate(c);
   IndentationResult result;
-  auto report = [&](std::string_view stage, double fraction) {
-    if (!options.progress) return;
-    IndentationProgress progress;
-    progress.stage = std::string(stage);
-    progress.step = static_cast<int>(result.steps.size());
-    progress.steps = c.steps;
-    progress.depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
-    progress.fraction = std::clamp(fraction, 0.0, 1.0);
-    options.progress(progress);
-  };
-
+  const ProgressReport report(c, options, result);
   const detail::ArrayModel array_model = detail::array_model(c);
   const IndentationCase& m = array_model.reduced ? *array_model.reduced : c;  // the model solved
-  mesh::TetMesh tissue;
-  std::optional<mesh::CoarseLevel> coarse;  // the block's coarse level, if meshed with one (the two-grid solver)
-  if (c.tissue_mesh) {
-    tissue = *c.tissue_mesh;
-  } else {
-    report("mesh", 0.0);
-    mesh::LayeredBlockOptions block = block_to_mesh(m);
-    block.coarse_level = meshes_coarse_level(m);
-    const Clock::time_point mesh_start = Clock::now();
-    mesh::LayeredBlockResult meshed = mesh::layered_block_mesh(block);
-    tissue = std::move(meshed.mesh);
-    coarse = std::move(meshed.coarse);
-    result.quality = std::move(meshed.quality);
-    result.mesh_seconds = seconds_since(mesh_start);  // everything: geometry, meshing, quality, conversion
-  }
-  result.elements = static_cast<int>(tissue.tets.size());
-  if (options.on_mesh) options.on_mesh(tissue);
+  const MeshedTissue meshed = tissue_of(c, m, report, result);
+  if (options.on_mesh) options.on_mesh(meshed.tissue);
 
   report("setup", 0.0);
   const Clock::time_point setup_start = Clock::now();
@@ -358,12 +343,10 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     };
   }
   solver_options.boundary = m.solver.boundary;
-  fem::QuasiStaticSolver solver(tissue, placed_indenters(m), solver_options, coarse ? &*coarse : nullptr);
+  fem::QuasiStaticSolver solver(meshed.tissue, placed_indenters(m), solver_options,
+                                meshed.coarse ? &*meshed.coarse : nullptr);
   const std::vector<Eigen::Vector3d> bases = placed_bases(m);
-  result.nodes = static_cast<int>(solver.nodes().size());
-  result.dofs = solver.free_dof_count();
-  result.linear_solver = solver.linear_solver();
-  result.nodal_average_elements = solver.nodal_average_elements();
+  describe_solver(solver, result);
   result.setup_seconds = seconds_since(setup_start);
 
   std::vector<PunctureSample> samples;
@@ -385,36 +368,21 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
     if (!solved.converged) {
       failed = true;
       result.status = IndentationStatus::SolverFailed;
-      const std::size_t completed = result.steps.size() + (partial ? 1 : 0);
-      result.reason = fmt::format("load step {} of {} (to depth {}) did not converge: {}; {} completed step{} kept{}",
-                                  k, c.steps, um(depth), solved.reason, completed, completed == 1 ? "" : "s",
-                                  partial ? fmt::format(", the last one the step's deepest converged state at {}",
-                                                        um(reached))
-                                          : "");
+      result.reason =
+          failed_step_reason(c, k, depth, solved.reason, result.steps.size() + (partial ? 1 : 0), partial, reached);
       if (!partial) break;
     }
     const double step_depth = partial ? reached : depth;
-    IndentationStep step = detail::whole_step(step_of(solved, step_depth, detail::needle_loads(solved, needle_axis(c), bases)),
-                                              array_model);
-    // External work of the needles, trapezoidal over the converged steps (the needles move only along z).
-    const double previous_depth = result.steps.empty() ? 0.0 : result.steps.back().depth;
-    const double previous_force = result.steps.empty() ? 0.0 : result.steps.back().force;
-    const double previous_work = result.steps.empty() ? 0.0 : result.steps.back().external_work;
-    step.external_work = previous_work + 0.5 * (previous_force + step.force) * (step_depth - previous_depth);
-    step.step_seconds = step_seconds;  // wall time of the whole step (the solver's own total leaves out its set-up)
-    result.steps.push_back(step);
+    add_step(detail::whole_step(step_of(solved, step_depth, detail::needle_loads(solved, needle_axis(c), bases)),
+                                array_model),
+             step_seconds, result);
+    const IndentationStep& step = result.steps.back();
     if (options.keep_displacements) result.displacements.push_back({step_depth, solver.displacement()});
     if (options.on_step) options.on_step(step, solver);
     report("step", static_cast<double>(k) / c.steps);
     samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});
     needles.add(step);
-    if (c.array) {  // per needle: the first needle's puncture
-      result.puncture = needles.first_puncture(result.steps);
-    } else if (!result.puncture) {
-      result.puncture = puncture_point(samples, c.puncture);
-      if (result.puncture && samples.size() == 1)
-        result.puncture = puncture_in_first_step(solver, c, lowest, samples.front(), *result.puncture);
-    }
+    update_puncture(c, solver, lowest, samples, needles, result);
     if (partial) {
       // Punctured before the solver gave up: with stop_at_puncture that is the run's outcome (finer load steps
       // would have stopped there); the failure stays in the reason.
@@ -429,28 +397,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
   result.needles = needles.needles();
   result.bending = detail::bending_check(c, result.steps);
   if (c.array) result.array = needles.array_outcome(result.steps);
-  if (!failed) {
-    if (result.puncture) {
-      const std::string after = result.reason;  // the solver's failure after the puncture, if any
-      result.status = IndentationStatus::Punctured;
-      const double fraction = result.array ? result.array->punctured_fraction.back() : 1.0;
-      result.reason = fmt::format("the {} criterion fired at depth {} (force {:.4g} N){}{}{}",
-                                  to_string(result.puncture->criterion), um(result.puncture->depth),
-                                  result.puncture->force,
-                                  result.array ? fmt::format(" under the first needle; {:.4g} % of the {} needles "
-                                                             "punctured by depth {}",
-                                                             100 * fraction, c.needles.size(),
-                                                             um(result.steps.back().depth))
-                                               : "",
-                                  c.stop_at_puncture ? "" : fmt::format("; continued to {}", um(c.depth)), after);
-    } else {
-      result.status = IndentationStatus::ReachedDepth;
-      result.reason = fmt::format("reached the final depth {} without puncture{}", um(c.depth),
-                                  c.puncture.critical_pressure || c.puncture.toughness
-                                      ? ""
-                                      : " (no puncture criterion given)");
-    }
-  }
+  if (!failed) set_outcome(c, result);
   result.total_seconds = seconds_since(start);
   return result;
 }

@@ -255,6 +255,52 @@ double two_insertion_toughness_of(const Section& puncture, const toml::node& nod
   return table.at(node, [&] { return insertion::two_insertion_toughness(first, second, options).toughness; });
 }
 
+// [loading]: the depth (along the needle's axis), the angle and azimuth (range and contact: insertion::validate),
+// the steps and whether to go on after the puncture.
+void read_loading(const Section& loading, insertion::IndentationCase& result) {
+  result.depth = positive_quantity(loading, "depth", Dimension::Length);
+  if (const toml::node* node = loading.optional("angle")) {
+    result.angle = quantity_of(loading, *node, "angle", Dimension::Angle);
+  }
+  if (const toml::node* node = loading.optional("azimuth")) {
+    result.azimuth = quantity_of(loading, *node, "azimuth", Dimension::Angle);
+  }
+  if (const toml::node* node = loading.optional("steps")) {
+    result.steps = integer_in(loading, *node, "steps", 1, limits::kMaxLoadSteps);
+  }
+  if (const toml::node* node = loading.optional("continue_after_puncture")) {
+    result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
+  }
+}
+
+// [puncture]: the critical pressure and the toughness, given or from two insertions (toughness_from).
+void read_puncture(const Section& puncture, const std::filesystem::path& base_directory,
+                   insertion::IndentationCase& result) {
+  result.puncture.critical_pressure = optional_positive_quantity(puncture, "critical_pressure", Dimension::Pressure);
+  result.puncture.toughness = optional_positive_quantity(puncture, "toughness", Dimension::Stiffness);
+  if (const toml::node* node = puncture.optional("toughness_from")) {
+    if (result.puncture.toughness) {
+      puncture.fail(*node, "toughness_from", "given together with toughness, expected one of them");
+    }
+    result.puncture.toughness = two_insertion_toughness_of(puncture, *node, result.geometry, base_directory);
+  }
+}
+
+// Every needle of [[needles]] (or [mesh] sites) inside the block's top surface, at the key that placed it.
+void check_sites_inside(const toml::table& root, const Section& top, const insertion::IndentationCase& result) {
+  for (std::size_t i = 0; i < result.needles.size() && !result.array; ++i) {
+    const Eigen::Vector2d p = result.needles[i].position;
+    if (!result.tissue_mesh && !(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
+      const toml::node& at = top.optional("needles") ? *top.optional("needles")->as_array()->get(i) : root;
+      throw InvalidInput(fmt::format("{} key 'needles[{}]': ({}, {}) is outside the {} x {} block, expected "
+                                     "|x| < width/2 and |y| < length/2",
+                                     location(top.file(), at.source()), i, units::format(p.x(), "um"),
+                                     units::format(p.y(), "um"), units::format(result.block.width, "um"),
+                                     units::format(result.block.length, "um")));
+    }
+  }
+}
+
 }  // namespace
 
 fem::SolverOptions case_solver_defaults() {
@@ -301,33 +347,10 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   } else {
     result.needles = read_sites(top, needle_read.tip_height, tissue.block.insertion_sites);
   }
-  for (std::size_t i = 0; i < result.needles.size() && !result.array; ++i) {
-    const Eigen::Vector2d p = result.needles[i].position;
-    if (!result.tissue_mesh && !(std::abs(p.x()) < result.block.width / 2 && std::abs(p.y()) < result.block.length / 2)) {
-      const toml::node& at = top.optional("needles") ? *top.optional("needles")->as_array()->get(i) : root;
-      throw InvalidInput(fmt::format("{} key 'needles[{}]': ({}, {}) is outside the {} x {} block, expected "
-                                     "|x| < width/2 and |y| < length/2",
-                                     location(file, at.source()), i, units::format(p.x(), "um"),
-                                     units::format(p.y(), "um"), units::format(result.block.width, "um"),
-                                     units::format(result.block.length, "um")));
-    }
-  }
+  check_sites_inside(root, top, result);
 
-  const Section loading =
-      top.required_subsection("loading", {"depth", "steps", "continue_after_puncture", "angle", "azimuth"});
-  result.depth = positive_quantity(loading, "depth", Dimension::Length);
-  if (const toml::node* node = loading.optional("angle")) {  // range and contact: insertion::validate
-    result.angle = quantity_of(loading, *node, "angle", Dimension::Angle);
-  }
-  if (const toml::node* node = loading.optional("azimuth")) {
-    result.azimuth = quantity_of(loading, *node, "azimuth", Dimension::Angle);
-  }
-  if (const toml::node* node = loading.optional("steps")) {
-    result.steps = integer_in(loading, *node, "steps", 1, limits::kMaxLoadSteps);
-  }
-  if (const toml::node* node = loading.optional("continue_after_puncture")) {
-    result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
-  }
+  read_loading(top.required_subsection("loading", {"depth", "steps", "continue_after_puncture", "angle", "azimuth"}),
+               result);
   if (const toml::node* node = top.optional("model")) {
     read_parameters(top.subsection(*node, "model", keys_of_group(fem::kSolverParameters, "model")),
                     fem::kSolverParameters, "model", result.solver);
@@ -336,14 +359,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     read_solver(top.subsection(*node, "solver", keys_of_group(fem::kSolverParameters, "solver")), result);
   }
   if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
-    result.puncture.critical_pressure = optional_positive_quantity(*puncture, "critical_pressure", Dimension::Pressure);
-    result.puncture.toughness = optional_positive_quantity(*puncture, "toughness", Dimension::Stiffness);
-    if (const toml::node* node = puncture->optional("toughness_from")) {
-      if (result.puncture.toughness) {
-        puncture->fail(*node, "toughness_from", "given together with toughness, expected one of them");
-      }
-      result.puncture.toughness = two_insertion_toughness_of(*puncture, *node, result.geometry, base_directory);
-    }
+    read_puncture(*puncture, base_directory, result);
   }
   validate_at_keys(root, file, root, [&] { insertion::validate(result); });
   return result;

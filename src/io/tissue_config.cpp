@@ -113,6 +113,94 @@ Section table_of(const toml::node& node, std::string_view key, std::string_view 
   return Section(*node.as_table(), std::string(key), file, allowed_keys);
 }
 
+// [tissue]: the block's width and length, and its layers from a preset (the last layer taking the rest of a given
+// height) or from [[tissue.layers]].
+void read_tissue_table(const toml::node& node, std::string_view file, mesh::LayeredBlockOptions& o) {
+  const Section tissue = table_of(node, "tissue", file, {"width", "length", "height", "preset", "layers"});
+  if (auto w = optional_positive_quantity(tissue, "width", Dimension::Length)) o.width = *w;
+  if (auto l = optional_positive_quantity(tissue, "length", Dimension::Length)) o.length = *l;
+  const std::optional<double> height = optional_positive_quantity(tissue, "height", Dimension::Length);
+  const toml::node* preset = tissue.optional("preset");
+  const toml::node* layers = tissue.optional("layers");
+  if (preset && layers) tissue.fail(*layers, "layers", "given together with preset, expected one of preset or layers");
+  if (preset) {
+    const std::string name = text_of(tissue, *preset, "preset", "a tissue preset name");
+    o.layers = tissue.at(*preset, [&] { return materials::tissue_preset(name, tissue.what("preset")).layers; });
+    if (height) {  // the preset's last layer takes the rest of the given height
+      double others = 0;
+      for (std::size_t i = 0; i + 1 < o.layers.size(); ++i) others += o.layers[i].thickness;
+      if (!(*height > others)) {
+        tissue.fail(*tissue.optional("height"), "height",
+                    fmt::format("{:g} um leaves no room for the preset's last layer below {:g} um, expected more",
+                                *height * 1e6, others * 1e6));
+      }
+      o.layers.back().thickness = *height - others;
+    }
+  } else if (layers) {
+    o.layers = layers_of(tissue, *layers, height, tissue.optional("height"));
+  } else if (height) {
+    o.layers.back().thickness = *height - 160e-6;
+    if (!(o.layers.back().thickness > 0)) {
+      tissue.fail(*tissue.optional("height"), "height", "is not deeper than the 160 um epidermis, expected more");
+    }
+  }
+}
+
+// [mesh]: a .msh file (with its unit), or the block's mesh sizes, sites and limits.
+void read_mesh_table(const toml::node& node, std::string_view file, const std::filesystem::path& base_dir,
+                     TissueCase& tissue) {
+  mesh::LayeredBlockOptions& o = tissue.block;
+  const Section m = table_of(node, "mesh", file, {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
+                                                   "thin_layer_size_factor", "sites", "site_circle_radius", "split", "file",
+                                                   "unit", "max_tetrahedra"});
+  if (const toml::node* f = m.optional("file")) {
+    const std::string path = text_of(m, *f, "file", "a .msh file name");
+    if (path.empty()) m.fail(*f, "file", "empty, expected a .msh file name");
+    tissue.msh_file = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
+    for (std::string_view key : {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
+                                 "thin_layer_size_factor", "sites", "site_circle_radius", "split", "max_tetrahedra"}) {
+      if (const toml::node* other = m.optional(key)) {
+        m.fail(*other, key, "given together with file, expected either a mesh file or the block's mesh sizes");
+      }
+    }
+  }
+  if (const toml::node* u = m.optional("unit")) {
+    if (tissue.msh_file.empty()) m.fail(*u, "unit", "given without file, expected it only with a mesh file");
+    const std::string unit = text_of(m, *u, "unit", "a length unit such as \"um\" or \"mm\"");
+    tissue.msh_unit = m.at(*u, [&] { return units::unit_factor(unit, Dimension::Length, m.what("unit")); });
+  }
+  if (auto s = optional_positive_quantity(m, "size_at_tip", Dimension::Length)) o.size_at_site = *s;
+  if (auto s = optional_positive_quantity(m, "size_far", Dimension::Length)) o.size_far = *s;
+  if (auto s = optional_positive_quantity(m, "refinement_radius", Dimension::Length)) o.refinement_radius = *s;
+  if (const toml::node* g = m.optional("size_gradient")) {
+    o.size_gradient = number_at_least(m, *g, "size_gradient", 0.0);
+    if (!(o.size_gradient > 0)) m.fail(*g, "size_gradient", "is 0, expected a positive number");
+  }
+  if (const toml::node* f = m.optional("thin_layer_size_factor")) {
+    o.thin_layer_size_factor = number_at_least(m, *f, "thin_layer_size_factor", 0.0);
+  }
+  if (const toml::node* s = m.optional("sites")) o.insertion_sites = sites_of(m, *s);
+  if (auto r = optional_positive_quantity(m, "site_circle_radius", Dimension::Length)) o.site_circle_radius = *r;
+  if (const toml::node* split = m.optional("split")) o.split = boolean_of(m, *split, "split");
+  if (const toml::node* limit = m.optional("max_tetrahedra")) {
+    o.max_tetrahedra = number_at_least(m, *limit, "max_tetrahedra", 1.0);
+  }
+  if (o.size_far < o.size_at_site) {
+    m.fail(m.optional("size_far") ? *m.optional("size_far") : node, "size_far",
+           fmt::format("{:g} um is smaller than size_at_tip = {:g} um, expected size_far >= size_at_tip",
+                       o.size_far * 1e6, o.size_at_site * 1e6));
+  }
+  for (std::size_t i = 0; tissue.msh_file.empty() && i < o.insertion_sites.size(); ++i) {
+    const Eigen::Vector2d& p = o.insertion_sites[i];
+    if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
+      m.fail(*m.optional("sites"), fmt::format("sites[{}]", i),
+             fmt::format("({:g}, {:g}) um is not inside the {:g} x {:g} um top surface centred on (0, 0), expected |x| < "
+                         "width/2 and |y| < length/2",
+                         p.x() * 1e6, p.y() * 1e6, o.width * 1e6, o.length * 1e6));
+    }
+  }
+}
+
 }  // namespace
 
 TissueCase tissue_case_of(const toml::table& root, std::string_view file, const std::filesystem::path& base_dir) {
@@ -125,87 +213,8 @@ TissueCase tissue_case_of(const toml::table& root, std::string_view file, const 
                                    file, materials::tissue_preset_names().front(),
                                    fmt::join(materials::tissue_preset_names(), ", ")));
   }
-  if (const toml::node* node = root.get("tissue")) {
-    const Section tissue = table_of(*node, "tissue", file, {"width", "length", "height", "preset", "layers"});
-    if (auto w = optional_positive_quantity(tissue, "width", Dimension::Length)) o.width = *w;
-    if (auto l = optional_positive_quantity(tissue, "length", Dimension::Length)) o.length = *l;
-    const std::optional<double> height = optional_positive_quantity(tissue, "height", Dimension::Length);
-    const toml::node* preset = tissue.optional("preset");
-    const toml::node* layers = tissue.optional("layers");
-    if (preset && layers) tissue.fail(*layers, "layers", "given together with preset, expected one of preset or layers");
-    if (preset) {
-      const std::string name = text_of(tissue, *preset, "preset", "a tissue preset name");
-      o.layers = tissue.at(*preset, [&] { return materials::tissue_preset(name, tissue.what("preset")).layers; });
-      if (height) {  // the preset's last layer takes the rest of the given height
-        double others = 0;
-        for (std::size_t i = 0; i + 1 < o.layers.size(); ++i) others += o.layers[i].thickness;
-        if (!(*height > others)) {
-          tissue.fail(*tissue.optional("height"), "height",
-                      fmt::format("{:g} um leaves no room for the preset's last layer below {:g} um, expected more",
-                                  *height * 1e6, others * 1e6));
-        }
-        o.layers.back().thickness = *height - others;
-      }
-    } else if (layers) {
-      o.layers = layers_of(tissue, *layers, height, tissue.optional("height"));
-    } else if (height) {
-      o.layers.back().thickness = *height - 160e-6;
-      if (!(o.layers.back().thickness > 0)) {
-        tissue.fail(*tissue.optional("height"), "height", "is not deeper than the 160 um epidermis, expected more");
-      }
-    }
-  }
-  if (const toml::node* node = root.get("mesh")) {
-    const Section m = table_of(*node, "mesh", file, {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
-                                                     "thin_layer_size_factor", "sites", "site_circle_radius", "split", "file",
-                                                     "unit", "max_tetrahedra"});
-    if (const toml::node* f = m.optional("file")) {
-      const std::string path = text_of(m, *f, "file", "a .msh file name");
-      if (path.empty()) m.fail(*f, "file", "empty, expected a .msh file name");
-      tissue.msh_file = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
-      for (std::string_view key : {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
-                                   "thin_layer_size_factor", "sites", "site_circle_radius", "split", "max_tetrahedra"}) {
-        if (const toml::node* other = m.optional(key)) {
-          m.fail(*other, key, "given together with file, expected either a mesh file or the block's mesh sizes");
-        }
-      }
-    }
-    if (const toml::node* u = m.optional("unit")) {
-      if (tissue.msh_file.empty()) m.fail(*u, "unit", "given without file, expected it only with a mesh file");
-      const std::string unit = text_of(m, *u, "unit", "a length unit such as \"um\" or \"mm\"");
-      tissue.msh_unit = m.at(*u, [&] { return units::unit_factor(unit, Dimension::Length, m.what("unit")); });
-    }
-    if (auto s = optional_positive_quantity(m, "size_at_tip", Dimension::Length)) o.size_at_site = *s;
-    if (auto s = optional_positive_quantity(m, "size_far", Dimension::Length)) o.size_far = *s;
-    if (auto s = optional_positive_quantity(m, "refinement_radius", Dimension::Length)) o.refinement_radius = *s;
-    if (const toml::node* g = m.optional("size_gradient")) {
-      o.size_gradient = number_at_least(m, *g, "size_gradient", 0.0);
-      if (!(o.size_gradient > 0)) m.fail(*g, "size_gradient", "is 0, expected a positive number");
-    }
-    if (const toml::node* f = m.optional("thin_layer_size_factor")) {
-      o.thin_layer_size_factor = number_at_least(m, *f, "thin_layer_size_factor", 0.0);
-    }
-    if (const toml::node* s = m.optional("sites")) o.insertion_sites = sites_of(m, *s);
-    if (auto r = optional_positive_quantity(m, "site_circle_radius", Dimension::Length)) o.site_circle_radius = *r;
-    if (const toml::node* split = m.optional("split")) o.split = boolean_of(m, *split, "split");
-    if (const toml::node* limit = m.optional("max_tetrahedra")) {
-      o.max_tetrahedra = number_at_least(m, *limit, "max_tetrahedra", 1.0);
-    }
-    if (o.size_far < o.size_at_site) {
-      m.fail(m.optional("size_far") ? *m.optional("size_far") : *node, "size_far",
-             fmt::format("{:g} um is smaller than size_at_tip = {:g} um, expected size_far >= size_at_tip",
-                         o.size_far * 1e6, o.size_at_site * 1e6));
-    }
-    for (std::size_t i = 0; tissue.msh_file.empty() && i < o.insertion_sites.size(); ++i) {
-      const Eigen::Vector2d& p = o.insertion_sites[i];
-      if (!(std::abs(p.x()) < 0.5 * o.width && std::abs(p.y()) < 0.5 * o.length)) {
-        m.fail(*m.optional("sites"), fmt::format("sites[{}]", i),
-               fmt::format("({:g}, {:g}) um is not inside the {:g} x {:g} um top surface centred on (0, 0), expected |x| < "
-                           "width/2 and |y| < length/2",
-                           p.x() * 1e6, p.y() * 1e6, o.width * 1e6, o.length * 1e6));
-      }
-    }
-  }
+  if (const toml::node* node = root.get("tissue")) read_tissue_table(*node, file, o);
+  if (const toml::node* node = root.get("mesh")) read_mesh_table(*node, file, base_dir, tissue);
   return tissue;
 }
 
