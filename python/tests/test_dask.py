@@ -8,6 +8,7 @@ import pytest
 import needlekit as nk
 import needlekit.dask
 import cloudpickle
+import dask
 import distributed
 from test_evaluate_many import random_designs
 
@@ -42,9 +43,14 @@ def small_patch_fit(needles_per_row):
 
 @pytest.fixture(scope="module")
 def client():
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
-        with distributed.Client(cluster) as c:
-            yield c
+    # Generous connection timeouts: under `ctest -j2` the workers start beside the browser and FE tests on 2 cores,
+    # where dask's 30 s default for connecting may be too short (python.pytest failed once there, its cause not
+    # captured; this is the likeliest).
+    with dask.config.set({"distributed.comm.timeouts.connect": "180s", "distributed.comm.timeouts.tcp": "180s"}):
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                      dashboard_address=None) as cluster:
+            with distributed.Client(cluster, timeout="180s") as c:
+                yield c
 
 
 def test_input_objects_pickle_by_their_fields():
