@@ -103,14 +103,11 @@ void pitch_sweep(const RunContext& context, SectionReport& report, const Section
   nlohmann::json rows = nlohmann::json::array();
   for (std::size_t i = 0; i < pitches.size(); ++i) {
     insertion::IndentationCase c = example_case(context);
-    c.array->rows = c.array->columns = 2;
-    c.array->pitch = pitches[i];
-    c.array->symmetry = insertion::ArraySymmetry::Quarter;
-    const Eigen::Vector2d footprint = insertion::array_footprint(*c.array, insertion::base_diameter(c));
-    c.block.width = footprint.x() + 2 * c.array->margin;
-    c.block.length = footprint.y() + 2 * c.array->margin;
-    c.needles.clear();
-    for (const Eigen::Vector2d& p : insertion::array_positions(*c.array)) c.needles.push_back({p, 0});
+    insertion::NeedleArray array = *c.array;
+    array.rows = array.columns = 2;
+    array.pitch = pitches[i];
+    array.symmetry = insertion::ArraySymmetry::Quarter;
+    insertion::set_array(c, array, c.needles.front().tip_height);
     c.stop_at_puncture = false;
     const insertion::IndentationResult result =
         run(context, c, {}, [&](double f) { progress(0.5 + 0.5 * (i + f) / pitches.size(), "pitch sweep"); });

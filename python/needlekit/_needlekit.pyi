@@ -4447,6 +4447,9 @@ def section_at(needle: NeedleGeometry, distance_from_tip: float) -> SectionPrope
 def sensitivity_sweep(design: ArrayDesign, conditions: InsertionConditions, options: PerformanceIndexOptions, sweep: SweepOptions) -> SweepResult:
     """One-at-a-time sensitivity of the index (Figs 6.18, 6.19); what `needlekit sweep` does."""
 
+def set_array(case: IndentationCase, array: NeedleArray, tip_height: float = 0.0, size_width: bool = True, size_length: bool = True) -> None:
+    """Makes the case an array case: every needle of `array` at tip_height (m), and the block's width and length the array's footprint plus its margin (when size_width / size_length)."""
+
 def shape_from_string(text: str, what: str = 'shape') -> Shape:
     """"cylinder", "cone" or "bevel"."""
 

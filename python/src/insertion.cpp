@@ -214,6 +214,10 @@ void bind_indentation(py::module_& m) {
       "Runs the FE indentation (GIL released). progress(IndentationProgress) is called at each stage and Newton "
       "iteration; Ctrl-C raises KeyboardInterrupt (files of completed steps are complete, none is half-written). "
       "output_directory: the ParaView series (NAME.pvd, NAME_step_KKK.vtu), CSV and JSON as `needlekit indent --out`.");
+  m.def("set_array", &set_array, py::arg("case"), py::arg("array"), py::arg("tip_height") = 0.0,
+        py::arg("size_width") = true, py::arg("size_length") = true,
+        "Makes the case an array case: every needle of `array` at tip_height (m), and the block's width and length "
+        "the array's footprint plus its margin (when size_width / size_length).");
   m.def("pre_puncture_curve", &pre_puncture_curve, py::arg("result"));
   m.def(
       "indentation_json",

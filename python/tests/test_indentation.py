@@ -97,8 +97,8 @@ def test_an_array_case_gives_every_needle_and_the_totals():
     assert case.array.rows == 3 and case.array.layout == nk.ArrayLayout.Square
     assert case.array.pitch == pytest.approx(600e-6)
     assert len(case.needles) == 9
-    case.array = nk.NeedleArray(rows=2, columns=2, pitch="800 um", margin="400 um", backing_plate=True)
-    case.needles = [nk.NeedleSite(position=p) for p in nk.array_positions(case.array)]
+    nk.set_array(case, nk.NeedleArray(rows=2, columns=2, pitch="800 um", margin="400 um", backing_plate=True),
+                 size_width=False, size_length=False)  # the 3 x 3 example's block
     case.block.size_at_site = "60 um"
     case.steps = 3
     result = nk.run_indentation(case)

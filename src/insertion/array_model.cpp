@@ -35,6 +35,15 @@ void check_footprint(const IndentationCase& c) {
 
 }  // namespace
 
+void set_array(IndentationCase& c, const NeedleArray& array, double tip_height, bool size_width, bool size_length) {
+  c.array = array;
+  const Eigen::Vector2d footprint = array_footprint(array, base_diameter(c));
+  if (size_width) c.block.width = footprint.x() + 2 * array.margin;
+  if (size_length) c.block.length = footprint.y() + 2 * array.margin;
+  c.needles.clear();
+  for (const Eigen::Vector2d& position : array_positions(array)) c.needles.push_back({position, tip_height});
+}
+
 double base_diameter(const IndentationCase& c) {
   if (c.geometry) return c.geometry->base_diameter;
   return std::max(extent(c.needle, 0), extent(c.needle, 1));

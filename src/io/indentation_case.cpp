@@ -179,13 +179,9 @@ void apply_array(const toml::table& root, const Section& top, const Section& sec
   if (const toml::node* sites = root.at_path("mesh.sites").node()) {
     top.fail(*sites, "mesh.sites", "given together with [array], expected the needles in one of them");
   }
-  c.array = read_array(section);
-  validate_at_keys(root, section.file(), section.table(), [&] { insertion::validate(*c.array, insertion::base_diameter(c)); });
-  const Eigen::Vector2d footprint = insertion::array_footprint(*c.array, insertion::base_diameter(c));
-  if (!root.at_path("tissue.width").node()) c.block.width = footprint.x() + 2 * c.array->margin;
-  if (!root.at_path("tissue.length").node()) c.block.length = footprint.y() + 2 * c.array->margin;
-  c.needles.clear();
-  for (const Eigen::Vector2d& position : insertion::array_positions(*c.array)) c.needles.push_back({position, tip_height});
+  const insertion::NeedleArray array = read_array(section);
+  validate_at_keys(root, section.file(), section.table(), [&] { insertion::validate(array, insertion::base_diameter(c)); });
+  insertion::set_array(c, array, tip_height, !root.at_path("tissue.width").node(), !root.at_path("tissue.length").node());
 }
 
 // ---- the rest -----------------------------------------------------------------------------------------------------

@@ -99,6 +99,11 @@ double base_diameter(const IndentationCase& indentation_case);
 // m: the needle's length (the parametric needle's, else the needle mesh's extent along its axis).
 double needle_length(const IndentationCase& indentation_case);
 
+// Makes the case an array case: `array`, every needle of it at `tip_height` (array_positions), and the block's
+// width and length (when `size_width`/`size_length`) the array's footprint plus its margin on every side.
+void set_array(IndentationCase& indentation_case, const NeedleArray& array, double tip_height, bool size_width = true,
+               bool size_length = true);
+
 // The case that is meshed and solved: the case itself, or for an array with a symmetry its reduced model (the half
 // or quarter block, the needles in it, some cut by the symmetry planes, and the symmetry boundary condition).
 IndentationCase modelled_case(const IndentationCase& indentation_case);
