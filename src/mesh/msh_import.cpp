@@ -25,7 +25,7 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
   MshImportResult result;
   TetMesh& mesh = result.mesh;
   detail::GmshError error;
-  detail::MshContents contents = detail::read_msh_isolated(name, options.layers, error);
+  detail::MshContents contents = detail::read_msh_isolated(name, options.layers, error, options.keep_reader_process);
   detail::throw_if_failed(error);
   mesh.layers = std::move(contents.layers);
   const std::vector<std::vector<std::size_t>>& layer_corners = contents.layer_corners;

@@ -286,3 +286,24 @@ TEST(MshImport, GmshReaderCrashIsBadInput) {
   o.layers = {{"top", 0, 1e5, 0.4}, {"bottom", 0, 1e5, 0.4}};
   EXPECT_EQ(mesh::msh_import(good, o).mesh.tets.size(), 2u);
 }
+
+// keep_reader_process: the child that runs Gmsh's reader serves several files, and a file that crashes Gmsh's reader
+// (tests/data/fuzz-regressions/gmsh_msh) is that file's error only: the next file gets a fresh child and is read.
+TEST(MshImport, KeptReaderProcessIsReplacedAfterACrash) {
+  const auto file = temp_file("two.msh", two_tets_msh());
+  const auto crash = temp_file("crash.msh",
+                               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 100 0 0\n3 0 100 0\n"
+                               "4 0 0 -100\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n");
+  mesh::MshImportOptions keep;
+  keep.keep_reader_process = true;
+  const mesh::MshImportResult once = mesh::msh_import(file, {});
+  for (int round = 0; round < 2; ++round) {
+    const mesh::MshImportResult kept = mesh::msh_import(file, keep);
+    EXPECT_EQ(kept.mesh.tets, once.mesh.tets);
+    ASSERT_EQ(kept.mesh.nodes.size(), once.mesh.nodes.size());
+    for (std::size_t i = 0; i < once.mesh.nodes.size(); ++i) EXPECT_EQ(kept.mesh.nodes[i], once.mesh.nodes[i]);
+    EXPECT_THAT([&] { mesh::msh_import(crash, keep); },
+                testing::ThrowsMessage<InvalidInput>(HasSubstr(crash.string() + ": Gmsh's .msh reader crashed")));
+  }
+  EXPECT_EQ(mesh::msh_import(file, keep).mesh.tets.size(), 2u);
+}

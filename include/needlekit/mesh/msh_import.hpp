@@ -18,6 +18,11 @@ struct MshImportOptions {
                                      // named physical volumes is accepted when exactly one layer is given.
   bool reorient = false;             // true: left-handed tetrahedra are renumbered right-handed; false: they are an
                                      // error (a mesh with inverted elements)
+  bool keep_reader_process = false;  // true: the child process that runs Gmsh's reader (so that a crash of Gmsh's
+                                     // on a malformed file cannot take the program down) stays for the next import
+                                     // instead of being started for each file: for many imports in a row (fuzzing,
+                                     // batch scripts). A child that crashed is replaced. It holds a copy-on-write
+                                     // image of the program as it was when it started.
 };
 
 struct MshImportResult {
