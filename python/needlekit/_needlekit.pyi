@@ -3575,7 +3575,7 @@ Keywords (every field):
   boundary_tolerance: m, >= 0 m: a node is on a face of the bounding box within this distance (plus 1e-9 of the box diagonal). Default: "1e-09 m".
   linear_solver: "auto" | "two-grid" | "cholesky-cg" | "cholesky": the built-in backend's linear solver. Default: "auto".
   backend: "builtin" | "petsc": where the linear solves run. Default: "builtin".
-  two_grid_refresh_iterations: >= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations. Default: 25.
+  two_grid_refresh_iterations: >= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations (the PETSc backend: its preconditioner). Default: 25.
   max_reuse_iterations: >= 1: cholesky-cg: cap on the CG iterations of one solve on the last factorization. Default: 40.
   linear_tolerance: in (0, 1): tightest relative residual of CG (inexact Newton stops earlier). Default: 1e-10.
   threads: >= 0: assembly threads (0: the default, all cores). Default: 0."""
@@ -3695,7 +3695,7 @@ Keywords (every field):
         """Every field as a dict (SI)."""
     @property
     def two_grid_refresh_iterations(self) -> int:
-        """>= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations. Default: 25."""
+        """>= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations (the PETSc backend: its preconditioner). Default: 25."""
     @two_grid_refresh_iterations.setter
     def two_grid_refresh_iterations(self, value: Any) -> None: ...
     @property

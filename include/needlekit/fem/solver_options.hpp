@@ -171,10 +171,11 @@ struct SolverOptions {
   // iteration cost) iterations on the last factor, from CHOLMOD's flop count and the factor's size (not timed: runs
   // do not depend on the machine's load), capped by max_reuse_iterations, and the factor is renewed at once when
   // the previous CG solve used more than half of that. TwoGrid: CG with the two-grid cycle, whose coarse operator
-  // is renewed when a solve needed more than two_grid_refresh_iterations. Both start from the projection of the
-  // solution on the last 12 solutions (Krylov recycling). With the nodal-averaged volume, CholeskyCg factorizes a
-  // one-ring matrix that bounds the tangent from above, not the two-ring tangent itself, and CG always runs
-  // (docs/fem_solver.md); Cholesky factorizes the tangent itself.
+  // is renewed when a solve needed more than two_grid_refresh_iterations (so is the PETSc backend's preconditioner,
+  // src/fem/petsc/petsc_linear_solve.cpp). Both start from the projection of the solution on the last 12 solutions
+  // (Krylov recycling). With the nodal-averaged volume, CholeskyCg factorizes a one-ring matrix that bounds the
+  // tangent from above, not the two-ring tangent itself, and CG always runs (docs/fem_solver.md); Cholesky
+  // factorizes the tangent itself.
   LinearSolver linear_solver = LinearSolver::Automatic;   // the built-in backend's strategy
   SolverBackend backend = SolverBackend::Builtin;         // Petsc: linear_solver is not used
   int two_grid_refresh_iterations = 25;  // >= 1: see above

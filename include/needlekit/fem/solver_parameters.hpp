@@ -98,7 +98,7 @@ inline constexpr std::tuple kSolverParameters{
     Parameter<SolverOptions, int>{"two_grid_refresh_iterations", &SolverOptions::two_grid_refresh_iterations, 1,
                                   kNoLimit, Bound::Closed, Bound::Closed,
                                   "two-grid: the coarse operator is renewed after a solve that needed more CG "
-                                  "iterations",
+                                  "iterations (the PETSc backend: its preconditioner)",
                                   "solver"},
     Parameter<SolverOptions, int>{"max_reuse_iterations", &SolverOptions::max_reuse_iterations, 1, kNoLimit,
                                   Bound::Closed, Bound::Closed,

@@ -63,6 +63,8 @@ private:
   void create_solver();
   void add_values();  // this rank's part of the tangent's current values into k_
   bool krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
+  void keep_preconditioner(bool keep);  // KSPSetReusePreconditioner, unless -ksp_reuse_preconditioner is given
+  bool shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
 
   static constexpr PetscInt kMaxIterations = 1000;
 
@@ -81,6 +83,9 @@ private:
   VecScatter gather_ = nullptr;
   KSP ksp_ = nullptr;
   bool rtol_from_options_ = false;  // -ksp_rtol given: it replaces the Newton forcing term
+  bool reuse_from_options_ = false;  // -ksp_reuse_preconditioner given: it replaces the refresh rule below
+  bool have_preconditioner_ = false;  // the preconditioner was set up for an unshifted K and may be kept
+  int last_iterations_ = 0;           // Krylov iterations of the last successful solve
   KSPConvergedReason last_reason_ = KSP_CONVERGED_ITERATING;
 };
 
