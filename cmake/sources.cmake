@@ -109,6 +109,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/materials/needle_material.cpp
   src/materials/preset_key.cpp
   src/materials/tissue_presets.cpp
+  src/mesh/cell_replication.cpp
   src/mesh/coarse_level.cpp
   src/mesh/gmsh_module.cpp
   src/mesh/layer_assignment.cpp
@@ -152,6 +153,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
 )
 
 set(NEEDLEKIT_GMSH_SOURCES
+  src/mesh/gmsh/cell_block_gmsh.cpp
   src/mesh/gmsh/gmsh_module_entry.cpp
   src/mesh/gmsh/gmsh_session.cpp
   src/mesh/gmsh/layered_block_gmsh.cpp
@@ -208,6 +210,7 @@ set(NEEDLEKIT_CLI_SOURCES
 set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_atomic_file.cpp
   tests/unit/test_calibration.cpp
+  tests/unit/test_cell_replication.cpp
   tests/unit/test_coarse_level.cpp
   tests/unit/test_contact_kernels.cpp
   tests/unit/test_design_config.cpp

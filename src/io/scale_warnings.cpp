@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "needlekit/core/plausible_scale.hpp"
+#include "needlekit/mesh/cell_replication.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -88,6 +89,21 @@ std::vector<std::string> indentation_scale_warnings(const insertion::Indentation
                                    "needle slides along the surface more than it enters, and the block's sides (fixed) "
                                    "come nearer to the tip's path",
                                    c.angle * 180 / M_PI));
+  }
+  if (c.array && !c.tissue_mesh && c.needles.size() > 1) {
+    // An array's block is assembled from copies of one needle's cell where it can be (mesh/cell_replication.hpp);
+    // otherwise it is one Delaunay of the whole block, slow for a large array.
+    const insertion::IndentationCase solved = insertion::modelled_case(c);
+    mesh::LayeredBlockOptions block = solved.block;
+    block.insertion_sites.clear();
+    for (const insertion::NeedleSite& site : solved.needles) block.insertion_sites.push_back(site.position);
+    const double pitch = c.array->layout == insertion::ArrayLayout::Square ? c.array->pitch : 0.0;
+    if (solved.needles.size() > 1) {
+      if (const mesh::SiteGridCheck cells = mesh::site_grid(block, pitch); !cells.grid) {
+        warnings.push_back(fmt::format("the array's block is meshed whole, not from copies of one needle's cell: {}",
+                                       cells.reason));
+      }
+    }
   }
   const double height = insertion::tissue_height(c);
   if (height > 0 && needle.z() > height) {

@@ -32,11 +32,28 @@ struct MshContents {
   std::vector<double> coords;                           // its x, y, z in file units
 };
 
+// An array block's repeating cell (cell_replication.hpp): a pitch x pitch square centred on the origin with its
+// needle's site at the centre, and the block's margins beyond the outermost cells (m, >= 0; 0 = none).
+struct CellLayout {
+  double pitch = 0;
+  double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;  // -x, +x, -y, +y
+};
+
+// The cell with the margins around it (up to 3 x 3 pieces: margin, cell, margin in x and in y), its opposite side
+// faces meshed periodically (the +x face a translated copy of the -x face, +y of -y), and each tetrahedron's piece.
+struct CellBlockMesh {
+  TetMesh mesh;              // in m, the cell centred on the origin; not yet reoriented
+  std::vector<int> piece;    // per tet: 3 * py + px, px (py) = 0 the -x (-y) margin, 1 the cell, 2 the +x (+y) margin
+};
+
 struct GmshModule {
   const char* version;  // NEEDLEKIT_VERSION of the build that made the module
   // The layered block's tetrahedra (layered_block_mesh.hpp), in m, not yet reoriented. Sets `error` on failure.
   TetMesh (*layered_block)(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
                            GmshError& error);
+  // The array cell and its margins (CellBlockMesh), meshed on one thread with the block options' sizes and layers.
+  CellBlockMesh (*cell_block)(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                              const CellLayout& layout, GmshError& error);
   // The tetrahedra and physical volume groups of `file`, matched to `layers` as MshImportOptions::layers says.
   MshContents (*read_msh)(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error);
 };

@@ -1,5 +1,6 @@
 // A parametric layered tissue block: the options checked here, the mesh made by the Gmsh module
-// (src/mesh/gmsh/layered_block_gmsh.cpp, opened on first use), then optionally split, reoriented and rated here.
+// (src/mesh/gmsh/layered_block_gmsh.cpp, opened on first use) or, for a square needle array, assembled from copies of
+// its cell (src/mesh/gmsh/cell_block_gmsh.cpp, cell_replication.hpp), then optionally split, reoriented and rated here.
 #include "needlekit/mesh/layered_block_mesh.hpp"
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include "gmsh_module.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/cell_replication.hpp"
 #include "needlekit/mesh/mesh_validation.hpp"
 #include "needlekit/mesh/tet_count_estimate.hpp"
 #include "needlekit/mesh/uniform_refinement.hpp"
@@ -109,9 +111,29 @@ TetMesh gmsh_block(const LayeredBlockOptions& options, const std::vector<TissueL
   return mesh;
 }
 
-}  // namespace
+// The block assembled from copies of the array cell meshed by the Gmsh module (cell_replication.hpp), right-handed.
+TetMesh replicated_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                         const SiteGrid& grid) {
+  detail::GmshError error;
+  detail::CellBlockMesh cell;
+  const detail::CellLayout layout{grid.pitch, grid.margin_left, grid.margin_right, grid.margin_bottom, grid.margin_top};
+  {
+    const std::lock_guard<std::mutex> lock(detail::gmsh_call_mutex());
+    cell = detail::gmsh_module().cell_block(options, layers, layout, error);
+  }
+  detail::throw_if_failed(error);
+  reoriented_count(cell.mesh);  // before the copies: a translation keeps the orientation
+  return replicated_cells(cell.mesh, cell.piece, grid);
+}
 
-LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
+// The block by the cells when `grid` is given, else whole.
+TetMesh meshed_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                     const std::optional<SiteGrid>& grid) {
+  return grid ? replicated_block(options, layers, *grid) : gmsh_block(options, layers);
+}
+
+// The block, whole or (with a grid) from the cells: checked, estimated, meshed, split or with its coarse level.
+LayeredBlockResult block_mesh(const LayeredBlockOptions& options, const std::optional<SiteGrid>& grid) {
   const std::vector<TissueLayer> layers = options.layers.empty() ? materials::skin_layers() : options.layers;
   validate_options(options, layers);
   LayeredBlockOptions estimated = options;
@@ -132,15 +154,30 @@ LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) {
   coarse.size_gradient *= factor;  // the same grading distances
   coarse.thin_layer_size_factor *= factor;
   if (options.split) {
-    UniformRefinement refined = refine_uniformly(gmsh_block(coarse, layers));
+    UniformRefinement refined = refine_uniformly(meshed_block(coarse, layers, grid));
     result.mesh = std::move(refined.mesh);
     result.coarse = std::move(refined.coarse);
   } else {
-    result.mesh = gmsh_block(options, layers);
-    if (options.coarse_level) result.coarse = interpolating_coarse_level(result.mesh, gmsh_block(coarse, layers));
+    result.mesh = meshed_block(options, layers, grid);
+    if (options.coarse_level) {
+      result.coarse = interpolating_coarse_level(result.mesh, meshed_block(coarse, layers, grid));
+    }
   }
   result.quality = layer_quality(result.mesh);
   result.mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) { return block_mesh(options, std::nullopt); }
+
+ArrayBlockMesh array_block_mesh(const LayeredBlockOptions& options, double pitch) {
+  SiteGridCheck check = site_grid(options, pitch);
+  ArrayBlockMesh result;
+  result.block = block_mesh(options, check.grid);
+  result.meshing = check.grid ? BlockMeshing::ReplicatedCell : BlockMeshing::WholeBlock;
+  result.reason = std::move(check.reason);
   return result;
 }
 

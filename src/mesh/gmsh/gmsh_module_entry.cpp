@@ -29,11 +29,16 @@ TetMesh layered_block(const LayeredBlockOptions& options, const std::vector<Tiss
   return reporting_errors(error, [&] { return gmsh_layered_block(options, layers); });
 }
 
+CellBlockMesh cell_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                         const CellLayout& layout, GmshError& error) {
+  return reporting_errors(error, [&] { return gmsh_cell_block(options, layers, layout); });
+}
+
 MshContents read_msh(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error) {
   return reporting_errors(error, [&] { return gmsh_read_msh(file, layers); });
 }
 
-const GmshModule kModule{NEEDLEKIT_VERSION, &layered_block, &read_msh};
+const GmshModule kModule{NEEDLEKIT_VERSION, &layered_block, &cell_block, &read_msh};
 
 }  // namespace
 }  // namespace needlekit::mesh::detail

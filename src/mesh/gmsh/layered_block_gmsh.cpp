@@ -11,14 +11,14 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "block_meshing_steps.hpp"
 #include "gmsh_functions.hpp"
 #include "gmsh_session.hpp"
 
 namespace needlekit::mesh::detail {
 namespace {
 
-constexpr double kModelUnit = 1e-6;  // m per Gmsh model unit (um)
-constexpr int kGmshTet4 = 4;         // Gmsh element type: 4-node tetrahedron
+constexpr int kGmshTet4 = 4;  // Gmsh element type: 4-node tetrahedron
 
 int add_field(const std::string& type) { return gmsh::model::mesh::field::add(type); }
 
@@ -39,9 +39,24 @@ void set_field_option(int field, const std::vector<std::string>& names, const Va
   throw std::logic_error("Gmsh field option " + names.front() + " unknown");
 }
 
-// The current Gmsh model's tetrahedra as a TetMesh: the nodes they use, in Gmsh's order, converted to m; layer i =
-// the elements of volume_of_layer[i].
-TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<int>& volume_of_layer) {
+}  // namespace
+
+std::vector<int> fragmented_volumes(const std::vector<std::pair<int, int>>& boxes) {
+  if (boxes.size() == 1) return {boxes[0].second};
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> map;
+  gmsh::model::occ::fragment({boxes.front()}, gmsh::vectorpair(boxes.begin() + 1, boxes.end()), out, map);
+  std::vector<int> volumes;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    if (map.at(i).size() != 1 || map[i][0].first != 3) {
+      throw std::logic_error(fmt::format("fragment split box {} into {} entities", i, map.at(i).size()));
+    }
+    volumes.push_back(map[i][0].second);
+  }
+  return volumes;
+}
+
+TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<VolumeLayer>& volumes) {
   std::vector<std::size_t> node_tags;
   std::vector<double> coords, parametric;
   gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
@@ -50,11 +65,11 @@ TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<
   std::vector<int> index_of_tag(max_tag + 1, -1);
   TetMesh mesh;
   mesh.layers = layers;
-  std::vector<std::vector<std::size_t>> layer_nodes(layers.size());
-  for (std::size_t i = 0; i < layers.size(); ++i) {
+  std::vector<std::vector<std::size_t>> volume_nodes(volumes.size());
+  for (std::size_t i = 0; i < volumes.size(); ++i) {
     std::vector<std::size_t> element_tags;
-    gmsh::model::mesh::getElementsByType(kGmshTet4, element_tags, layer_nodes[i], volume_of_layer[i]);
-    for (std::size_t tag : layer_nodes[i]) index_of_tag.at(tag) = 0;  // mark used
+    gmsh::model::mesh::getElementsByType(kGmshTet4, element_tags, volume_nodes[i], volumes[i].volume);
+    for (std::size_t tag : volume_nodes[i]) index_of_tag.at(tag) = 0;  // mark used
   }
   std::vector<int> position_of_tag(max_tag + 1, -1);
   for (std::size_t k = 0; k < node_tags.size(); ++k) position_of_tag[node_tags[k]] = static_cast<int>(k);
@@ -65,15 +80,17 @@ TetMesh gmsh_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<
     index_of_tag[tag] = static_cast<int>(mesh.nodes.size());
     mesh.nodes.emplace_back(Eigen::Vector3d(coords[3 * k], coords[3 * k + 1], coords[3 * k + 2]) * kModelUnit);
   }
-  for (std::size_t i = 0; i < layers.size(); ++i) {
-    const auto& n = layer_nodes[i];
+  for (std::size_t i = 0; i < volumes.size(); ++i) {
+    const auto& n = volume_nodes[i];
     for (std::size_t e = 0; e + 3 < n.size(); e += 4) {
       mesh.tets.push_back({index_of_tag[n[e]], index_of_tag[n[e + 1]], index_of_tag[n[e + 2]], index_of_tag[n[e + 3]]});
-      mesh.tet_layer.push_back(static_cast<int>(i));
+      mesh.tet_layer.push_back(volumes[i].layer);
     }
   }
   return mesh;
 }
+
+namespace {
 
 // Sites on the top face's edges: points to embed in its boundary curves, and corners (the block's vertices).
 struct EdgeSites {
@@ -108,12 +125,6 @@ void embed_edge_sites(const EdgeSites& sites, const std::pair<int, int>& top, do
 }
 
 // The layers as stacked boxes (model units), fragmented so that neighbouring layers share their interface.
-struct LayerVolumes {
-  std::vector<int> volume_of_layer;  // Gmsh volume tag of each layer
-  std::vector<double> tops;          // z of each layer's top
-  double height = 0;                 // the block's
-};
-
 LayerVolumes layer_volumes(const std::vector<TissueLayer>& layers, double w, double l, double u) {
   LayerVolumes result;
   gmsh::vectorpair boxes;
@@ -125,20 +136,7 @@ LayerVolumes layer_volumes(const std::vector<TissueLayer>& layers, double w, dou
     z -= t;
   }
   result.height = -z;
-  result.volume_of_layer.resize(layers.size());
-  if (layers.size() == 1) {
-    result.volume_of_layer[0] = boxes[0].second;
-    return result;
-  }
-  gmsh::vectorpair out;
-  std::vector<gmsh::vectorpair> map;
-  gmsh::model::occ::fragment({boxes.front()}, gmsh::vectorpair(boxes.begin() + 1, boxes.end()), out, map);
-  for (std::size_t i = 0; i < layers.size(); ++i) {
-    if (map.at(i).size() != 1 || map[i][0].first != 3) {
-      throw std::logic_error(fmt::format("fragment split layer {} into {} entities", i, map.at(i).size()));
-    }
-    result.volume_of_layer[i] = map[i][0].second;
-  }
+  result.volume_of_layer = fragmented_volumes(boxes);
   return result;
 }
 
@@ -170,6 +168,8 @@ std::vector<int> embed_sites(const LayeredBlockOptions& options, double w, doubl
   embed_edge_sites(edge_sites, top[0], eps, site_points);
   return site_points;
 }
+
+}  // namespace
 
 // The horizontal faces of a thin layer must not carry the same triangulation: with every node of the top face
 // straight above one of the bottom face, the vertical rectangles between them are cocircular and the 3D mesher
@@ -247,8 +247,6 @@ void set_mesh_options(int threads_option) {
   GmshSession::set_option({"Mesh.Optimize"}, 1);
 }
 
-}  // namespace
-
 // The Gmsh part: geometry, size fields, Delaunay 3D, conversion to a TetMesh (no orientation, quality or timing).
 TetMesh gmsh_layered_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers) {
   const double u = 1 / kModelUnit;  // m -> model units
@@ -268,7 +266,9 @@ TetMesh gmsh_layered_block(const LayeredBlockOptions& options, const std::vector
     set_size_fields(options, layers, volumes, site_points, w, l, u);
     set_mesh_options(options.threads);
     gmsh::model::mesh::generate(3);
-    mesh = gmsh_tet_mesh(layers, volumes.volume_of_layer);
+    std::vector<VolumeLayer> volume_layers;
+    for (std::size_t i = 0; i < layers.size(); ++i) volume_layers.push_back({volumes.volume_of_layer[i], static_cast<int>(i)});
+    mesh = gmsh_tet_mesh(layers, volume_layers);
   } catch (...) {
     throw std::runtime_error(fmt::format("layered block: Gmsh failed: {}", gmsh_error_message()));
   }

@@ -1,0 +1,67 @@
+// A square needle array's block as copies of one meshed cell (issue 36 item 5): the cell, a pitch x pitch square of
+// every layer centred on one needle's site and refined there, is meshed once with its opposite side faces periodic
+// (the +x faces translated copies of the -x faces, +y of -y), together with the margin pieces around it (the -x/+x
+// strips, the -y/+y strips and the four corners, each as wide as the block's margin beyond the outermost cells);
+// then the cell is copied to every site, each margin strip along its side and each corner once, and the nodes that
+// copies share on their common faces are merged exactly (the copy's periodic face node is the neighbour's own node,
+// found through the periodic pairing, not by a distance tolerance). The result is conforming (every interior face
+// shared by exactly two tetrahedra), has one node per position, and every needle sees the same mesh under its tip.
+#pragma once
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "needlekit/core/enum_table.hpp"
+#include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::mesh {
+
+enum class BlockMeshing { WholeBlock, ReplicatedCell };
+inline constexpr EnumTable<BlockMeshing, 2> kBlockMeshingNames{{
+    {BlockMeshing::WholeBlock, "whole-block", "the whole block meshed by one Gmsh Delaunay (layered_block_mesh)"},
+    {BlockMeshing::ReplicatedCell, "replicated-cell",
+     "one needle's cell and the margins meshed once, the block assembled from their copies"},
+}};
+
+struct ArrayBlockMesh {
+  LayeredBlockResult block;
+  BlockMeshing meshing = BlockMeshing::WholeBlock;
+  std::string reason;  // with the whole block: why the cells could not be used
+};
+
+// The block of a square array of `pitch` (m, > 0) whose needles are options.insertion_sites: assembled from copies of
+// one cell (replicated_cells) when site_grid finds the grid, else meshed whole (layered_block_mesh), saying why. The
+// options' split and coarse level apply to either (a coarse level's block is assembled from its own cell). Throws
+// as layered_block_mesh. Implemented with it (src/mesh/layered_block_mesh.cpp), whose steps it shares.
+ArrayBlockMesh array_block_mesh(const LayeredBlockOptions& options, double pitch);
+
+// The sites as a full square grid: site (column i, row j) at first + pitch (i, j).
+struct SiteGrid {
+  Eigen::Vector2d first = Eigen::Vector2d::Zero();  // m, the site at column 0, row 0 (the smallest x and y)
+  double pitch = 0;                                 // m, > 0
+  int columns = 0, rows = 0;
+  // m, >= 0: the block beyond the outermost cells (pitch x pitch squares centred on the sites): -x, +x, -y, +y.
+  double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;
+};
+
+struct SiteGridCheck {
+  std::optional<SiteGrid> grid;  // empty: the block is not a grid of whole cells, `reason` says why
+  std::string reason;
+};
+
+// The block's insertion sites as a grid of `pitch`, or why the block cannot be assembled from cells: no pitch
+// (0), fewer than two sites, sites that are not every point of a square grid of that pitch (a hexagonal
+// array), a cell that leaves the block (a needle on the block's edge: a symmetry plane through a row or column),
+// or a margin piece thinner than half of size_at_site (its tetrahedra would be flat).
+SiteGridCheck site_grid(const LayeredBlockOptions& options, double pitch);
+
+// The block assembled from `cell` (in m, the cell centred on the origin, its site there) whose tetrahedra belong to
+// `piece` (3 * py + px: px, py = 0 the -x/-y margin, 1 the cell, 2 the +x/+y margin): the cell copied to every site
+// of `grid`, the margin strips along the sides, the corners once. The cell's side faces at +pitch/2 must be the
+// faces at -pitch/2 translated by the pitch, node for node (within 1e-7 of the pitch), else throws
+// std::logic_error. Nodes are numbered in the order the tetrahedra first use them, row of cells by row of cells.
+TetMesh replicated_cells(const TetMesh& cell, const std::vector<int>& piece, const SiteGrid& grid);
+
+}  // namespace needlekit::mesh

@@ -1,0 +1,164 @@
+// An array block's repeating cell with the Gmsh C++ API: one OpenCASCADE box per piece (the -x margin, the cell, the
+// +x margin, times the same in y) and layer, fragmented so that every piece and layer interface is conforming; the
+// site (and its circle) embedded at the cell's centre; the cell's +x side faces set as periodic copies of its -x
+// faces (gmsh::model::mesh::setPeriodic with a translation by the pitch), and +y of -y, in every row of pieces and
+// every layer, so that translated copies of the cell match node for node (cell_replication.hpp assembles them).
+// The size field is the whole block's with one site: inside the cell and its margins the nearest needle of a square
+// array is always the cell's own (the cell is its Voronoi cell; a margin piece lies beyond its row or column), so the
+// field of the assembled array equals the field the whole-block mesher would use there.
+// Part of the Gmsh module; the layout is checked by layered_block_mesh (src/mesh/layered_block_mesh.cpp).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "block_meshing_steps.hpp"
+#include "gmsh_functions.hpp"
+#include "gmsh_session.hpp"
+
+namespace needlekit::mesh::detail {
+namespace {
+
+constexpr int kGmshTet4 = 4;
+
+// One extent of a piece along x or y (model units) and its index: 0 the -side margin, 1 the cell, 2 the +side one.
+struct Segment {
+  double low = 0, high = 0;
+  int index = 0;
+};
+
+std::vector<Segment> segments(double pitch, double margin_low, double margin_high) {
+  std::vector<Segment> result;
+  if (margin_low > 0) result.push_back({-0.5 * pitch - margin_low, -0.5 * pitch, 0});
+  result.push_back({-0.5 * pitch, 0.5 * pitch, 1});
+  if (margin_high > 0) result.push_back({0.5 * pitch, 0.5 * pitch + margin_high, 2});
+  return result;
+}
+
+struct PieceVolume {
+  int volume = 0;
+  int piece = 0;  // 3 * py + px
+  int layer = 0;
+};
+
+// Boxes per piece and layer, fragmented into conforming volumes.
+std::vector<PieceVolume> piece_volumes(const std::vector<Segment>& xs, const std::vector<Segment>& ys,
+                                       const LayerVolumes& layers) {
+  std::vector<PieceVolume> pieces;
+  gmsh::vectorpair boxes;
+  for (std::size_t i = 0; i < layers.tops.size(); ++i) {
+    const double top = layers.tops[i], bottom = i + 1 < layers.tops.size() ? layers.tops[i + 1] : -layers.height;
+    for (const Segment& y : ys) {
+      for (const Segment& x : xs) {
+        boxes.emplace_back(3, gmsh::model::occ::addBox(x.low, y.low, bottom, x.high - x.low, y.high - y.low, top - bottom));
+        pieces.push_back({boxes.back().second, 3 * y.index + x.index, static_cast<int>(i)});
+      }
+    }
+  }
+  const std::vector<int> volumes = fragmented_volumes(boxes);
+  for (std::size_t i = 0; i < pieces.size(); ++i) pieces[i].volume = volumes[i];
+  return pieces;
+}
+
+// The one surface inside the box [low, high] (model units).
+int face_in_box(const std::array<double, 3>& low, const std::array<double, 3>& high) {
+  gmsh::vectorpair faces;
+  gmsh::model::getEntitiesInBoundingBox(low[0], low[1], low[2], high[0], high[1], high[2], faces, 2);
+  if (faces.size() != 1) {
+    throw std::logic_error(fmt::format("{} faces in the box ({}, {}, {}) - ({}, {}, {})", faces.size(), low[0], low[1],
+                                       low[2], high[0], high[1], high[2]));
+  }
+  return faces[0].second;
+}
+
+// The cell's faces at +pitch/2 along `axis` (0: x, 1: y) as translated copies of those at -pitch/2, one pair per
+// piece across the other axis and per layer.
+void set_periodic_faces(int axis, double pitch, const std::vector<Segment>& across, const LayerVolumes& layers,
+                        double eps) {
+  std::vector<double> translation{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  translation[axis == 0 ? 3 : 7] = pitch;
+  const int other = 1 - axis;
+  for (std::size_t i = 0; i < layers.tops.size(); ++i) {
+    const double top = layers.tops[i], bottom = i + 1 < layers.tops.size() ? layers.tops[i + 1] : -layers.height;
+    for (const Segment& s : across) {
+      std::array<double, 3> low{}, high{};
+      low[other] = s.low - eps, high[other] = s.high + eps;
+      low[2] = bottom - eps, high[2] = top + eps;
+      low[axis] = -0.5 * pitch - eps, high[axis] = -0.5 * pitch + eps;
+      const int master = face_in_box(low, high);
+      low[axis] += pitch, high[axis] += pitch;
+      gmsh::model::mesh::setPeriodic(2, {face_in_box(low, high)}, {master}, translation);
+    }
+  }
+}
+
+// The site at the cell's centre (and its circle) embedded in the cell's top face; returns the site's point tag.
+int embed_cell_site(const LayeredBlockOptions& options, double pitch, double u, double eps) {
+  const int site = gmsh::model::occ::addPoint(0, 0, 0);
+  int circle = -1;
+  if (options.site_circle_radius > 0) circle = gmsh::model::occ::addCircle(0, 0, 0, options.site_circle_radius * u);
+  gmsh::model::occ::synchronize();
+  const double h = 0.5 * pitch;
+  const int top = face_in_box({-h - eps, -h - eps, -eps}, {h + eps, h + eps, eps});
+  gmsh::model::mesh::embed(0, {site}, 2, top);
+  if (circle >= 0) gmsh::model::mesh::embed(1, {circle}, 2, top);
+  return site;
+}
+
+// The tetrahedra of the pieces as a CellBlockMesh (the piece of each tetrahedron in the order gmsh_tet_mesh takes
+// the volumes).
+CellBlockMesh cell_tet_mesh(const std::vector<TissueLayer>& layers, const std::vector<PieceVolume>& pieces) {
+  std::vector<VolumeLayer> volumes;
+  for (const PieceVolume& p : pieces) volumes.push_back({p.volume, p.layer});
+  CellBlockMesh result;
+  result.mesh = gmsh_tet_mesh(layers, volumes);
+  for (const PieceVolume& p : pieces) {
+    std::vector<std::size_t> element_tags, node_tags;
+    gmsh::model::mesh::getElementsByType(kGmshTet4, element_tags, node_tags, p.volume);
+    result.piece.insert(result.piece.end(), element_tags.size(), p.piece);
+  }
+  if (result.piece.size() != result.mesh.tets.size()) throw std::logic_error("cell block: pieces do not add up");
+  return result;
+}
+
+}  // namespace
+
+CellBlockMesh gmsh_cell_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
+                              const CellLayout& layout) {
+  const double u = 1 / kModelUnit;  // m -> model units
+  const double p = layout.pitch * u;
+  const std::vector<Segment> xs = segments(p, layout.margin_left * u, layout.margin_right * u);
+  const std::vector<Segment> ys = segments(p, layout.margin_bottom * u, layout.margin_top * u);
+  // The extent that holds every piece, centred on the cell (for the searches and the thin-layer boxes).
+  const double w = 2 * std::max(-xs.front().low, xs.back().high), l = 2 * std::max(-ys.front().low, ys.back().high);
+  CellBlockMesh result;
+  GmshSession session;
+  try {
+    gmsh::model::add("needlekit_array_cell");
+    LayerVolumes volumes;
+    for (const TissueLayer& layer : layers) {
+      volumes.tops.push_back(-volumes.height);
+      volumes.height += layer.thickness * u;
+    }
+    const std::vector<PieceVolume> pieces = piece_volumes(xs, ys, volumes);
+    double smallest = std::min(p, layers.front().thickness * u);
+    for (const std::vector<Segment>* axis : {&xs, &ys}) {
+      for (const Segment& s : *axis) smallest = std::min(smallest, s.high - s.low);
+    }
+    const double eps = 1e-3 * smallest;
+    const int site = embed_cell_site(options, p, u, eps);
+    set_periodic_faces(0, p, ys, volumes, eps);
+    set_periodic_faces(1, p, xs, volumes, eps);
+    alternate_interface_algorithms(volumes, w, l, eps);
+    set_size_fields(options, layers, volumes, {site}, w, l, u);
+    set_mesh_options(0);  // one thread: the cell, and so the array, is the same in every run
+    gmsh::model::mesh::generate(3);
+    result = cell_tet_mesh(layers, pieces);
+  } catch (...) {
+    throw std::runtime_error(fmt::format("array cell: Gmsh failed: {}", gmsh_error_message()));
+  }
+  return result;
+}
+
+}  // namespace needlekit::mesh::detail

@@ -1,0 +1,207 @@
+// A square array's block assembled from copies of one meshed cell (mesh/cell_replication.hpp, issue 36 item 5): it is
+// conforming (every interior face shared by two tetrahedra, the boundary only on the block's six faces), has no
+// duplicate nodes, fills the block's volume layer by layer, gives every needle the same nodes under its tip, is the
+// same on one and two threads, and falls back to the whole block, saying why, where cells do not fit.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+
+#include "needlekit/mesh/cell_replication.hpp"
+#include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/mesh/mesh_validation.hpp"
+#include "needlekit/mesh/tet_adjacency.hpp"
+
+using namespace needlekit;
+using testing::HasSubstr;
+
+namespace {
+
+constexpr double kPitch = 300e-6;
+
+// A two-layer block (100 um over 200 um) holding a columns x rows square array of `kPitch` with `margin` of tissue
+// beyond the outermost cells, meshed coarsely enough to take about a second.
+mesh::LayeredBlockOptions array_block(int columns, int rows, double margin) {
+  mesh::LayeredBlockOptions o;
+  o.width = columns * kPitch + 2 * margin;
+  o.length = rows * kPitch + 2 * margin;
+  o.layers = {{"epidermis", 100e-6, 1e6, 0.4}, {"dermis", 200e-6, 0.1e6, 0.4}};
+  o.size_at_site = 25e-6;
+  o.refinement_radius = 40e-6;
+  o.size_far = 100e-6;
+  o.site_circle_radius = 20e-6;
+  o.insertion_sites.clear();
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      o.insertion_sites.emplace_back((i - 0.5 * (columns - 1)) * kPitch, (j - 0.5 * (rows - 1)) * kPitch);
+    }
+  }
+  return o;
+}
+
+// The number of node pairs closer than `distance` (hashing the nodes into cubes of that size).
+int close_node_pairs(const std::vector<Eigen::Vector3d>& nodes, double distance) {
+  std::unordered_map<std::int64_t, std::vector<int>> cubes;
+  const auto cube = [&](const Eigen::Vector3d& p) { return (p.array() / distance).floor().cast<std::int64_t>(); };
+  const auto key = [](const Eigen::Array<std::int64_t, 3, 1>& c) { return (c.x() * 1000003 + c.y()) * 1000003 + c.z(); };
+  for (std::size_t i = 0; i < nodes.size(); ++i) cubes[key(cube(nodes[i]))].push_back(static_cast<int>(i));
+  int pairs = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto c = cube(nodes[i]);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cubes.find(key(c + Eigen::Array<std::int64_t, 3, 1>(dx, dy, dz)));
+          if (it == cubes.end()) continue;
+          for (int j : it->second) pairs += j > static_cast<int>(i) && (nodes[j] - nodes[i]).norm() < distance;
+        }
+  }
+  return pairs;
+}
+
+// Conforming, no duplicate nodes, right-handed, every layer's volume the block's, the boundary only on the block's
+// faces.
+void expect_conforming_block(const mesh::TetMesh& m, const mesh::LayeredBlockOptions& o) {
+  const mesh::TetTopology topology = mesh::tet_topology(m);  // throws for a face of more than two tetrahedra
+  const double height = o.layers[0].thickness + o.layers[1].thickness, tolerance = 1e-9 * kPitch;
+  int off_boundary = 0;
+  for (int b : topology.boundary_triangles) {
+    bool on_a_face = false;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double low = axis == 0 ? -0.5 * o.width : axis == 1 ? -0.5 * o.length : -height;
+      const double high = axis == 0 ? 0.5 * o.width : axis == 1 ? 0.5 * o.length : 0.0;
+      for (double plane : {low, high}) {
+        bool all = true;
+        for (int n : topology.triangles[static_cast<std::size_t>(b)]) all &= std::abs(m.nodes[n][axis] - plane) < tolerance;
+        on_a_face |= all;
+      }
+    }
+    off_boundary += !on_a_face;
+  }
+  EXPECT_EQ(off_boundary, 0) << "boundary triangles inside the block: faces that do not conform";
+  EXPECT_EQ(close_node_pairs(m.nodes, 1e-3 * o.size_at_site), 0) << "duplicate nodes";
+  std::vector<double> volume(2, 0.0);
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    const auto& t = m.tets[e];
+    const double v = mesh::signed_volume(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]);
+    ASSERT_GT(v, 0) << "tet " << e;
+    volume[static_cast<std::size_t>(m.tet_layer[e])] += v;
+  }
+  for (int i = 0; i < 2; ++i) {
+    const double expected = o.width * o.length * o.layers[static_cast<std::size_t>(i)].thickness;
+    EXPECT_NEAR(volume[static_cast<std::size_t>(i)], expected, 1e-9 * expected) << o.layers[static_cast<std::size_t>(i)].name;
+  }
+}
+
+// The nodes within `radius` of the top surface's point `site`, relative to it.
+std::vector<Eigen::Vector3d> nodes_near(const mesh::TetMesh& m, const Eigen::Vector2d& site, double radius) {
+  std::vector<Eigen::Vector3d> near;
+  const Eigen::Vector3d s(site.x(), site.y(), 0);
+  for (const Eigen::Vector3d& p : m.nodes) {
+    if ((p - s).norm() < radius) near.push_back(p - s);
+  }
+  return near;
+}
+
+std::uint64_t coordinate_hash(const mesh::TetMesh& m) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the coordinates' bits and the connectivity
+  const auto mix = [&](std::uint64_t v) { h = (h ^ v) * 1099511628211ull; };
+  for (const Eigen::Vector3d& p : m.nodes) {
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &p[k], sizeof bits);
+      mix(bits);
+    }
+  }
+  for (const auto& t : m.tets) for (int n : t) mix(static_cast<std::uint64_t>(n));
+  return h;
+}
+
+}  // namespace
+
+TEST(CellReplication, ThreeByThreeArrayIsConformingAndFillsTheBlock) {
+  const mesh::LayeredBlockOptions o = array_block(3, 3, 150e-6);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kPitch);
+  ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
+  expect_conforming_block(r.block.mesh, o);
+  // Every needle sees the same nodes under its tip, to rounding: a node on the site and the same set around it.
+  const std::vector<Eigen::Vector3d> first = nodes_near(r.block.mesh, o.insertion_sites[0], 60e-6);
+  ASSERT_GT(first.size(), 10u);
+  for (const Eigen::Vector2d& site : o.insertion_sites) {
+    const std::vector<Eigen::Vector3d> near = nodes_near(r.block.mesh, site, 60e-6);
+    ASSERT_EQ(near.size(), first.size());
+    double farthest = 0;  // from a node near this site to the nearest node of the same offset near the first site
+    for (const Eigen::Vector3d& p : near) {
+      double nearest = 1.0;
+      for (const Eigen::Vector3d& q : first) nearest = std::min(nearest, (p - q).norm());
+      farthest = std::max(farthest, nearest);
+    }
+    EXPECT_LT(farthest, 1e-12) << "site (" << site.x() << ", " << site.y() << ")";
+    EXPECT_EQ(nodes_near(r.block.mesh, site, 1e-9).size(), 1u) << "no node on the site";
+  }
+}
+
+TEST(CellReplication, ArrayWithoutMarginOnTwoSidesAsAQuarterModelHasIt) {
+  // The quarter model of a 4 x 4 array: its planes x = min and y = min pass between the needles, on the cells' faces.
+  mesh::LayeredBlockOptions o = array_block(2, 2, 0.0);
+  const double margin = 120e-6;
+  o.width += margin, o.length += margin;
+  for (Eigen::Vector2d& s : o.insertion_sites) s -= Eigen::Vector2d(0.5 * margin, 0.5 * margin);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kPitch);
+  ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
+  expect_conforming_block(r.block.mesh, o);
+}
+
+TEST(CellReplication, SameMeshOnOneAndTwoThreads) {
+  mesh::LayeredBlockOptions o = array_block(2, 3, 100e-6);
+  o.threads = 1;
+  const mesh::ArrayBlockMesh one = mesh::array_block_mesh(o, kPitch);
+  o.threads = 2;
+  const mesh::ArrayBlockMesh two = mesh::array_block_mesh(o, kPitch);
+  ASSERT_EQ(one.meshing, mesh::BlockMeshing::ReplicatedCell);
+  EXPECT_EQ(one.block.mesh.nodes.size(), two.block.mesh.nodes.size());
+  EXPECT_EQ(one.block.mesh.tets.size(), two.block.mesh.tets.size());
+  EXPECT_EQ(coordinate_hash(one.block.mesh), coordinate_hash(two.block.mesh));
+}
+
+TEST(CellReplication, TheCellIsMeshedOnceWhateverTheArraysSize) {
+  // Without margins the block is only copies of the cell, meshed the same for 2 x 2 and 3 x 2 cells: 4 and 6 times
+  // its tetrahedra; the nodes shared by neighbouring copies are merged (fewer than 6 cells' worth).
+  const mesh::LayeredBlockOptions three_by_two = array_block(3, 2, 0.0), two_by_two = array_block(2, 2, 0.0);
+  const mesh::ArrayBlockMesh r32 = mesh::array_block_mesh(three_by_two, kPitch);
+  const mesh::ArrayBlockMesh r22 = mesh::array_block_mesh(two_by_two, kPitch);
+  ASSERT_EQ(r32.meshing, mesh::BlockMeshing::ReplicatedCell);
+  ASSERT_EQ(r22.meshing, mesh::BlockMeshing::ReplicatedCell);
+  EXPECT_EQ(r32.block.mesh.tets.size() * 4, r22.block.mesh.tets.size() * 6);
+  EXPECT_LT(r32.block.mesh.nodes.size() * 4, r22.block.mesh.nodes.size() * 6);
+  expect_conforming_block(r32.block.mesh, three_by_two);
+}
+
+TEST(CellReplication, FallsBackToTheWholeBlockAndSaysWhy) {
+  mesh::LayeredBlockOptions hexagonal = array_block(2, 2, 150e-6);
+  hexagonal.insertion_sites[2].x() += 0.5 * kPitch;  // the second row shifted by half a pitch
+  hexagonal.insertion_sites[3].x() += 0.5 * kPitch;
+  hexagonal.width += kPitch;
+  mesh::SiteGridCheck check = mesh::site_grid(hexagonal, kPitch);
+  EXPECT_FALSE(check.grid);
+  EXPECT_THAT(check.reason, HasSubstr("off a square grid"));
+
+  mesh::LayeredBlockOptions on_edge = array_block(3, 3, 0.0);  // a needle on a symmetry plane: a quarter of 3 x 3
+  on_edge.site_circle_radius = 0;  // a circle cannot be embedded across the block's edge
+  on_edge.width -= 0.5 * kPitch;
+  for (Eigen::Vector2d& s : on_edge.insertion_sites) s.x() -= 0.25 * kPitch;
+  check = mesh::site_grid(on_edge, kPitch);
+  EXPECT_FALSE(check.grid);
+  EXPECT_THAT(check.reason, HasSubstr("leave the block"));
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(on_edge, kPitch);
+  EXPECT_EQ(r.meshing, mesh::BlockMeshing::WholeBlock);
+  EXPECT_THAT(r.reason, HasSubstr("leave the block"));
+
+  mesh::LayeredBlockOptions thin = array_block(2, 2, 5e-6);
+  EXPECT_THAT(mesh::site_grid(thin, kPitch).reason, HasSubstr("thinner than half the tip size"));
+  mesh::LayeredBlockOptions single = array_block(1, 1, 150e-6);
+  EXPECT_THAT(mesh::site_grid(single, kPitch).reason, HasSubstr("single site"));
+}
