@@ -72,7 +72,9 @@ void print_array(const insertion::IndentationCase& c, const insertion::Indentati
 // and the bending check.
 void print_result(const insertion::IndentationCase& indentation_case, const insertion::IndentationResult& result) {
   fmt::print("{}: {} tetrahedra, {} nodes, {} unknowns ({} solver); mesh {:.2f} s, total {:.2f} s\n",
-             indentation_case.name, result.elements, result.nodes, result.dofs, fem::to_string(result.linear_solver),
+             indentation_case.name, result.elements, result.nodes, result.dofs,
+             indentation_case.solver.backend == fem::SolverBackend::Petsc ? std::string("petsc")
+                                                                          : fem::to_string(result.linear_solver),
              result.mesh_seconds, result.total_seconds);
   fmt::print("models: {}\n", io::fe_models_text(indentation_case));
   fmt::print("{:>10} {:>12} {:>14} {:>10}\n", "depth_um", "force_N", "pressure_MPa", "newton");

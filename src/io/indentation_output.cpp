@@ -198,7 +198,11 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["elements"] = result.elements;
   json["nodes"] = result.nodes;
   json["dofs"] = result.dofs;
-  json["linear_solver"] = name_of(fem::kLinearSolverNames, result.linear_solver);
+  json["backend"] = name_of(fem::kSolverBackendNames, c.solver.backend);
+  // The built-in backend's strategy; none runs under PETSc (CG with GAMG, docs/fem_solver.md).
+  json["linear_solver"] = c.solver.backend == fem::SolverBackend::Petsc
+                              ? nlohmann::json(nullptr)
+                              : nlohmann::json(name_of(fem::kLinearSolverNames, result.linear_solver));
   json["law"] = name_of(fem::kMaterialLawNames, c.solver.law);
   json["element"] = name_of(fem::kElementOrderNames, c.solver.order);
   json["contact"] = name_of(fem::kContactModelNames, c.solver.contact);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../support/cli_run.hpp"
+#include "needlekit/fem/parallel_session.hpp"
 
 using needlekit::test::CliRun;
 using needlekit::test::kExamples;
@@ -148,6 +149,35 @@ TEST_F(IndentCli, BluntBevelUnderFrictionalContactConvergesWithTheMesh) {
   }
   EXPECT_GT(force[1], 0.010);  // a blunt face 400 um deep in 0.2 MPa rubber: ~16 mN, not a node slipping round a rim
   EXPECT_NEAR(force[0] / force[1], 1.0, 0.10);
+}
+
+}  // namespace
+
+namespace {
+
+// [solver] backend = "petsc" from the CLI: the JSON names the backend and no built-in linear solver, and the forces
+// are the built-in backend's (the §6.2 sharp bevel in a quick mode, tip-node contact, one rank).
+TEST_F(IndentCli, PetscBackendIsNamedInTheJsonAndGivesTheBuiltInForces) {
+  std::ifstream example(kExamples + "indent_6_2_sharp_bevel.toml");
+  std::ofstream(dir_ / "petsc.toml") << example.rdbuf() << "\n[solver]\nbackend = \"petsc\"\n";
+  const std::string quick = " --json --size-at-tip '30 um' --size-far '800 um' --steps 2 --depth '20 um'";
+  const CliRun petsc = run("indent petsc.toml" + quick);
+  if (!needlekit::fem::backend_compiled(needlekit::fem::SolverBackend::Petsc)) {  // a build without PETSc
+    EXPECT_EQ(petsc.exit_code, 2);
+    EXPECT_THAT(petsc.err, HasSubstr("\"petsc\" is not in this build"));
+    return;
+  }
+  const CliRun builtin = run("indent " + kExamples + "indent_6_2_sharp_bevel.toml" + quick);
+  ASSERT_EQ(builtin.exit_code, 0) << builtin.err;
+  ASSERT_EQ(petsc.exit_code, 0) << petsc.err;
+  const nlohmann::json a = nlohmann::json::parse(builtin.out), b = nlohmann::json::parse(petsc.out);
+  EXPECT_EQ(a["backend"], "builtin");
+  EXPECT_TRUE(a["linear_solver"].is_string());
+  EXPECT_EQ(b["backend"], "petsc");
+  EXPECT_TRUE(b["linear_solver"].is_null());
+  ASSERT_EQ(b["force_N"].size(), a["force_N"].size());
+  for (std::size_t i = 0; i < a["force_N"].size(); ++i)
+    EXPECT_NEAR(b["force_N"][i].get<double>() / a["force_N"][i].get<double>(), 1.0, 1e-6) << i;
 }
 
 }  // namespace
