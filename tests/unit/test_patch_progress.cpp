@@ -74,8 +74,12 @@ TEST(PatchProgress, TheEquilibriumFitReportsItsNewtonIterationsAndReachesOneWhen
   expect_monotone_from_0_to_1(reports.fractions);
   ASSERT_GT(r.fit.iterations, 1);
   // One report per iteration and one for the converged iterate (at the fit's end), and the five stages around them:
-  // start, frame, fit, evaluation, springs along the surface.
-  EXPECT_GE(reports.inside_fit(), 1);
+  // start, frame, fit, evaluation, springs along the surface. Iteration k is at least k / max_iterations of the fit:
+  // iteration 0 at its start, the converged iterate at its end, the others inside.
+  EXPECT_EQ(reports.inside_fit(), r.fit.iterations - 1);
+  const double fit_share = FitAndEvaluateOptions::kFitEnd - FitAndEvaluateOptions::kFrameShare;
+  EXPECT_GE(reports.fractions[2 + r.fit.iterations - 1],
+            FitAndEvaluateOptions::kFrameShare + fit_share * (r.fit.iterations - 1) / 500.0 - 1e-12);
   EXPECT_EQ(reports.fractions.size(), static_cast<std::size_t>(r.fit.iterations) + 1 + 5);
   EXPECT_EQ(reports.fractions[reports.fractions.size() - 2], FitAndEvaluateOptions::kEvaluationEnd);
 }

@@ -23,9 +23,9 @@ struct EquilibriumFitOptions {
                                  // (the applicator pad holding the patch laterally; 0 leaves it free to slide)
   double tolerance = 1e-5;       // (0, 1): stop when |∇Π|∞ < tolerance · node_load
   int max_iterations = 500;      // [1, 100000]; each Newton step moves a node by at most a quarter pitch
-  // Called after each Newton iteration with the fraction of the way from the first gradient to the tolerance in
-  // decades, log(|g0|/|g|) / log(|g0|/tol) of |grad|inf, in [0, 1] and never decreasing. Return false to stop:
-  // equilibrium_fit throws needlekit::Interrupted. May be empty.
+  // Called after each Newton iteration k with the larger of k / max_iterations and the decades of the gradient reduced,
+  // log(|g0|/|g|) / log(|g0|/tol) of |grad|inf, in [0, 1] and never decreasing (1 when converged). Return false to
+  // stop: equilibrium_fit throws needlekit::Interrupted. May be empty.
   std::function<bool(double)> progress;
 };
 
