@@ -5,6 +5,7 @@ uncertainty analysis run with a progress bar; the console stays free of errors. 
 import io
 import json
 import re
+import subprocess
 
 import pytest
 from PIL import Image, ImageStat
@@ -13,7 +14,7 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
 from chromium_session import chromium, console_errors, screenshot
-from serve_fixture import EXAMPLES, after_location, cli_error, cli_json, server, toml_text  # noqa: F401
+from serve_fixture import CLI, EXAMPLES, after_location, cli_error, cli_json, server, toml_text  # noqa: F401
 
 
 @pytest.fixture(scope="module")
@@ -169,7 +170,10 @@ def assert_the_patch_numbers_are_the_clis(page, tmp_path):
     case["surface"]["mesh"] = str(EXAMPLES.parent / "data" / "meshes" / case["surface"]["mesh"])
     path = tmp_path / "patch.toml"
     path.write_text(toml_text(case))
-    expected = cli_json("patch", str(path))
+    # Exit code 3 is a fit that ended with a numerical status (e.g. not converged): its JSON is still the result.
+    done = subprocess.run([CLI, "patch", str(path), "--json"], capture_output=True, text=True)
+    assert done.returncode in (0, 3), done
+    expected = json.loads(done.stdout)
     assert page.find_element(By.ID, "patch-result").text == \
         f"done: {expected['penetrating']} of {expected['needles']} needles penetrate"
     # Every number of the table is the CLI's to the digits printed.
@@ -285,7 +289,12 @@ def test_a_click_on_the_body_places_the_patch_and_the_fit_runs_there_as_the_cli_
     assert page.execute_script(f"return {view}.marker !== null")
     screenshot(page, "design_page_body_clicked")
 
-    Select(page.find_element(By.ID, "p-kind")).select_by_value("flexible")
+    # The equilibrium fit, 16 x 16 needles: Newton iterations that last long enough for the page's 100 ms polls to
+    # show the bar between the mesh read and the end (a flexible fit of the neck takes 1 ms).
+    Select(page.find_element(By.ID, "p-kind")).select_by_value("equilibrium")
+    needles = page.find_element(By.ID, "p-n")
+    needles.clear()
+    needles.send_keys("16")
     page.find_element(By.ID, "run-patch").click()
     WebDriverWait(page, 180).until(lambda d: d.find_element(By.ID, "patch-result").text.startswith("done"))
     case = page.execute_script("return window.needlekitDesign.patchJson()")
