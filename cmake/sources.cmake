@@ -62,6 +62,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/geometry/surface_walk.cpp
   src/geometry/triangle_mesh.cpp
   src/geometry/triangle_mesh_reader.cpp
+  src/geometry/vertex_clustering.cpp
   src/insertion/array_model.cpp
   src/insertion/complete_insertion.cpp
   src/insertion/force_curve.cpp
@@ -75,6 +76,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/insertion/puncture_criteria.cpp
   src/insertion/triangle_classification.cpp
   src/io/array_output.cpp
+  src/io/body_view.cpp
   src/io/complete_insertion_output.cpp
   src/io/design_config.cpp
   src/io/design_evaluation.cpp
@@ -227,6 +229,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_optimizer_progress.cpp
   tests/unit/test_parameter_tables.cpp
   tests/unit/test_patch.cpp
+  tests/unit/test_patch_progress.cpp
   tests/unit/test_performance_index.cpp
   tests/unit/test_post_puncture.cpp
   tests/unit/test_propagation_progress.cpp
@@ -248,6 +251,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_uncertainty_config.cpp
   tests/unit/test_uniform_refinement.cpp
   tests/unit/test_units.cpp
+  tests/unit/test_vertex_clustering.cpp
   tests/unit/test_vtu_writer.cpp
   tests/unit/test_work_limits.cpp
 )

@@ -199,7 +199,7 @@ void run_patch(const PatchArguments& arguments) {
   // Warnings: an inward surface turned outwards, implausible scales (a unit mistake?) and a mesh without a licence or
   // attribution.
   const io::PatchSurface body = io::read_patch_surface(c);
-  const patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweeping};
+  const patch::FitAndEvaluateOptions options{c.placement, c.fit, c.evaluation, !sweeping, nullptr};
   print_warnings(body.warnings);
   // A fit that did not converge (the equilibrium solver's iteration limit) ends the command with exit code 3 once
   // everything is written; the other statuses (the patch leaves the surface, springs over E_cri) are outcomes.

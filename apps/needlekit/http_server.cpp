@@ -143,9 +143,8 @@ void add_guards(httplib::Server& server, const ServeOptions& options, const std:
   });
 }
 
-// The allow-listed assets and the JSON API (docs/serve.md); long work goes to the job pool.
-void add_routes(httplib::Server& server, const ServeOptions& options, const std::map<std::string, Asset>& assets,
-                MeshRegistry& meshes, JobPool& jobs) {
+// The allow-listed assets, the presets and the design's evaluation.
+void add_page_routes(httplib::Server& server, const ServeOptions& options, const std::map<std::string, Asset>& assets) {
   const std::size_t max_body = options.max_body_bytes;
   for (const auto& [url, asset] : assets) {
     server.Get(url, [&asset = asset](const httplib::Request&, httplib::Response& res) {
@@ -160,6 +159,26 @@ void add_routes(httplib::Server& server, const ServeOptions& options, const std:
   server.Post("/api/evaluate", [max_body](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] { send_json(res, 200, evaluate_json(req.body)); });
   });
+}
+
+// The body meshes: the list, the uploads and a body's view (to place a patch on it).
+void add_mesh_routes(httplib::Server& server, const ServeOptions& options, MeshRegistry& meshes) {
+  server.Get("/api/meshes", [&meshes](const httplib::Request&, httplib::Response& res) {
+    send_json(res, 200, meshes.listing());
+  });
+  const std::size_t max_upload = options.max_upload_bytes;
+  server.Post("/api/uploads", [&meshes, max_upload](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, max_upload, [&] { send_json(res, 201, meshes.add_upload(req.body, req.get_param_value("format"))); });
+  });
+  const std::size_t max_body = options.max_body_bytes;
+  server.Post("/api/body-view", [&meshes, max_body](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, max_body, [&] { send_json(res, 200, body_view_json(req.body, meshes)); });
+  });
+}
+
+// The long runs, on the job pool: submitted, polled, cancelled.
+void add_job_routes(httplib::Server& server, const ServeOptions& options, MeshRegistry& meshes, JobPool& jobs) {
+  const std::size_t max_body = options.max_body_bytes;
   const auto submit = [&jobs](httplib::Response& res, std::string kind, JobWork work) {
     if (const auto id = jobs.submit(std::move(kind), std::move(work))) {
       send_json(res, 202, *jobs.status(*id));
@@ -184,13 +203,6 @@ void add_routes(httplib::Server& server, const ServeOptions& options, const std:
   });
   server.Post("/api/uncertainty", [submit, max_body](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] { submit(res, "uncertainty", uncertainty_work(req.body)); });
-  });
-  server.Get("/api/meshes", [&meshes](const httplib::Request&, httplib::Response& res) {
-    send_json(res, 200, meshes.listing());
-  });
-  const std::size_t max_upload = options.max_upload_bytes;
-  server.Post("/api/uploads", [&meshes, max_upload](const httplib::Request& req, httplib::Response& res) {
-    answer(req, res, max_upload, [&] { send_json(res, 201, meshes.add_upload(req.body, req.get_param_value("format"))); });
   });
   server.Post("/api/patch", [submit, max_body, &meshes](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] {
@@ -224,7 +236,9 @@ void serve(const ServeOptions& options, const std::function<void(int port)>& lis
   int listening_socket = -1;
   configure(server, options, listening_socket);
   add_guards(server, options, bound_port);
-  add_routes(server, options, assets, meshes, jobs);
+  add_page_routes(server, options, assets);
+  add_mesh_routes(server, options, meshes);
+  add_job_routes(server, options, meshes, jobs);
 
   const int port = options.port == 0 ? server.bind_to_any_port(options.host)
                                      : (server.bind_to_port(options.host, options.port) ? options.port : -1);

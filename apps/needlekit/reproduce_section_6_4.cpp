@@ -90,7 +90,7 @@ PatchRun run_patch(const RunContext& context, Surfaces& surfaces, const std::str
   const geometry::SurfaceMesh& surface = surfaces.get(run.input);
   run.surface_triangles = surface.triangle_count();
   patch::FitAndEvaluateResult result = patch::fit_and_evaluate(
-      surface, run.input.design, {run.input.placement, run.input.fit, run.input.evaluation, false});
+      surface, run.input.design, {run.input.placement, run.input.fit, run.input.evaluation, false, nullptr});
   run.design = std::move(result.design);
   run.fit = std::move(result.fit);
   run.evaluation = std::move(result.evaluation);

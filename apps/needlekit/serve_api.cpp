@@ -16,6 +16,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/geometry/body_surface.hpp"
+#include "needlekit/io/body_view.hpp"
 #include "needlekit/io/design_evaluation.hpp"
 #include "needlekit/io/json_config.hpp"
 #include "needlekit/io/json_text.hpp"
@@ -217,9 +218,13 @@ nlohmann::json MeshRegistry::add_upload(std::string_view bytes, std::string_view
 JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_view) {
   auto c = std::make_shared<const io::PatchCase>(io::parse_patch_case_json(body, "patch.json", meshes.meshes()));
   return [c, with_view](JobProgress& progress) {
+    // The job's fraction: the mesh read, then the library's fit (its frame, each node or Newton iteration, the
+    // evaluation, the springs along the surface), then the view.
+    constexpr double kRead = 0.2, kFitted = 0.95;
     const io::PatchSurface surface = io::read_patch_surface(*c);
-    if (!progress.report(0.5)) throw Interrupted();  // the fit has no progress of its own: read, then fit
-    const patch::FitAndEvaluateOptions options{c->placement, c->fit, c->evaluation, true};
+    if (!progress.report(kRead)) throw Interrupted();
+    patch::FitAndEvaluateOptions options{c->placement, c->fit, c->evaluation, true, nullptr};
+    options.progress = [&progress](double fraction) { return progress.report(kRead + fraction * (kFitted - kRead)); };
     const patch::FitAndEvaluateResult result = patch::fit_and_evaluate(surface.surface, c->design, options);
     nlohmann::json summary = io::rounded_numbers(io::patch_case_summary(*c, result, surface.warnings));
     if (with_view) {
@@ -228,6 +233,12 @@ JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_
     }
     return summary;
   };
+}
+
+nlohmann::json body_view_json(std::string_view body, const MeshRegistry& meshes) {
+  const io::BodyMeshFile file = io::parse_body_mesh_json(body, "surface.json", meshes.meshes());
+  const geometry::BodySurface surface = geometry::read_body_surface(file.mesh, file.mesh_unit);
+  return io::body_view(file.mesh.filename().string(), surface.surface);
 }
 
 }  // namespace needlekit::cli

@@ -72,4 +72,9 @@ private:
 // the data of `needlekit patch --out`'s patch_view.js) for the page's viewer.
 JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_view = false);
 
+// POST /api/body-view: {"surface": {"mesh": a name of `meshes`, "unit": "1 m"}} (a patch case's [surface] keys);
+// the body's whole surface as a 3D view to place the patch on (io/body_view.hpp: decimated, with the full mesh's
+// vertex index of every vertex drawn).
+nlohmann::json body_view_json(std::string_view body, const MeshRegistry& meshes);
+
 }  // namespace needlekit::cli

@@ -4279,8 +4279,8 @@ def fe_uncertainty_json(file: FeUncertaintyFile, result: FeSurrogateResult) -> o
 def figure_6_20_space(shape: Shape, hollow: bool) -> DesignSpace:
     """The dissertation's Fig 6.20 grid for one needle type (silicon, skin, T = 50 um, beta = 3)."""
 
-def fit_and_evaluate(surface: SurfaceMesh, design: PatchDesignOptions, options: FitAndEvaluateOptions = ...) -> FitAndEvaluateResult:
-    """The patch pipeline (ch. 5, §6.4): design, frame, fit, every needle evaluated; what `needlekit patch` runs."""
+def fit_and_evaluate(surface: SurfaceMesh, design: PatchDesignOptions, options: FitAndEvaluateOptions = ..., progress: object = None) -> FitAndEvaluateResult:
+    """The patch pipeline (ch. 5, §6.4): design, frame, fit, every needle evaluated; what `needlekit patch` runs. progress(fraction) is called after the frame, each node mapped or Newton iteration of the fit, the evaluation; an exception it raises (or Ctrl-C) stops the fit and propagates."""
 
 def fit_patch(surface: SurfaceMesh, design: PatchDesign, frame: PatchFrame, options: FitOptions = ...) -> FittedPatch:
     """Fits the patch onto the surface: rigid (§6.4.1), flexible (Alg 5.1-5.3) or equilibrium."""

@@ -1,6 +1,7 @@
 // needlekit/patch: patch designs, placement, rigid / flexible / equilibrium fits and the per-needle evaluation
 // (numpy arrays of per-needle quantities), patch case files and their CSV/JSON as the CLI writes them.
 #include "common.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
@@ -269,12 +270,22 @@ void bind_fit_and_evaluate(py::module_& m) {
       .def_readonly("fit_seconds", &FitAndEvaluateResult::fit_seconds, "s");
   m.def(
       "fit_and_evaluate",
-      [](const geometry::SurfaceMesh& s, const PatchDesignOptions& d, const FitAndEvaluateOptions& o) {
-        py::gil_scoped_release released;
-        return fit_and_evaluate(s, d, o);
+      [](const geometry::SurfaceMesh& s, const PatchDesignOptions& d, FitAndEvaluateOptions o, py::object progress) {
+        ProgressRelay relay(std::move(progress));
+        o.progress = [&relay](double fraction) { return relay.keep_going(fraction); };
+        try {
+          py::gil_scoped_release released;
+          return fit_and_evaluate(s, d, o);
+        } catch (const Interrupted&) {
+          relay.rethrow();  // the callback's exception (KeyboardInterrupt on Ctrl-C)
+          throw;
+        }
       },
       py::arg("surface"), py::arg("design"), py::arg("options") = FitAndEvaluateOptions{},
-      "The patch pipeline (ch. 5, §6.4): design, frame, fit, every needle evaluated; what `needlekit patch` runs.");
+      py::arg("progress") = py::none(),
+      "The patch pipeline (ch. 5, §6.4): design, frame, fit, every needle evaluated; what `needlekit patch` runs. "
+      "progress(fraction) is called after the frame, each node mapped or Newton iteration of the fit, the evaluation; "
+      "an exception it raises (or Ctrl-C) stops the fit and propagates.");
 }
 
 }  // namespace

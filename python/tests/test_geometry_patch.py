@@ -77,6 +77,21 @@ def test_a_patch_fit_gives_the_cli_summary(case):
     frame = nk.patch_frame(surface, c.placement, float(np.hypot(design.width_u, design.width_v)), design.needle.length)
     fit = nk.fit_patch(surface, design, frame, c.fit)
     np.testing.assert_array_equal(fit.positions, run.fit.positions)
+    # With a progress callback: fractions that never decrease up to 1 (one per node mapped by node sweeping), and the
+    # same fit; an exception raised in it stops the fit and comes out of fit_and_evaluate.
+    fractions = []
+    reported = nk.fit_and_evaluate(surface, c.design, nk.FitAndEvaluateOptions(
+        placement=c.placement, fit=c.fit, evaluation=c.evaluation), progress=fractions.append)
+    assert fractions == sorted(fractions) and fractions[0] == 0 and fractions[-1] == 1
+    assert len(fractions) >= (100 if c.fit.kind == nk.PatchKind.Flexible else 4)
+    np.testing.assert_array_equal(reported.fit.positions, run.fit.positions)
+
+    def stop(fraction):
+        if fraction > 0.1:
+            raise RuntimeError("stop here")
+    with pytest.raises(RuntimeError, match="stop here"):
+        nk.fit_and_evaluate(surface, c.design, nk.FitAndEvaluateOptions(placement=c.placement, fit=c.fit,
+                                                                        evaluation=c.evaluation), progress=stop)
     arrays = run.evaluation.needle_arrays()
     assert arrays["tip"].shape == (100, 3) and arrays["buckling_force"].shape == (100,)
     assert np.allclose(np.linalg.norm(arrays["tip"] - arrays["base"], axis=1), design.needle.length, rtol=1e-12)

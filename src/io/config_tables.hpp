@@ -25,6 +25,9 @@ SpaceFile space_of_table(const toml::table& root, const std::string& file);
 // A patch case's root table; `base_folder` resolves [surface] mesh (the caller checks what it names).
 PatchCase patch_case_of_table(const toml::table& root, const std::string& file,
                               const std::filesystem::path& base_folder, bool uncertainty_tables);
+// A root table holding only [surface] with mesh and unit; `base_folder` resolves the mesh (the caller checks it).
+BodyMeshFile body_mesh_of_table(const toml::table& root, const std::string& file,
+                                const std::filesystem::path& base_folder);
 // An uncertainty file's root table (a design file plus [uncertain], [sampling], [[correlation]]).
 UncertaintyFile uncertainty_of_table(const toml::table& root, const std::string& file);
 

@@ -110,23 +110,39 @@ UncertaintyFile parse_uncertainty_json(std::string_view text, std::string_view s
   return config::uncertainty_of_table(root_of(text, file), file);
 }
 
+namespace {
+
+// The folder of the mesh that root's surface.mesh names, a key of `meshes`; InvalidInput naming surface.mesh and the
+// names offered for any other string. Empty when surface.mesh is missing or not a string (the reader says so).
+std::filesystem::path offered_mesh_folder(const toml::table& root, const std::string& file,
+                                          const std::map<std::string, std::filesystem::path>& meshes) {
+  const toml::node* mesh = root.at_path("surface.mesh").node();
+  if (!mesh || !mesh->is_string()) return {};
+  const auto found = meshes.find(mesh->as_string()->get());
+  if (found == meshes.end() || found->second.filename() != found->first) {
+    std::vector<std::string_view> names;
+    for (const auto& [name, path] : meshes) names.push_back(name);
+    throw InvalidInput(fmt::format("{}:1: key 'surface.mesh': '{}' is not one of the meshes offered, expected one "
+                                   "of: {}",
+                                   file, mesh->as_string()->get(), fmt::join(names, ", ")));
+  }
+  return found->second.parent_path();
+}
+
+}  // namespace
+
 PatchCase parse_patch_case_json(std::string_view text, std::string_view source_name,
                                 const std::map<std::string, std::filesystem::path>& meshes) {
   const std::string file(source_name);
   const toml::table root = root_of(text, file);
-  std::filesystem::path folder;
-  if (const toml::node* mesh = root.at_path("surface.mesh").node(); mesh && mesh->is_string()) {
-    const auto found = meshes.find(mesh->as_string()->get());
-    if (found == meshes.end() || found->second.filename() != found->first) {
-      std::vector<std::string_view> names;
-      for (const auto& [name, path] : meshes) names.push_back(name);
-      throw InvalidInput(fmt::format("{}:1: key 'surface.mesh': '{}' is not one of the meshes offered, expected one "
-                                     "of: {}",
-                                     file, mesh->as_string()->get(), fmt::join(names, ", ")));
-    }
-    folder = found->second.parent_path();
-  }
-  return config::patch_case_of_table(root, file, folder, false);
+  return config::patch_case_of_table(root, file, offered_mesh_folder(root, file, meshes), false);
+}
+
+BodyMeshFile parse_body_mesh_json(std::string_view text, std::string_view source_name,
+                                  const std::map<std::string, std::filesystem::path>& meshes) {
+  const std::string file(source_name);
+  const toml::table root = root_of(text, file);
+  return config::body_mesh_of_table(root, file, offered_mesh_folder(root, file, meshes));
 }
 
 }  // namespace needlekit::io

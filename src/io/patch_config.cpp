@@ -12,20 +12,31 @@ namespace {
 
 using namespace config;  // the TOML reading helpers of toml_config.hpp
 
-void read_surface(const Section& t, const std::filesystem::path& base, PatchCase& c) {
+// [surface] mesh and unit.
+BodyMeshFile read_mesh_and_unit(const Section& t, const std::filesystem::path& base) {
+  BodyMeshFile body;
   const std::string mesh_expected = "a mesh file name (OBJ, STL, PLY or OFF)";
-  c.mesh = base / text_of(t, t.required("mesh", mesh_expected), "mesh", mesh_expected);
+  body.mesh = base / text_of(t, t.required("mesh", mesh_expected), "mesh", mesh_expected);
   const std::string unit_expected = "the length of one file unit, e.g. \"mm\" or \"15.8 mm\"";
   const toml::node& unit = t.required("unit", unit_expected);
   const std::string unit_text = text_of(t, unit, "unit", unit_expected);
-  c.mesh_unit = t.at(unit, [&] {
+  body.mesh_unit = t.at(unit, [&] {
     try {
       return units::unit_factor(unit_text, Dimension::Length, t.what("unit"));
     } catch (const InvalidInput&) {
       return units::parse_quantity(unit_text, Dimension::Length, t.what("unit"));
     }
   });
-  if (!(c.mesh_unit > 0)) t.fail(unit, "unit", fmt::format("'{}' is not positive, expected {}", unit_text, unit_expected));
+  if (!(body.mesh_unit > 0)) {
+    t.fail(unit, "unit", fmt::format("'{}' is not positive, expected {}", unit_text, unit_expected));
+  }
+  return body;
+}
+
+void read_surface(const Section& t, const std::filesystem::path& base, PatchCase& c) {
+  const BodyMeshFile body = read_mesh_and_unit(t, base);
+  c.mesh = body.mesh;
+  c.mesh_unit = body.mesh_unit;
   const toml::node* vertex = t.optional("center_vertex");
   const toml::node* center = t.optional("center");
   if (vertex && center) t.fail(*center, "center", "given together with center_vertex, expected one of them");
@@ -130,6 +141,12 @@ PatchCase config::patch_case_of_table(const toml::table& root, const std::string
         1e-6, std::abs(analysis::puncture_force(needle::tip_area(c.design.needle), c.evaluation.conditions.tissue)));
   }
   return c;
+}
+
+BodyMeshFile config::body_mesh_of_table(const toml::table& root, const std::string& file,
+                                       const std::filesystem::path& base_folder) {
+  const Section top(root, "", file, {"surface"});
+  return read_mesh_and_unit(top.required_subsection("surface", {"mesh", "unit"}), base_folder);
 }
 
 PatchCase read_patch_case(const std::filesystem::path& path) {

@@ -11,7 +11,7 @@ units::Dimension patch_input_dimension(std::string_view key, std::string_view wh
 }  // namespace
 
 patch::FitAndEvaluateOptions fit_and_evaluate_options(const PatchCase& c) {
-  return {c.placement, c.fit, c.evaluation, false};
+  return {c.placement, c.fit, c.evaluation, false, nullptr};
 }
 
 PatchUncertaintyFile parse_patch_uncertainty_toml(std::string_view text, std::string_view source_name,

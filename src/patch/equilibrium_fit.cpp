@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/patch/rigid_fit.hpp"
 
 namespace needlekit::patch {
@@ -98,6 +99,35 @@ void gradient_and_hessian(const Model& m, const std::vector<Eigen::Vector3d>& x,
   H.setFromTriplets(triplets.begin(), triplets.end());
 }
 
+// options.progress after each iteration: the larger of the share of max_iterations used and the decades of |grad|inf
+// reduced from the first iterate's towards the tolerance (the patch first comes down in trust-region steps with the
+// gradient near the load, then Newton converges within a few iterations), never decreasing; Interrupted when it
+// returns false.
+class GradientProgress {
+public:
+  explicit GradientProgress(const EquilibriumFitOptions& options) : options_(options) {}
+
+  void report(int iteration, double gradient_norm, bool converged) {
+    if (!options_.progress) return;
+    const double target = options_.tolerance * options_.node_load;
+    if (first_ < 0) first_ = gradient_norm;
+    if (converged) {
+      fraction_ = 1;
+    } else {
+      fraction_ = std::max(fraction_, static_cast<double>(iteration) / options_.max_iterations);
+      if (first_ > target && gradient_norm > 0) {
+        fraction_ = std::max(fraction_, std::clamp(std::log(first_ / gradient_norm) / std::log(first_ / target), 0.0, 1.0));
+      }
+    }
+    if (!options_.progress(fraction_)) throw Interrupted();
+  }
+
+private:
+  const EquilibriumFitOptions& options_;
+  double first_ = -1;
+  double fraction_ = 0;
+};
+
 }  // namespace
 
 double equilibrium_potential(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,
@@ -135,12 +165,12 @@ FittedPatch equilibrium_fit(const geometry::SurfaceMesh& surface, const PatchDes
   double radius = max_move;
   bool converged = false;
   int iteration = 0;
+  GradientProgress progress(options);
   for (; iteration < options.max_iterations; ++iteration) {
     gradient_and_hessian(model, x, g, H);
-    if (g.lpNorm<Eigen::Infinity>() < options.tolerance * options.node_load) {
-      converged = true;
-      break;
-    }
+    converged = g.lpNorm<Eigen::Infinity>() < options.tolerance * options.node_load;
+    progress.report(iteration, g.lpNorm<Eigen::Infinity>(), converged);
+    if (converged) break;
     // A small Levenberg shift keeps the system definite where a node is free in some direction.
     Eigen::SparseMatrix<double> I(3 * n, 3 * n);
     I.setIdentity();

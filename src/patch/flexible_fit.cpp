@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/core/interrupt.hpp"
 #include "needlekit/geometry/cutting_plane_trace.hpp"
 #include "needlekit/geometry/geodesic_trace.hpp"
 #include "needlekit/patch/rigid_fit.hpp"
@@ -114,6 +115,7 @@ public:
         if (mapped_[k]) continue;
         map_node(a, k);
         active.push_back(k);
+        report_progress();
       }
     }
   }
@@ -148,6 +150,14 @@ public:
   }
 
 private:
+  // options.progress with the fraction of nodes mapped; Interrupted when it returns false.
+  void report_progress() {
+    ++mapped_count_;
+    if (options_.progress && !options_.progress(static_cast<double>(mapped_count_) / design_.node_count())) {
+      throw Interrupted();
+    }
+  }
+
   // Alg 5.2 / §5.7.2: node k from its mapped neighbour a, walking the rest length along the original direction.
   void map_node(int a, int k) {
     const Eigen::Vector2d rest = design_.rest_positions[k] - design_.rest_positions[a];
@@ -210,6 +220,7 @@ private:
   std::vector<geometry::SurfaceLocation> location_;
   std::vector<bool> mapped_, on_surface_;
   std::vector<int> boundary_nodes_, degenerate_nodes_, capped_nodes_;
+  int mapped_count_ = 1;  // the first node
 };
 
 }  // namespace

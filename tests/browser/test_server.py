@@ -358,3 +358,61 @@ def test_a_mesh_that_fails_to_read_is_400_with_the_readers_message(server, tmp_p
     assert server.request("POST", "/api/uploads?format=obj", bad, {"Content-Type": "application/json"})[0] == 415
     assert upload(server, b" " * ((32 << 20) + 1), "obj")[0] == 413
     assert server.alive()
+
+
+def decoded(array):
+    """A typed array of a needlekit-view/1 object (io/view_arrays.hpp) as a list of numbers."""
+    import base64
+    import struct
+    code = {"float32": "f", "uint32": "I"}[array["dtype"]]
+    return list(struct.unpack(f"<{array['count']}{code}", base64.b64decode(array["base64"])))
+
+
+def obj_vertices(path):
+    return [[float(x) for x in line.split()[1:4]] for line in path.open() if line.startswith("v ")]
+
+
+def test_a_body_view_is_the_meshs_own_vertices_decimated_to_a_small_view(server):
+    path = EXAMPLES.parent / "data" / "meshes" / "vh_male_head_neck_loop2.obj"
+    status, _, data = server.request("POST", "/api/body-view",
+                                     {"surface": {"mesh": path.name, "unit": "mm"}})
+    assert status == 200, data
+    assert len(data) < 500_000, len(data)  # 240k triangles drawn as at most 12k
+    view = json.loads(data)
+    assert view["kind"] == "body" and view["full_mesh"]["triangles"] == 240272
+    assert 6000 <= view["surface"]["triangles"] <= 12000
+    vertices = obj_vertices(path)
+    ids, positions = decoded(view["surface"]["vertex_ids"]), decoded(view["surface"]["positions"])
+    assert len(positions) == 3 * len(ids)
+    for k in range(0, len(ids), 97):  # in millimetres: unit = "mm" scales the file's numbers by 1e-3
+        assert all(abs(positions[3 * k + c] - 1e-3 * vertices[ids[k]][c]) < 1e-9 for c in range(3)), k
+
+
+@pytest.mark.parametrize("surface, key", [({"mesh": "../../etc/passwd", "unit": "m"}, "surface.mesh"),
+                                          ({"mesh": "/etc/passwd", "unit": "m"}, "surface.mesh"),
+                                          ({"mesh": "vh_male_skin.obj", "unit": "2"}, "surface.unit"),
+                                          ({"mesh": "vh_male_skin.obj"}, "surface.unit"),
+                                          ({"mesh": "vh_male_skin.obj", "unit": "m", "center": 1}, "surface.center")])
+def test_a_body_view_of_bad_input_is_400_naming_the_key(server, surface, key):
+    status, answer = server.json("POST", "/api/body-view", {"surface": surface})
+    assert status == 400 and answer["key"] == key, answer
+    assert server.alive()
+
+
+def test_a_patch_job_reports_the_fits_progress_node_by_node(server):
+    """A flexible fit reports each node it maps (Alg 5.1), an equilibrium fit each Newton iteration: many progress
+    reports, fractions that never decrease, ending at 1, the result the CLI's."""
+    for example in ("patch_neck_flexible.toml", "patch_neck_equilibrium.toml"):
+        path = EXAMPLES / example
+        seen = run_job(server, "/api/patch", patch_case_of(path))
+        assert seen[-1]["state"] == "done", seen[-1]
+        fractions = [j["fraction"] for j in seen]
+        assert fractions == sorted(fractions) and fractions[-1] == 1.0
+        case = patch_case_of(path)
+        nodes = case["patch"]["needles_per_row"] ** 2
+        reports = seen[-1]["progress_reports"]
+        assert reports > (nodes if "flexible" in example else 5), (example, reports)
+        result, expected = seen[-1]["result"], cli_json("patch", str(path))
+        for summary in (result, expected):
+            del summary["fit_ms"]
+        assert result == expected

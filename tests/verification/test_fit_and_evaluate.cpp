@@ -12,21 +12,13 @@
 #include <cmath>
 
 #include "../support/analytic_surfaces.hpp"
-#include "needlekit/materials/needle_material.hpp"
+#include "../support/patch_designs.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
 
 namespace needlekit::patch {
 namespace {
 
-PatchDesignOptions design_options(double width, int n) {
-  PatchDesignOptions o;
-  o.needles_u = o.needles_v = n;
-  o.width_u = o.width_v = width;
-  o.stiffness_u = o.stiffness_v = o.stiffness_diagonal = 1e3;
-  o.needle = {needle::Shape::Cylinder, 70e-6, 70e-6, 0, 400e-6};
-  o.material = materials::material_preset("su-8");
-  return o;
-}
+PatchDesignOptions design_options(double width, int n) { return test::su8_cylinder_patch(width, n); }
 
 FitAndEvaluateOptions rigid_at(const Eigen::Vector3d& center, bool geodesics = false) {
   FitAndEvaluateOptions o;

@@ -12,6 +12,9 @@
   let evaluateSequence = 0;
   let view = null;
   let patchView = null;  // the last fit's 3D view (web/viewer/needlekit_viewer.js)
+  let bodyView = null;   // the chosen body mesh's view, where a click places the patch (POST /api/body-view)
+  let bodySequence = 0;
+  const jobFractions = {};  // per job kind: the fractions its progress bar showed, in order (for the tests)
 
   // ---- the design as JSON (the same keys and unit strings as a design TOML file) --------------------------------
 
@@ -249,12 +252,14 @@
     }
     out.className = "";
     const id = answer.json.id;
+    const shown = jobFractions[name] = [];
     run.disabled = true;
     cancel.disabled = false;
     cancel.onclick = () => fetch(`/api/jobs/${id}`, { method: "DELETE" });
     for (;;) {
       const status = await (await fetch(`/api/jobs/${id}`)).json();
       bar.value = status.fraction;
+      shown.push(status.fraction);
       out.textContent = `${status.state} ${Math.round(100 * status.fraction)} %`;
       if (status.state === "done") { done(status.result); break; }
       if (status.state === "failed" || status.state === "cancelled") {
@@ -262,7 +267,7 @@
         out.className = status.state === "failed" ? "error" : "";
         break;
       }
-      await new Promise((resolve) => setTimeout(resolve, 200));
+      await new Promise((resolve) => setTimeout(resolve, 100));
     }
     run.disabled = false;
     cancel.disabled = true;
@@ -361,14 +366,53 @@
     out.textContent = `${answer.name}: ${answer.triangles} triangles`;
     meshes.push(answer);
     fillSelect($("p-mesh"), [answer], answer.name);
+    showBody();
   }
 
   function chooseMesh(meshes) {
     const mesh = meshes.find((m) => m.name === $("p-mesh").value);
-    if (!mesh || !mesh.example) return;
-    $("p-unit").value = `${mesh.unit_m} m`;
-    $("p-center").value = String(mesh.center_vertex);
-    $("p-approach").value = mesh.approach;
+    if (mesh && mesh.example) {
+      $("p-unit").value = `${mesh.unit_m} m`;
+      $("p-center").value = String(mesh.center_vertex);
+      $("p-approach").value = mesh.approach;
+    }
+    return showBody();
+  }
+
+  // The chosen body's surface in 3D (decimated by the library if large), before any fit: a click on it puts the
+  // nearest vertex into the centre field and the approach along the surface normal there (approach = "normal").
+  async function showBody() {
+    const sequence = ++bodySequence, out = $("body-view-result");
+    document.body.dataset.bodyView = "loading";
+    const answer = await postJson("/api/body-view", { surface: { mesh: $("p-mesh").value, unit: $("p-unit").value.trim() } });
+    if (sequence !== bodySequence) return;  // another mesh was chosen meanwhile
+    if (bodyView) bodyView.dispose();
+    bodyView = null;
+    if (answer.status !== 200) {
+      out.textContent = answer.json.error;
+      out.className = "error";
+      document.body.dataset.bodyView = "failed";
+      return;
+    }
+    out.className = "";
+    out.textContent = (answer.json.notes || []).join("; ");
+    bodyView = window.needlekitViewer.mount(answer.json, $("body-view"), { onPick: placePatch });
+    markCenter();
+    document.body.dataset.bodyView = "ready";
+  }
+
+  function placePatch(pick) {
+    $("p-center").value = String(pick.vertex);
+    $("p-approach").value = "normal";
+    const mm = pick.position.map((x) => (1e3 * x).toPrecision(4)).join(", ");
+    $("body-view-result").textContent = `centre: vertex ${pick.vertex} at (${mm}) mm, approach against the normal`;
+  }
+
+  // The typed centre vertex, marked when the view draws it.
+  function markCenter() {
+    if (!bodyView) return;
+    const text = $("p-center").value.trim();
+    bodyView.markMeshVertex(/^\d+$/.test(text) ? parseInt(text, 10) : -1);
   }
 
   // ---- the form ---------------------------------------------------------------------------------------------------
@@ -419,6 +463,7 @@
     const suggested = meshes.find((m) => m.example) || meshes[0];
     fillSelect($("p-mesh"), meshes, suggested ? suggested.name : "");
     $("p-mesh").addEventListener("change", () => chooseMesh(meshes));
+    $("p-center").addEventListener("input", markCenter);
     chooseMesh(meshes);
     $("upload-mesh").addEventListener("click", () => upload(meshes));
     $("run-patch").addEventListener("click", () => runJob("patch", "/api/patch?view=true", patchJson(), showPatch));
@@ -455,6 +500,7 @@
 
   // For scripts and the browser tests: the design as the page would send it, and as the TOML it downloads.
   window.needlekitDesign = { designJson, patchJson, spaceJson, tomlText: () => tomlText(designJson()), evaluate,
-                              patchView: () => patchView };
+                              patchView: () => patchView, bodyView: () => bodyView,
+                              jobFractions: (name) => jobFractions[name] || [] };
   window.addEventListener("DOMContentLoaded", start);
 })();

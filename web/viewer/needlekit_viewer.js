@@ -72,8 +72,12 @@
     element("span", "nk-bar-end", bar, formatNumber(hi));
   }
 
-  function View(data, host) {
+  // `options.onPick(pick)`: a click on the surface of a body view (kind "body") picks the nearest corner of the
+  // triangle hit and calls it with {vertex (its index in the full mesh), position [m], point [m] (where the ray hit),
+  // normal (unit, outward)}; the view marks the spot.
+  function View(data, host, options) {
     this.data = data;
+    this.options = options || {};
     this.step = data.steps.length - 1;
     this.buildPage(host);
     this.buildScene();
@@ -160,7 +164,9 @@
     geometry.setAttribute("color", new THREE.BufferAttribute(new Float32Array(3 * this.vertexCount), 3));
     this.surfaceGeometry = geometry;
     var material = new THREE.MeshLambertMaterial({vertexColors: THREE.VertexColors, side: THREE.DoubleSide});
-    this.world.add(new THREE.Mesh(geometry, material));
+    this.surfaceMesh = new THREE.Mesh(geometry, material);
+    this.world.add(this.surfaceMesh);
+    this.vertexIds = surface.vertex_ids ? decode(surface.vertex_ids) : null;
 
     if (data.lines) {
       var lines = new THREE.BufferGeometry();
@@ -171,8 +177,13 @@
     if (data.needles && data.needles.meshes) this.buildPlacedNeedles(data.needles);
     if (data.needles && data.needles.segments) this.buildSegmentNeedles(data.needles);
     this.frameCamera();
-    var view = this;
-    this.canvas.addEventListener("click", function (event) { view.pick(event); });
+    var view = this, down = null;
+    // A click picks; a drag (the orbit controls') does not.
+    this.canvas.addEventListener("pointerdown", function (event) { down = [event.clientX, event.clientY]; });
+    this.canvas.addEventListener("click", function (event) {
+      if (down && Math.abs(event.clientX - down[0]) + Math.abs(event.clientY - down[1]) > 4) return;
+      if (view.data.kind === "body") view.pickSurface(event); else view.pick(event);
+    });
   };
 
   // Indentation: needle meshes placed per instance, moved along the direction by each step's displacement.
@@ -238,7 +249,11 @@
     this.camera.add(light);
     this.scene.add(this.camera);
     var focus = new THREE.Vector3(0, 0, 0);
-    if (this.data.kind === "patch" && this.needleMeshes.length > 0) {
+    if (this.data.kind === "body") {
+      // A body mesh as the repository's (y up, the face towards +z, the OBJ convention): from the front.
+      this.camera.up.set(0, 1, 0);
+      this.camera.position.set(0, 0, 2.2);
+    } else if (this.data.kind === "patch" && this.needleMeshes.length > 0) {
       // Look along the needles, from their bases.
       var s = decode(this.data.needles.segments), mid = Math.floor(s.length / 12);
       var dir = new THREE.Vector3(s[6 * mid] - s[6 * mid + 3], s[6 * mid + 1] - s[6 * mid + 4], s[6 * mid + 2] - s[6 * mid + 5]);
@@ -338,15 +353,71 @@
     return states.map(function (s) { return STATUS_COLOURS[s] || NEEDLE_GREY; });
   };
 
-  // A click on a needle shows its row of the table.
-  View.prototype.pick = function (event) {
-    if (!this.data.needles || !this.data.needles.table) return;
+  // The objects under a mouse event, nearest first.
+  View.prototype.hitsAt = function (event, objects) {
     var rect = this.canvas.getBoundingClientRect();
     var mouse = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1,
                                   -((event.clientY - rect.top) / rect.height) * 2 + 1);
     var raycaster = new THREE.Raycaster();
     raycaster.setFromCamera(mouse, this.camera);
-    var hits = raycaster.intersectObjects(this.needleMeshes);
+    return raycaster.intersectObjects(objects);
+  };
+
+  // A click on a body's surface: the nearest corner of the triangle hit, marked, and given to options.onPick.
+  View.prototype.pickSurface = function (event) {
+    var hits = this.hitsAt(event, [this.surfaceMesh]);
+    if (hits.length === 0 || !this.vertexIds) return;
+    var point = this.world.worldToLocal(hits[0].point.clone()), face = hits[0].face, p = this.surfacePositions;
+    var nearest = -1, best = Infinity;
+    [face.a, face.b, face.c].forEach(function (k) {
+      var d = point.distanceToSquared(new THREE.Vector3(p[3 * k], p[3 * k + 1], p[3 * k + 2]));
+      if (d < best) { best = d; nearest = k; }
+    });
+    this.markVertex(nearest);
+    var n = this.surfaceGeometry.getAttribute("normal");
+    var pick = {vertex: this.vertexIds[nearest], position: [p[3 * nearest], p[3 * nearest + 1], p[3 * nearest + 2]],
+                point: [point.x, point.y, point.z], normal: [n.getX(nearest), n.getY(nearest), n.getZ(nearest)]};
+    this.lastPick = pick;
+    if (this.options.onPick) this.options.onPick(pick);
+  };
+
+  // Marks the drawn vertex k: a dot and an arrow along the approach (against the outward normal, the sign of
+  // approach = "normal" in examples/patch_*.toml); k < 0 removes the mark.
+  View.prototype.markVertex = function (k) {
+    if (this.marker) this.world.remove(this.marker);
+    this.marker = null;
+    if (k >= 0) {
+      var p = this.surfacePositions, size = this.extent().size, n = this.surfaceGeometry.getAttribute("normal");
+      var at = new THREE.Vector3(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
+      var normal = new THREE.Vector3(n.getX(k), n.getY(k), n.getZ(k)).normalize();
+      this.marker = new THREE.Group();
+      var dot = new THREE.Mesh(new THREE.SphereBufferGeometry(0.012 * size, 16, 12),
+                               new THREE.MeshBasicMaterial({color: 0xd62728}));
+      dot.position.copy(at);
+      this.marker.add(dot);
+      var length = 0.12 * size;
+      this.marker.add(new THREE.ArrowHelper(normal.clone().negate(), at.clone().addScaledVector(normal, length), length,
+                                            0xd62728, 0.35 * length, 0.2 * length));
+      this.world.add(this.marker);
+    }
+    this.render();
+  };
+
+  // Marks the vertex of the full mesh `id` when it is drawn (a decimated view draws some vertices only); returns
+  // whether it is.
+  View.prototype.markMeshVertex = function (id) {
+    var k = -1;
+    if (this.vertexIds) {
+      for (var i = 0; i < this.vertexIds.length; ++i) if (this.vertexIds[i] === id) { k = i; break; }
+    }
+    this.markVertex(k);
+    return k >= 0;
+  };
+
+  // A click on a needle shows its row of the table.
+  View.prototype.pick = function (event) {
+    if (!this.data.needles || !this.data.needles.table) return;
+    var hits = this.hitsAt(event, this.needleMeshes);
     if (hits.length === 0) {
       this.info.hidden = true;
       return;
@@ -394,9 +465,10 @@
     return mounted;
   }
 
-  // One view of `data` (a needlekit-view/1 object, e.g. the "view" of a patch job of `needlekit serve`) in `host`.
-  function mount(data, host) {
-    return new View(data, host);
+  // One view of `data` (a needlekit-view/1 object, e.g. the "view" of a patch job of `needlekit serve`) in `host`;
+  // `options` as View's.
+  function mount(data, host, options) {
+    return new View(data, host, options);
   }
 
   window.needlekitViewer = {mountAll: mountAll, mount: mount, decode: decode, mounted: []};

@@ -29,4 +29,9 @@ UncertaintyFile parse_uncertainty_json(std::string_view text, std::string_view s
 PatchCase parse_patch_case_json(std::string_view text, std::string_view source_name,
                                 const std::map<std::string, std::filesystem::path>& meshes);
 
+// {"surface": {"mesh": a key of `meshes`, "unit": "1 mm"}}: the body surface a patch case would name (the same keys,
+// checks and messages as its [surface] table), for the body's view before the patch is placed.
+BodyMeshFile parse_body_mesh_json(std::string_view text, std::string_view source_name,
+                                  const std::map<std::string, std::filesystem::path>& meshes);
+
 }  // namespace needlekit::io

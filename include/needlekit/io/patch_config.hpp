@@ -32,6 +32,13 @@ struct PatchCase {
   patch::NeedleEvaluationOptions evaluation;
 };
 
+// A body surface as a case's [surface] table names it, mesh and unit only (`needlekit serve` draws the body before a
+// patch is placed on it: io/json_config.hpp).
+struct BodyMeshFile {
+  std::filesystem::path mesh;      // resolved against the case file's folder
+  double mesh_unit = 1;            // m per file unit
+};
+
 // Throws IoError (unreadable file, TOML syntax) or InvalidInput (a missing, unknown or invalid key).
 PatchCase read_patch_case(const std::filesystem::path& path);
 // The same from text; `source_name` stands for the file in messages, `base_folder` resolves the mesh path.

@@ -8,6 +8,8 @@
 // is minimised by Newton's method (springs' Hessians projected to be positive semi-definite, steps limited to a
 // quarter pitch per node, backtracking line search; Eigen's sparse LDLᵀ).
 #pragma once
+#include <functional>
+
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/patch/fitted_patch.hpp"
 
@@ -21,6 +23,10 @@ struct EquilibriumFitOptions {
                                  // (the applicator pad holding the patch laterally; 0 leaves it free to slide)
   double tolerance = 1e-5;       // (0, 1): stop when |∇Π|∞ < tolerance · node_load
   int max_iterations = 500;      // [1, 100000]; each Newton step moves a node by at most a quarter pitch
+  // Called after each Newton iteration k with the larger of k / max_iterations and the decades of the gradient reduced,
+  // log(|g0|/|g|) / log(|g0|/tol) of |grad|inf, in [0, 1] and never decreasing (1 when converged). Return false to
+  // stop: equilibrium_fit throws needlekit::Interrupted. May be empty.
+  std::function<bool(double)> progress;
 };
 
 // Starts from the rigid fit. Status NotConverged (with the last iterate) when the iteration limit is reached;

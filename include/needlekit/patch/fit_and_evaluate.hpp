@@ -3,6 +3,7 @@
 // of every needle (evaluate_needles), optionally with the springs measured along the surface (spring_geodesics).
 // `needlekit patch`, `needlekit reproduce` (§6.4) and the Python module call this and only present the result.
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -20,6 +21,15 @@ struct FitAndEvaluateOptions {
   FitOptions fit;                        // rigid, flexible (E_cri) or equilibrium
   NeedleEvaluationOptions evaluation;    // tissue, target depth and the index's options
   bool spring_geodesics = false;         // also measure every spring along the surface (beyond the dissertation)
+  // Called with the fraction done in [0, 1], never decreasing, from the calling thread: the frame is kFrameShare of
+  // it, the fit (node sweeping: each node mapped; equilibrium: each Newton iteration; rigid: one step) the share up
+  // to kFitEnd, the evaluation of the needles up to kEvaluationEnd (1 without spring_geodesics), the springs measured
+  // along the surface the rest. Return false to stop: fit_and_evaluate throws needlekit::Interrupted. It replaces
+  // fit.flexible.progress and fit.equilibrium.progress. May be empty.
+  std::function<bool(double)> progress;
+  static constexpr double kFrameShare = 0.05;
+  static constexpr double kFitEnd = 0.85;
+  static constexpr double kEvaluationEnd = 0.95;
 };
 
 struct FitAndEvaluateResult {

@@ -17,6 +17,8 @@
 // Alg 5.2, the cap is applied to every node (also the edge nodes in line with the first one), so that E_cri → 0
 // gives the rigid patch.
 #pragma once
+#include <functional>
+
 #include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/patch/fitted_patch.hpp"
@@ -48,6 +50,9 @@ struct FlexibleFitOptions {
   FirstNode first_node = FirstNode::FirstContact;
   int cap_samples = 32;                // [2, 10000]: samples of λ before bisection in the energy cap
   WalkMethod walk = WalkMethod::CuttingPlane;  // how the geodesic traverse crosses triangle edges
+  // Called after each node is mapped (Alg 5.1's loop) with the fraction of the patch's nodes mapped, in (0, 1]. Return
+  // false to stop: flexible_fit throws needlekit::Interrupted. May be empty.
+  std::function<bool(double)> progress;
 };
 
 // Throws InvalidInput for a non-positive E_cri or cap_samples out of range. Traverses that reach the surface's

@@ -1,0 +1,46 @@
+#include "needlekit/io/body_view.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "needlekit/geometry/vertex_clustering.hpp"
+#include "needlekit/io/view_arrays.hpp"
+
+namespace needlekit::io {
+
+nlohmann::json body_view(const std::string& name, const geometry::SurfaceMesh& surface,
+                         const BodyViewOptions& options) {
+  const geometry::TriangleMesh& full = surface.mesh();
+  const geometry::ClusteredMesh drawn = geometry::clustered_mesh(full, options.max_triangles);
+  std::vector<float> positions;
+  for (const Eigen::Vector3d& p : drawn.mesh.vertices) {
+    positions.insert(positions.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+  }
+  std::vector<std::uint32_t> indices, vertex_ids(drawn.source_vertex.begin(), drawn.source_vertex.end());
+  for (const auto& t : drawn.mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
+  nlohmann::json notes = nlohmann::json::array();
+  if (drawn.cell_size > 0) {
+    notes.push_back(fmt::format("decimated by vertex clustering on {:.3g} mm cells: {} of the mesh's {} triangles "
+                                "drawn; every vertex drawn is a vertex of the mesh",
+                                drawn.cell_size * 1e3, drawn.mesh.triangles.size(), full.triangles.size()));
+  }
+  nlohmann::json view = {{"format", "needlekit-view/1"}, {"kind", "body"}, {"name", name}};
+  view["title"] = fmt::format("{}: click on the surface to place the patch's centre", name);
+  view["steps"] = nlohmann::json::array({{{"label", "body surface"}}});
+  view["steps_total"] = 1;
+  view["surface"] = {{"region", "whole body"},
+                     {"vertices", drawn.mesh.vertices.size()},
+                     {"triangles", drawn.mesh.triangles.size()},
+                     {"indices", uint32_array(indices)},
+                     {"positions", float32_array(positions)},
+                     {"vertex_ids", uint32_array(vertex_ids)},
+                     {"fields", nlohmann::json::array()}};
+  view["full_mesh"] = {{"vertices", full.vertices.size()}, {"triangles", full.triangles.size()}};
+  view["cell_size_m"] = drawn.cell_size;
+  view["notes"] = notes;
+  return view;
+}
+
+}  // namespace needlekit::io
