@@ -40,7 +40,7 @@ std::vector<ContactPoint> disc_field(double a, int rings, int sectors,
 
 // Sneddon's flat punch, total force F: p = F / (2πa √(a² − r²)).
 std::vector<ContactPoint> flat_punch_field(double a, double force) {
-  return disc_field(a, 60, 360, [&](double r1, double r2) {
+  return disc_field(a, 40, 240, [&](double r1, double r2) {
     return force / a * (std::sqrt(a * a - r1 * r1) - std::sqrt(a * a - r2 * r2));
   });
 }
@@ -48,7 +48,7 @@ std::vector<ContactPoint> flat_punch_field(double a, double force) {
 // Hertz's sphere, total force F: p = p0 √(1 − r²/a²), p0 = 3F/(2πa²).
 std::vector<ContactPoint> hertz_field(double a, double force) {
   const double p0 = 3 * force / (2 * M_PI * a * a);
-  return disc_field(a, 60, 360, [&](double r1, double r2) {
+  return disc_field(a, 40, 240, [&](double r1, double r2) {
     const auto primitive = [&](double r) { return -p0 * a * a / 3 * std::pow(1 - r * r / (a * a), 1.5); };
     return 2 * M_PI * (primitive(r2) - primitive(r1));
   });
