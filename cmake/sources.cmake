@@ -64,6 +64,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/geometry/triangle_mesh_reader.cpp
   src/geometry/vertex_clustering.cpp
   src/insertion/array_model.cpp
+  src/insertion/averaged_contact_pressure.cpp
   src/insertion/complete_insertion.cpp
   src/insertion/force_curve.cpp
   src/insertion/indentation.cpp
@@ -211,6 +212,7 @@ set(NEEDLEKIT_CLI_SOURCES
 
 set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_atomic_file.cpp
+  tests/unit/test_averaged_contact_pressure.cpp
   tests/unit/test_calibration.cpp
   tests/unit/test_cell_replication.cpp
   tests/unit/test_coarse_level.cpp
@@ -258,6 +260,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
 
 set(NEEDLEKIT_VERIFICATION_TEST_SOURCES
   tests/verification/test_angled_indentation.cpp
+  tests/verification/test_averaged_pressure_puncture.cpp
   tests/verification/test_calibration_recovery.cpp
   tests/verification/test_certified_optimum.cpp
   tests/verification/test_column_eigenvalue.cpp

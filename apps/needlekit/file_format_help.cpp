@@ -142,23 +142,26 @@ std::string indentation_case_help() {
   [solver]     optional: predictor = {}, linear_solver = {},
                volumetric = {}, backend = {}, and the settings below (shown with their defaults;
                `needlekit describe solver.KEY` for one, docs/reference.md for all)
-  [puncture]   critical_pressure = "0.663 MPa" and/or toughness = "100 J/m2" or toughness_from = {{ first = "a.csv",
-               second = "b.csv", crack_area = "6661 um2" }} (Eq 3.16 from two insertions; CSV depth_um,force_N)
+  [puncture]   criterion = {} (default "dissertation"); critical_pressure = "0.663 MPa" and/or
+               toughness = "100 J/m2" or toughness_from = {{ first = "a.csv", second = "b.csv", crack_area = "6661 um2" }}
+               (Eq 3.16 from two insertions; CSV depth_um,force_N); averaged-pressure: critical_pressure and
+               material_length = "50 um" (surface contact; docs/indentation.md)
 Choices:
-{}{}{}{}{}{}{}{}{}{}Settings of [solver]:
+{}{}{}{}{}{}{}{}{}{}{}Settings of [solver]:
 {})",
       needle::kTypicalEdgeRadius * 1e6, needle::kTypicalEdgeRadius * 1e6, choices_of(insertion::kArrayLayoutNames),
       choices_of(insertion::kArraySymmetryNames), array_settings_help(), quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
       choices_of(fem::kContactModelNames), choices_of(fem::kElementOrderNames), choices_of(fem::kBoundaryConditionNames),
       choices_of(fem::kPredictorNames), choices_of(fem::kLinearSolverNames),
       choices_of(fem::kVolumetricFormulationNames), choices_of(fem::kSolverBackendNames),
-      meanings_of(fem::kMaterialLawNames, "law"),
+      choices_of(insertion::kPunctureLawNames), meanings_of(fem::kMaterialLawNames, "law"),
       meanings_of(fem::kContactModelNames, "contact"), meanings_of(fem::kElementOrderNames, "element"),
       meanings_of(fem::kBoundaryConditionNames, "boundary"), meanings_of(fem::kPredictorNames, "predictor"),
       meanings_of(fem::kLinearSolverNames, "linear_solver"),
       meanings_of(fem::kVolumetricFormulationNames, "volumetric"), meanings_of(fem::kSolverBackendNames, "backend"),
       meanings_of(insertion::kArrayLayoutNames, "layout"),
-      meanings_of(insertion::kArraySymmetryNames, "symmetry"), solver_settings_help());
+      meanings_of(insertion::kArraySymmetryNames, "symmetry"), meanings_of(insertion::kPunctureLawNames, "criterion"),
+      solver_settings_help());
 }
 
 std::string patch_case_help() {

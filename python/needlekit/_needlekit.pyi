@@ -1683,6 +1683,9 @@ class IndentationResult:
     def array(self) -> Optional[ArrayOutcome]:
         """an ArrayOutcome for an array case, else None"""
     @property
+    def averaged_pressure(self) -> numpy.ndarray:
+        """Pa"""
+    @property
     def bending(self) -> Optional[BendingCheck]:
         """BendingCheck or None (no material with allowable_stress)"""
     @property
@@ -1758,6 +1761,9 @@ class IndentationStep:
     def __init__(*args, **kwargs) -> Any:
         """Initialize self.  See help(type(self)) for accurate signature."""
     @property
+    def averaged_pressure(self) -> float:
+        """Pa, the averaged-pressure law's p_l (0 under the dissertation's)"""
+    @property
     def contact_area(self) -> float:
         """m^2"""
     @property
@@ -1784,6 +1790,9 @@ class IndentationStep:
     @property
     def moment(self) -> numpy.ndarray:
         """N m, the tissue's moment on the needles about each needle's base centre, block axes"""
+    @property
+    def needle_averaged_pressure(self) -> List[float]:
+        """Pa per needle"""
     @property
     def needle_force(self) -> List[float]:
         """N per needle"""
@@ -3137,10 +3146,13 @@ class PunctureCriterion:
 
   CriticalPressure
 
-  FractureEnergy"""
+  FractureEnergy
+
+  AveragedPressure"""
     None_: ClassVar[PunctureCriterion]
     CriticalPressure: ClassVar[PunctureCriterion]
     FractureEnergy: ClassVar[PunctureCriterion]
+    AveragedPressure: ClassVar[PunctureCriterion]
     def __int__(self) -> int: ...
     @property
     def name(self) -> str: ...
@@ -3239,6 +3251,20 @@ Members:
     @property
     def value(self) -> int: ...
 
+class PunctureLaw:
+    """Members:
+
+  Dissertation
+
+  AveragedPressure"""
+    Dissertation: ClassVar[PunctureLaw]
+    AveragedPressure: ClassVar[PunctureLaw]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 class PunctureModel:
     """The tissue's puncture model (§4.2, Eqs 4.1-4.3)."""
     def __init__(self, **kwargs) -> None:
@@ -3272,14 +3298,28 @@ class PunctureModel:
         """Every field as a dict (SI)."""
 
 class PunctureOptions:
-    """Puncture criteria (§3.5); None: not used."""
+    """Puncture criteria: the dissertation's (§3.5) or the averaged contact pressure; critical_pressure, toughness None: not used.
+
+Keywords (every field):
+  criterion: "dissertation" | "averaged-pressure": the law that decides the puncture. Default: "dissertation".
+  material_length: m, > 0 m: averaged-pressure: the radius l of the disc the contact pressure is averaged over (a property of the tissue). Default: "5e-05 m"."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def criterion(self) -> PunctureLaw:
+        """"dissertation" | "averaged-pressure": the law that decides the puncture. Default: "dissertation"."""
+    @criterion.setter
+    def criterion(self, value: Any) -> None: ...
     @property
     def critical_pressure(self) -> Optional[float]:
         """Pa"""
     @critical_pressure.setter
     def critical_pressure(self, value: Any) -> None: ...
+    @property
+    def material_length(self) -> float:
+        """m, > 0 m: averaged-pressure: the radius l of the disc the contact pressure is averaged over (a property of the tissue). Default: "5e-05 m"."""
+    @material_length.setter
+    def material_length(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property

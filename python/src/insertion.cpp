@@ -2,6 +2,7 @@
 // ParaView output), puncture points, post-puncture loads and the complete insertion curve.
 #include "common.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/puncture_parameters.hpp"
 #include "parameters.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/insertion/indentation.hpp"
@@ -30,7 +31,11 @@ void bind_indentation(py::module_& m) {
   py::enum_<PunctureCriterion>(m, "PunctureCriterion")
       .value("None_", PunctureCriterion::None)
       .value("CriticalPressure", PunctureCriterion::CriticalPressure)
-      .value("FractureEnergy", PunctureCriterion::FractureEnergy);
+      .value("FractureEnergy", PunctureCriterion::FractureEnergy)
+      .value("AveragedPressure", PunctureCriterion::AveragedPressure);
+  py::enum_<PunctureLaw>(m, "PunctureLaw")
+      .value("Dissertation", PunctureLaw::Dissertation)
+      .value("AveragedPressure", PunctureLaw::AveragedPressure);
   py::class_<PuncturePoint> point(m, "PuncturePoint");
   def_keyword_init<PuncturePoint>(point);
   def_quantity(point, "depth", &PuncturePoint::depth, Dimension::Length, "m");
@@ -55,10 +60,12 @@ void bind_indentation(py::module_& m) {
       .def_readonly("puncture", &PrePunctureCurve::puncture);
   m.def("read_force_curve_csv", &io::read_force_curve_csv, py::arg("path"), "depth_<unit>,force_<unit> columns.");
 
-  py::class_<PunctureOptions> puncture(m, "PunctureOptions", "Puncture criteria (§3.5); None: not used.");
-  def_keyword_init<PunctureOptions>(puncture);
+  py::class_<PunctureOptions> puncture(m, "PunctureOptions",
+                                        "Puncture criteria: the dissertation's (§3.5) or the averaged contact pressure; "
+                                        "critical_pressure, toughness None: not used.");
   def_optional_quantity(puncture, "critical_pressure", &PunctureOptions::critical_pressure, Dimension::Pressure, "Pa");
   def_optional_quantity(puncture, "toughness", &PunctureOptions::toughness, Dimension::Stiffness, "J/m^2 (= N/m)");
+  def_parameters<PunctureOptions>(puncture, kPunctureParameters);  // criterion, material_length; keyword init
 
   using fem::SolverOptions;
   py::enum_<fem::MaterialLaw>(m, "MaterialLaw")
@@ -144,6 +151,9 @@ void bind_indentation(py::module_& m) {
       .def_readonly("contact_area", &IndentationStep::contact_area, "m^2")
       .def_readonly("contact_pressure", &IndentationStep::contact_pressure, "Pa")
       .def_readonly("max_contact_pressure", &IndentationStep::max_contact_pressure, "Pa")
+      .def_readonly("averaged_pressure", &IndentationStep::averaged_pressure,
+                    "Pa, the averaged-pressure law's p_l (0 under the dissertation's)")
+      .def_readonly("needle_averaged_pressure", &IndentationStep::needle_averaged_pressure, "Pa per needle")
       .def_readonly("contact_nodes", &IndentationStep::contact_nodes)
       .def_readonly("strain_energy", &IndentationStep::strain_energy, "J")
       .def_readonly("external_work", &IndentationStep::external_work, "J")
@@ -180,6 +190,9 @@ void bind_indentation(py::module_& m) {
       .def_property_readonly(
           "contact_pressure",
           [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::contact_pressure); }, "Pa")
+      .def_property_readonly(
+          "averaged_pressure",
+          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::averaged_pressure); }, "Pa")
       .def_property_readonly(
           "strain_energy",
           [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::strain_energy); }, "J");

@@ -113,3 +113,19 @@ def test_an_array_case_gives_every_needle_and_the_totals():
     assert forces.sum(axis=0) == pytest.approx(result.force, rel=1e-9)
     assert result.array.plate_travel == pytest.approx(result.depth)
     assert 0 <= result.array.punctured_fraction[-1] <= 1
+
+
+def test_the_averaged_pressure_law_is_a_puncture_option_with_units():
+    options = nk.PunctureOptions(criterion=nk.PunctureLaw.AveragedPressure, critical_pressure="0.5 MPa",
+                                 material_length="40 um")
+    assert options.criterion == nk.PunctureLaw.AveragedPressure
+    assert options.material_length == pytest.approx(40e-6)
+    assert nk.PunctureOptions().criterion == nk.PunctureLaw.Dissertation
+    assert nk.PunctureOptions().material_length == pytest.approx(50e-6)
+    with pytest.raises(Exception, match="material_length"):
+        nk.PunctureOptions(material_length="40")  # a length without its unit
+    case = coarse_flat_punch()
+    case.solver.contact = nk.ContactModel.TipNodes
+    case.puncture = options
+    with pytest.raises(Exception, match="puncture.criterion"):  # the tip-node rule has no contact field
+        nk.run_indentation(case)

@@ -423,6 +423,7 @@ const std::vector<Eigen::Vector3d>& QuasiStaticSolver::displacement() const { re
 const std::vector<std::vector<int>>& QuasiStaticSolver::elements() const { return impl_->space.elements; }
 const std::vector<int>& QuasiStaticSolver::contact_flag() const { return impl_->contact_flag; }
 const std::vector<double>& QuasiStaticSolver::contact_pressure() const { return impl_->contact_pressure; }
+const std::vector<double>& QuasiStaticSolver::top_node_area() const { return impl_->top.node_area; }
 const SolverOptions& QuasiStaticSolver::options() const { return impl_->opt; }
 int QuasiStaticSolver::dof_count() const { return impl_->ndof; }
 LinearSolver QuasiStaticSolver::linear_solver() const { return impl_->solver; }

@@ -153,10 +153,13 @@ IndentationStep whole_step(const IndentationStep& solved, const ArrayModel& mode
   }
   step.needle_force.assign(model.source.size(), 0.0);
   step.needle_contact_area.assign(model.source.size(), 0.0);
+  if (!solved.needle_averaged_pressure.empty()) step.needle_averaged_pressure.assign(model.source.size(), 0.0);
   for (std::size_t k = 0; k < model.source.size(); ++k) {
     const auto s = static_cast<std::size_t>(model.source[k]);
     step.needle_force[k] = model.multiplicity[k] * solved.needle_force[s];
     step.needle_contact_area[k] = model.multiplicity[k] * solved.needle_contact_area[s];
+    // A pressure, not a resultant: a needle cut by a symmetry plane has the pressure of its solved part.
+    if (!solved.needle_averaged_pressure.empty()) step.needle_averaged_pressure[k] = solved.needle_averaged_pressure[s];
   }
   return step;
 }

@@ -6,6 +6,7 @@ std::string to_string(PunctureCriterion criterion) {
   switch (criterion) {
     case PunctureCriterion::CriticalPressure: return "critical-pressure";
     case PunctureCriterion::FractureEnergy: return "fracture-energy";
+    case PunctureCriterion::AveragedPressure: return "averaged-pressure";
     case PunctureCriterion::None: break;
   }
   return "none";

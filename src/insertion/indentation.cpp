@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/insertion/averaged_contact_pressure.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/mesh/cell_replication.hpp"
 #include "needlekit/mesh/tet_count_estimate.hpp"
@@ -41,9 +42,32 @@ mesh::LayeredBlockOptions block_to_mesh(const IndentationCase& c) {
 
 std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
 
-IndentationStep step_of(const fem::StepResult& solved, double depth, const detail::NeedleLoads& loads) {
+// Pa, per needle of the model solved: p̄_l of the tissue nodes in contact with it (the averaged-pressure law; empty
+// under the dissertation's).
+std::vector<double> averaged_pressures(const fem::QuasiStaticSolver& solver, const IndentationCase& c,
+                                       std::size_t needles) {
+  if (c.puncture.criterion != PunctureLaw::AveragedPressure) return {};
+  std::vector<std::vector<ContactPoint>> points(needles);
+  const std::vector<int>& flag = solver.contact_flag();
+  for (std::size_t a = 0; a < flag.size(); ++a) {
+    if (flag[a] == 0) continue;
+    const double area = solver.top_node_area()[a];
+    points[static_cast<std::size_t>(flag[a] - 1)].push_back(
+        {solver.nodes()[a], solver.contact_pressure()[a] * area, area});
+  }
+  std::vector<double> pressures;
+  for (const std::vector<ContactPoint>& needle : points) {
+    pressures.push_back(averaged_peak_pressure(needle, c.puncture.material_length));
+  }
+  return pressures;
+}
+
+IndentationStep step_of(const fem::StepResult& solved, double depth, const detail::NeedleLoads& loads,
+                        std::vector<double> averaged_pressure) {
   IndentationStep step;
   step.depth = depth;
+  step.needle_averaged_pressure = std::move(averaged_pressure);
+  for (double p : step.needle_averaged_pressure) step.averaged_pressure = std::max(step.averaged_pressure, p);
   step.lateral_force = loads.lateral_force;
   step.moment = loads.moment;
   step.needle_force = solved.indenter_force;
@@ -82,8 +106,8 @@ PuncturePoint puncture_in_first_step(fem::QuasiStaticSolver& solver, const Inden
     const double middle = 0.5 * (below.depth + above.depth);
     const fem::StepResult solved = solver.advance_to(lowest + middle);
     if (!solved.converged) break;  // keep the bracket found so far
-    const IndentationStep step = step_of(solved, middle, {});
-    const PunctureSample sample{middle, step.force, step.contact_area, step.strain_energy};
+    const IndentationStep step = step_of(solved, middle, {}, averaged_pressures(solver, c, c.needles.size()));
+    const PunctureSample sample{middle, step.force, step.contact_area, step.strain_energy, step.averaged_pressure};
     (puncture_point({sample}, c.puncture) ? above : below) = sample;
   }
   const std::optional<PuncturePoint> located = puncture_point({below, above}, c.puncture);
@@ -302,6 +326,15 @@ void describe_solver(const fem::QuasiStaticSolver& solver, IndentationResult& re
   result.nodal_average_elements = solver.nodal_average_elements();
 }
 
+// The step solved at `depth` on the model `m` of the case `c`, as the whole case's step.
+IndentationStep whole_case_step(const fem::QuasiStaticSolver& solver, const fem::StepResult& solved, double depth,
+                                const IndentationCase& c, const IndentationCase& m,
+                                const std::vector<Eigen::Vector3d>& bases, const detail::ArrayModel& array_model) {
+  return detail::whole_step(step_of(solved, depth, detail::needle_loads(solved, needle_axis(c), bases),
+                                    averaged_pressures(solver, m, m.needles.size())),
+                            array_model);
+}
+
 // Why load step k failed, and which steps are kept (with a partly converged step, its deepest converged state).
 std::string failed_step_reason(const IndentationCase& c, int k, double depth, const std::string& solver_reason,
                                std::size_t completed, bool partial, double reached) {
@@ -378,14 +411,12 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
       if (!partial) break;
     }
     const double step_depth = partial ? reached : depth;
-    add_step(detail::whole_step(step_of(solved, step_depth, detail::needle_loads(solved, needle_axis(c), bases)),
-                                array_model),
-             step_seconds, result);
+    add_step(whole_case_step(solver, solved, step_depth, c, m, bases, array_model), step_seconds, result);
     const IndentationStep& step = result.steps.back();
     if (options.keep_displacements) result.displacements.push_back({step_depth, solver.displacement()});
     if (options.on_step) options.on_step(step, solver);
     report("step", static_cast<double>(k) / c.steps);
-    samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy});
+    samples.push_back({step.depth, step.force, step.contact_area, step.strain_energy, step.averaged_pressure});
     needles.add(step);
     update_puncture(c, solver, lowest, samples, needles, result);
     if (partial) {

@@ -124,6 +124,11 @@ void validate(const IndentationCase& c) {
   if (c.steps < 1) throw InvalidInput(fmt::format("loading.steps: {} is not >= 1, expected at least one step", c.steps));
   c.solver.validate();
   validate(c.puncture);
+  if (c.puncture.criterion == PunctureLaw::AveragedPressure && c.solver.contact != fem::ContactModel::Surface) {
+    throw InvalidInput("puncture.criterion: \"averaged-pressure\" with contact = \"tip-nodes\", whose nodes follow a "
+                       "flat tip face and give no contact field; expected model.contact = \"surface\" or criterion = "
+                       "\"dissertation\"");
+  }
 }
 
 }  // namespace needlekit::insertion

@@ -48,7 +48,8 @@ void NeedleRecorder::add(const IndentationStep& step) {
     if (needle.puncture || !(needle.depth.back() > 0)) continue;  // punctured already, or not at the surface yet
     // Its share of the stored energy: Δ in proportion to the needles' work (quasi-static: work = Δ).
     const double energy = total_work > 0 ? step.strain_energy * work_[i] / total_work : 0.0;
-    samples_[i].push_back({needle.depth.back(), needle.force.back(), step.needle_contact_area[i], energy});
+    const double averaged = step.needle_averaged_pressure.empty() ? 0.0 : step.needle_averaged_pressure[i];
+    samples_[i].push_back({needle.depth.back(), needle.force.back(), step.needle_contact_area[i], energy, averaged});
     needle.puncture = puncture_point(samples_[i], case_.puncture);
     if (needle.puncture) {
       needle.puncture_step = k;

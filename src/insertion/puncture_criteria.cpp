@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/insertion/puncture_parameters.hpp"
 
 namespace needlekit::insertion {
 namespace {
@@ -76,8 +77,18 @@ double contact_pressure(const PunctureSample& sample) {
 }
 
 void validate(const PunctureOptions& options) {
+  check_ranges(kPunctureParameters, options, "puncture");
   if (options.critical_pressure) require_positive(*options.critical_pressure, "puncture.critical_pressure", "Pa");
   if (options.toughness) require_positive(*options.toughness, "puncture.toughness", "J/m^2");
+  if (options.criterion != PunctureLaw::AveragedPressure) return;
+  if (!options.critical_pressure) {
+    throw InvalidInput("puncture.criterion: \"averaged-pressure\" without a critical_pressure, expected "
+                       "critical_pressure = the pressure p_c that the averaged contact pressure reaches at puncture");
+  }
+  if (options.toughness) {
+    throw InvalidInput("puncture.toughness: given with criterion = \"averaged-pressure\", which reads no toughness; "
+                       "expected criterion = \"dissertation\" for the fracture-energy criterion, or no toughness");
+  }
 }
 
 std::optional<PuncturePoint> critical_pressure_puncture(const std::vector<PunctureSample>& samples,
@@ -103,9 +114,20 @@ std::optional<PuncturePoint> fracture_energy_puncture(const std::vector<Puncture
       PunctureCriterion::FractureEnergy);
 }
 
+std::optional<PuncturePoint> averaged_pressure_puncture(const std::vector<PunctureSample>& samples,
+                                                        double critical_pressure) {
+  require_positive(critical_pressure, "critical_pressure", "Pa");
+  return first_crossing(
+      samples, [&](const PunctureSample& s) { return s.averaged_pressure - critical_pressure; },
+      PunctureCriterion::AveragedPressure);
+}
+
 std::optional<PuncturePoint> puncture_point(const std::vector<PunctureSample>& samples,
                                             const PunctureOptions& options) {
   validate(options);
+  if (options.criterion == PunctureLaw::AveragedPressure) {
+    return averaged_pressure_puncture(samples, *options.critical_pressure);
+  }
   std::optional<PuncturePoint> best;
   if (options.critical_pressure) best = critical_pressure_puncture(samples, *options.critical_pressure);
   if (options.toughness) {

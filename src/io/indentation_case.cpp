@@ -5,6 +5,7 @@
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/toml_config.hpp"
 #include "tissue_config_toml.hpp"
 #include "toml_parameters.hpp"
@@ -269,9 +270,11 @@ void read_loading(const Section& loading, insertion::IndentationCase& result) {
   }
 }
 
-// [puncture]: the critical pressure and the toughness, given or from two insertions (toughness_from).
+// [puncture]: the rows of insertion::kPunctureParameters (the law, its material length), the critical pressure and
+// the toughness, given or from two insertions (toughness_from).
 void read_puncture(const Section& puncture, const std::filesystem::path& base_directory,
                    insertion::IndentationCase& result) {
+  read_parameters(puncture, insertion::kPunctureParameters, "puncture", result.puncture);
   result.puncture.critical_pressure = optional_positive_quantity(puncture, "critical_pressure", Dimension::Pressure);
   result.puncture.toughness = optional_positive_quantity(puncture, "toughness", Dimension::Stiffness);
   if (const toml::node* node = puncture.optional("toughness_from")) {
@@ -354,8 +357,10 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   if (const toml::node* node = top.optional("solver")) {
     read_solver(top.subsection(*node, "solver", keys_of_group(fem::kSolverParameters, "solver")), result);
   }
-  if (const auto puncture = top.optional_subsection("puncture", {"critical_pressure", "toughness", "toughness_from"})) {
-    read_puncture(*puncture, base_directory, result);
+  std::vector<std::string_view> puncture_keys = keys_of_group(insertion::kPunctureParameters, "puncture");
+  puncture_keys.insert(puncture_keys.end(), {"critical_pressure", "toughness", "toughness_from"});
+  if (const toml::node* node = top.optional("puncture")) {
+    read_puncture(top.subsection(*node, "puncture", puncture_keys), base_directory, result);
   }
   validate_at_keys(root, file, root, [&] { insertion::validate(result); });
   return result;

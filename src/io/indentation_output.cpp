@@ -149,6 +149,9 @@ nlohmann::json puncture_json(const insertion::IndentationCase& c, const insertio
   json["criterion"] = insertion::to_string(result.puncture ? result.puncture->criterion : insertion::PunctureCriterion::None);
   json["critical_pressure_MPa"] = number_or_null(c.puncture.critical_pressure, 1e-6);
   json["toughness_J_per_m2"] = number_or_null(c.puncture.toughness, 1.0);
+  const bool averaged = c.puncture.criterion == insertion::PunctureLaw::AveragedPressure;
+  json["puncture_law"] = name_of(insertion::kPunctureLawNames, c.puncture.criterion);
+  json["material_length_um"] = averaged ? nlohmann::json(c.puncture.material_length * 1e6) : nlohmann::json(nullptr);
   return json;
 }
 
@@ -170,7 +173,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["status"] = insertion::to_string(result.status);
   json["reason"] = result.reason;
   json.update(puncture_json(c, result));
-  std::vector<double> depth, force, pressure, energy, work, lateral_x, lateral_y, moment;
+  std::vector<double> depth, force, pressure, averaged, energy, work, lateral_x, lateral_y, moment;
   std::vector<int> iterations;
   for (const insertion::IndentationStep& s : result.steps) {
     depth.push_back(s.depth * 1e6);
@@ -179,6 +182,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
     lateral_y.push_back(s.lateral_force.y());
     moment.push_back(s.moment.norm());
     pressure.push_back(s.contact_pressure * 1e-6);
+    averaged.push_back(s.averaged_pressure * 1e-6);
     energy.push_back(s.strain_energy);
     work.push_back(s.external_work);
     iterations.push_back(s.newton_iterations);
@@ -192,6 +196,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["azimuth_deg"] = c.azimuth * 180 / M_PI;
   json["bending"] = bending_json(result);
   json["contact_pressure_MPa"] = pressure;
+  if (c.puncture.criterion == insertion::PunctureLaw::AveragedPressure) json["averaged_pressure_MPa"] = averaged;
   json["strain_energy_J"] = energy;
   json["external_work_J"] = work;
   json["newton_iterations"] = iterations;

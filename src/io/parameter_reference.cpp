@@ -5,6 +5,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 
 namespace needlekit::io {
@@ -36,6 +37,8 @@ std::vector<ParameterGroup> parameter_reference() {
   return {
       {"indentation cases (`needlekit indent`), [model] and [solver]", "SolverOptions",
        parameter_texts(fem::kSolverParameters, case_solver_defaults())},
+      {"indentation cases, [puncture] (besides critical_pressure, toughness, toughness_from)", "PunctureOptions",
+       parameter_texts(insertion::kPunctureParameters, insertion::PunctureOptions{})},
   };
 }
 

@@ -328,6 +328,35 @@ TEST(IndentationCase, EdgeRadius) {
   EXPECT_THAT(error_of(with_radius(surface, "-1 um")), HasSubstr("case.toml:6: key 'needle.edge_radius': '-1 um' is negative"));
 }
 
+TEST(IndentationCase, AveragedPressureCriterion) {
+  const std::string surface = replaced(kCase, "contact = \"tip-nodes\"", "contact = \"surface\"");
+  const std::string averaged = replaced(surface, "toughness = \"100 J/m2\"",
+                                        "criterion = \"averaged-pressure\"\nmaterial_length = \"40 um\"");
+  const insertion::IndentationCase c = parse(averaged);
+  EXPECT_EQ(c.puncture.criterion, insertion::PunctureLaw::AveragedPressure);
+  EXPECT_DOUBLE_EQ(c.puncture.material_length, 40e-6);
+  EXPECT_DOUBLE_EQ(*c.puncture.critical_pressure, 0.663e6);
+  EXPECT_EQ(parse(kCase).puncture.criterion, insertion::PunctureLaw::Dissertation);  // the default
+  EXPECT_DOUBLE_EQ(parse(kCase).puncture.material_length, 50e-6);
+  // Bad input, at the file's line and key: a length without a unit, a negative one, an unknown law, the law under
+  // the tip-node rule (no contact field), with a toughness, or without its critical pressure.
+  EXPECT_THAT(error_of(replaced(averaged, "material_length = \"40 um\"", "material_length = 40")),
+              HasSubstr("case.toml:37: key 'puncture.material_length': 40 is a bare number"));
+  EXPECT_THAT(error_of(replaced(averaged, "material_length = \"40 um\"", "material_length = \"-40 um\"")),
+              HasSubstr("case.toml:37: key 'puncture.material_length': '-40 um' is out of range, expected a length > 0"));
+  EXPECT_THAT(error_of(replaced(averaged, "averaged-pressure", "energy")),
+              HasSubstr("case.toml:36: key 'puncture.criterion': unknown value 'energy', expected one of: "
+                        "\"dissertation\" | \"averaged-pressure\""));
+  EXPECT_THAT(error_of(replaced(averaged, "contact = \"surface\"", "contact = \"tip-nodes\"")),
+              HasSubstr("case.toml:36: key 'puncture.criterion': \"averaged-pressure\" with contact = \"tip-nodes\""));
+  EXPECT_THAT(error_of(averaged + "toughness = \"10 J/m2\"\n"),
+              HasSubstr("case.toml:38: key 'puncture.toughness': given with criterion = \"averaged-pressure\""));
+  EXPECT_THAT(error_of(replaced(averaged, "critical_pressure = \"0.663 MPa\"\n", "")),
+              HasSubstr("key 'puncture.criterion': \"averaged-pressure\" without a critical_pressure"));
+  EXPECT_THAT(error_of(replaced(surface, "toughness = \"100 J/m2\"", "toughness = 10")),
+              HasSubstr("key 'puncture.toughness': 10 is a bare number"));
+}
+
 TEST(IndentationCase, ErrorsNameFileLineAndKey) {
   // Zero and negative layer thickness.
   EXPECT_THAT(error_of(replaced(kCase, "thickness = \"20 um\"", "thickness = \"0 um\"")),

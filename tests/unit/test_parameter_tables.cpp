@@ -12,6 +12,7 @@
 
 #include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/parameter_reference.hpp"
 
@@ -37,6 +38,11 @@ void expect_one_row_per_field(const Table& table, std::size_t callbacks) {
 
 TEST(ParameterTables, EveryFieldOfSolverOptionsHasOneRow) {
   expect_one_row_per_field<fem::SolverOptions>(fem::kSolverParameters, fem::kSolverCallbackFields);
+}
+
+TEST(ParameterTables, EveryFieldOfPunctureOptionsHasOneRowButTheOptionalQuantities) {
+  expect_one_row_per_field<insertion::PunctureOptions>(insertion::kPunctureParameters,
+                                                       insertion::kPunctureOptionalFields);
 }
 
 // field_count on aggregates like the option structs (a callback, a string, nested aggregates: one field each).

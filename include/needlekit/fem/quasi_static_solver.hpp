@@ -118,6 +118,8 @@ public:
   const std::vector<std::vector<int>>& elements() const;
   const std::vector<int>& contact_flag() const;            // per node: 0, or 1 + needle index in contact
   const std::vector<double>& contact_pressure() const;     // Pa, per node (0 where not in contact)
+  // m^2, per node: its tributary area of the top surface (the area contact_pressure acts on; 0 off the top surface)
+  const std::vector<double>& top_node_area() const;
   ElementFields element_fields() const;
   const SolverOptions& options() const;
   int dof_count() const;        // 3 * nodes

@@ -7,7 +7,9 @@
 
 namespace needlekit::insertion {
 
-enum class PunctureCriterion { None, CriticalPressure, FractureEnergy };
+// Which criterion fired: the dissertation's two (puncture_criteria.hpp) or the averaged contact pressure
+// (averaged_contact_pressure.hpp).
+enum class PunctureCriterion { None, CriticalPressure, FractureEnergy, AveragedPressure };
 std::string to_string(PunctureCriterion criterion);
 
 struct PuncturePoint {

@@ -145,6 +145,10 @@ struct IndentationStep {
   double contact_area = 0;           // m^2, total tissue area in contact with the needles
   double contact_pressure = 0;       // Pa, mean pressure under the tips: force / contact_area (Eq 3.17's P_s)
   double max_contact_pressure = 0;   // Pa, largest nodal contact pressure
+  // Pa, the averaged-pressure law's p̄_l (averaged_contact_pressure.hpp), the highest of the needles' and per needle
+  // (of the whole array); 0 and empty unless [puncture] criterion = "averaged-pressure"
+  double averaged_pressure = 0;
+  std::vector<double> needle_averaged_pressure;
   int contact_nodes = 0;             // nodes in contact, all needles (of the model solved: a reduced array's)
   double strain_energy = 0;          // J, stored in the tissue (Δ = ½uᵀKu of Eq 3.17)
   // N, the tissue's force on the needles across their axis (its component along the axis is `force`), block axes.

@@ -1,6 +1,7 @@
 // Puncture point determination (dissertation §3.5): the critical-pressure criterion, the fracture-energy criterion
-// (Eqs 3.13-3.17) and the fracture toughness J from two insertions at the same spot (Eq 3.16). SI units (m, N, Pa,
-// J, J/m^2).
+// (Eqs 3.13-3.17) and the fracture toughness J from two insertions at the same spot (Eq 3.16), together the
+// `dissertation` law; and the `averaged-pressure` law (averaged_contact_pressure.hpp), which reads the contact field
+// and works under true (surface) contact. SI units (m, N, Pa, J, J/m^2).
 //
 // Both criteria read the per-step state of a pre-puncture indentation (depth, reaction force, contact area, stored
 // strain energy) and return the first depth at which they fire, interpolated linearly between the two load steps
@@ -21,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/insertion/force_curve.hpp"
 
 namespace needlekit::insertion {
@@ -31,18 +33,40 @@ struct PunctureSample {
   double force = 0;          // N, reaction force on the needle(s) (positive pushing the tissue down)
   double contact_area = 0;   // m^2, tissue surface area in contact with the tip (dA of Eq 3.17), >= 0
   double strain_energy = 0;  // J, stored strain energy Δ = ½uᵀKu (Eq 3.17), >= 0
+  double averaged_pressure = 0;  // Pa, p̄_l of the averaged-pressure law (averaged_peak_pressure), >= 0
 };
 
 // Mean contact pressure under the tip, P_s = F/A (Eq 3.17); 0 when nothing touches (A = 0).
 double contact_pressure(const PunctureSample& sample);
 
+// Which law decides the puncture ([puncture] criterion).
+enum class PunctureLaw {
+  Dissertation,      // §3.5: the mean pressure F/A reaches P_c and/or the strain energy reaches J·A
+  AveragedPressure,  // the contact pressure averaged over a disc of radius material_length reaches P_c
+};
+inline constexpr EnumTable<PunctureLaw, 2> kPunctureLawNames{{
+    {PunctureLaw::Dissertation, "dissertation",
+     "§3.5: mean pressure F/A over the contact area >= critical_pressure, and/or strain energy >= toughness x area"},
+    {PunctureLaw::AveragedPressure, "averaged-pressure",
+     "contact pressure averaged over a disc of radius material_length, at its highest, >= critical_pressure "
+     "(surface contact)"},
+}};
+
 struct PunctureOptions {
-  std::optional<double> critical_pressure;  // Pa, > 0: P_c of the critical-pressure criterion; empty: not used
+  PunctureLaw criterion = PunctureLaw::Dissertation;
+  std::optional<double> critical_pressure;  // Pa, > 0: P_c of the critical-pressure criterion or of the averaged-
+                                            // pressure law; empty: not used
   std::optional<double> toughness;          // J/m^2, > 0: J of the fracture-energy criterion; empty: not used
+  double material_length = 50e-6;           // m, > 0: the averaged-pressure law's l (the disc's radius)
 };
 
-// Throws InvalidInput naming the field if a given P_c or J is not finite and positive.
+// Throws InvalidInput naming the field: a given P_c or J that is not finite and positive, a material length outside
+// its range, the averaged-pressure law without a critical pressure or with a toughness (a dissertation criterion).
 void validate(const PunctureOptions& options);
+
+// The first point where p̄_l reaches P_c (averaged_contact_pressure.hpp), or empty.
+std::optional<PuncturePoint> averaged_pressure_puncture(const std::vector<PunctureSample>& samples,
+                                                        double critical_pressure);
 
 // The first point where P_s = F/A reaches P_c (Eq 3.17), or empty.
 std::optional<PuncturePoint> critical_pressure_puncture(const std::vector<PunctureSample>& samples,
@@ -52,8 +76,9 @@ std::optional<PuncturePoint> critical_pressure_puncture(const std::vector<Punctu
 // empty.
 std::optional<PuncturePoint> fracture_energy_puncture(const std::vector<PunctureSample>& samples, double toughness);
 
-// The earliest (smallest depth) point of the enabled criteria, with the criterion that fired (the critical pressure
-// wins a tie); empty when no criterion fires or none is enabled.
+// The averaged-pressure law's point, or for the dissertation law the earliest (smallest depth) point of its enabled
+// criteria, with the criterion that fired (the critical pressure wins a tie); empty when no criterion fires or none
+// is enabled.
 std::optional<PuncturePoint> puncture_point(const std::vector<PunctureSample>& samples, const PunctureOptions& options);
 
 struct ToughnessOptions {

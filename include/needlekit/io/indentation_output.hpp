@@ -32,8 +32,10 @@ std::string force_depth_csv(const insertion::IndentationResult& result);
 // step,depth_um,newton_iterations,cutbacks,first_residual_N,final_residual_N,assembly_s,solve_s,step_s.
 std::string solver_statistics_csv(const insertion::IndentationResult& result);
 
-// {"puncture_depth_um", "puncture_force_N" (null if none), "criterion" ("critical-pressure" | "fracture-energy" |
-//  "none"), "critical_pressure_MPa", "toughness_J_per_m2" (null when not used)}.
+// {"puncture_depth_um", "puncture_force_N" (null if none), "criterion" (the one that fired: "critical-pressure" |
+//  "fracture-energy" | "averaged-pressure" | "none"), "puncture_law" ([puncture] criterion: "dissertation" |
+//  "averaged-pressure"), "critical_pressure_MPa", "toughness_J_per_m2" (null when not used), "material_length_um"
+//  (null unless averaged-pressure)}.
 // The models of an FE run, named as in case files: {"law", "element", "contact", "boundary", "volumetric",
 // "edge_radius_um" (0: sharp edges: tip-nodes contact or a needle given as a mesh)}; and one line of text.
 nlohmann::json fe_models_json(const insertion::IndentationCase& indentation_case);
@@ -43,6 +45,7 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
                              const insertion::IndentationResult& result);
 
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
+// "averaged_pressure_MPa" (p̄_l per step, with the averaged-pressure law),
 // "strain_energy_J", "external_work_J", "newton_iterations" (arrays, one entry per converged step), "elements",
 // "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp: needles_json), "array"
 // (with an array: array_json), "layers", "mesh_quality", "notes" (warnings: io/scale_warnings.hpp), "mesh_seconds",
