@@ -123,7 +123,7 @@ std::vector<std::string> default_texts(const Table& table, const Options& option
 }
 
 // For each number of `group` whose range excludes -1: `read` of "[group]\nkey = -1 (in um or deg)" throws naming the
-// key and the range (a positive quantity: "is not positive").
+// key and the range (a positive quantity: "is not positive", as the reader's positive_quantity_of says).
 template <class Table, class Read>
 void expect_the_reader_refuses_values_below_range(const Table& table, std::string_view group, Read&& read) {
   for_each_parameter(table, [&](const auto& row) {
@@ -134,7 +134,7 @@ void expect_the_reader_refuses_values_below_range(const Table& table, std::strin
                                : row.dimension == units::Dimension::Angle   ? " deg"
                                                                               : " um";
       const std::string value = unit.empty() ? "-1" : fmt::format("\"-1{}\"", unit);
-      const bool positive = row.min == 0 && row.min_bound == Bound::Open && !std::isfinite(row.max);
+      const bool positive = !unit.empty() && row.min == 0 && row.min_bound == Bound::Open && !std::isfinite(row.max);
       EXPECT_THAT([&] { read(fmt::format("{} = {}\n", row.key, value)); },
                   testing::ThrowsMessage<InvalidInput>(
                       testing::AllOf(HasSubstr(fmt::format("'{}.{}'", group, row.key)),
