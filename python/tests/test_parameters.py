@@ -13,7 +13,7 @@ from conftest import SOURCE_DIR, CLI
 def reference_sections():
     """(title, class name, section text) of each table in docs/reference.md."""
     text = (SOURCE_DIR / "docs" / "reference.md").read_text()
-    return [(title, options, section) for title, section in re.findall(r"^## (.+)\n\n(.*?)(?=^## |\Z)", text, re.M | re.S)
+    return [(title, options, section) for title, section in re.findall(r"^## ([^\n]+)\n\n(.*?)(?=^## |\Z)", text, re.M | re.S)
             for options in re.findall(r"\| Python `([A-Za-z]+)\.` \|", section)]
 
 
