@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "file_format_help.hpp"
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
@@ -20,18 +21,15 @@
 namespace needlekit::cli {
 namespace {
 
+// [tissue]'s width and length and [mesh]'s sizes come from mesh::kLayeredBlockParameters (block_settings_help).
 constexpr const char* kTissueFileHelp = R"(CASE file (TOML; other tables such as [needle] or [loading] are ignored):
-  [tissue]  width = "3000 um", length = "3000 um"      (block centred on x = y = 0, top surface z = 0)
+{}            (block centred on x = y = 0, top surface z = 0)
             preset = "skin" | "skin-stiff-sc" | "silicone-0.2mpa" | "silicone-0.5mpa" | "skin-geerligs-2011"
             or, top to bottom:
             [[tissue.layers]]  name = "stratum corneum", thickness = "20 um", youngs_modulus = "100 MPa",
                                poisson_ratio = 0.4   (the last layer may have thickness = "rest")
             height = "1150 um"                        (optional; the block height that "rest" fills)
-  [mesh]    size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um",
-            size_gradient = 0.3, thin_layer_size_factor = 2, sites = [["0 um", "0 um"]],
-            site_circle_radius = "115 um"   (optional: nodes on a circle around each site, e.g. a punch's edge)
-            split = true   (optional: mesh at twice the sizes, then split every tet into eight; lets `indent`
-                            use its two-grid solver, much faster on large meshes)
+{}            sites = [["0 um", "0 um"]]
             or file = "tissue.msh", unit = "um"  (a tetrahedral Gmsh mesh whose physical volumes are named after
             the layers, top surface at z = 0; layer thicknesses are then not used))";
 
@@ -107,7 +105,8 @@ void add_tissue_mesh_command(CLI::App& app) {
       ->default_val(0)
       ->check(CLI::Range(0, 1024));
   command->add_flag("--json", arguments->json, "print the mesh summary as JSON (units in the key names)");
-  command->footer(kTissueFileHelp);
+  command->footer(fmt::format(kTissueFileHelp, block_settings_help("tissue", "  [tissue]"),
+                              block_settings_help("mesh", "  [mesh]")));
   command->callback([arguments] { run_tissue_mesh(*arguments); });
 }
 

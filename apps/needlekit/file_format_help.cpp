@@ -8,8 +8,10 @@
 #include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
 #include "needlekit/patch/fit_patch.hpp"
@@ -34,6 +36,21 @@ std::string solver_settings_help() {
     const std::string_view key = std::string_view(parameter.key).substr(kGroup.size());
     text += fmt::format("  {:<34} {}: {}\n", fmt::format("{} = {}", key, parameter.default_text),
                         parameter.range, parameter.meaning);
+  }
+  return text;
+}
+
+// The rows of `group` one per line, "key = default   range: meaning" ("key (required)" for a required row), the
+// first line headed by `label` (e.g. "  [loading]"), the others indented as far.
+std::string settings_help(const std::vector<ParameterText>& texts, std::string_view group, std::string_view label) {
+  std::string text;
+  for (const ParameterText& parameter : texts) {
+    if (!parameter.key.starts_with(fmt::format("{}.", group))) continue;
+    const std::string_view key = std::string_view(parameter.key).substr(group.size() + 1);
+    const std::string assignment = parameter.required ? fmt::format("{} (required)", key)
+                                                      : fmt::format("{} = {}", key, parameter.default_text);
+    text += fmt::format("{:<15}{:<30} {}: {}\n", text.empty() ? label : "", assignment, parameter.range,
+                        parameter.meaning);
   }
   return text;
 }
@@ -115,6 +132,10 @@ std::string puncture_force_law_help() {
   return help;
 }
 
+std::string block_settings_help(std::string_view group, std::string_view label) {
+  return settings_help(parameter_texts<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters), group, label);
+}
+
 std::string indentation_case_help() {
   return fmt::format(
       R"(CASE file (TOML; every dimensional value is a string with its unit, a bare number is an error):
@@ -127,15 +148,12 @@ std::string indentation_case_help() {
   [[needles]]  x = "-800 um", y = "-800 um", tip_height   one entry per needle (default: one needle at 0, 0)
   [array]      instead of [[needles]]: the needle repeated; layout = {}, backing_plate = false (the plate's travel
                and force reported; the depth must stay below the needle's length), symmetry = {}
-{}  [tissue]     width = "3000 um", length = "3000 um", height (default: sum of the layers), preset = {}
+{}{}               height (default: sum of the layers), preset = {}
                or [[tissue.layers]] name, thickness (the last may be "rest"),
                youngs_modulus = "0.2 MPa", poisson_ratio = 0.49 (in (-1, 0.5))
-  [mesh]       size_at_tip = "20 um", size_far = "250 um", refinement_radius = "300 um", sites = [["x", "y"], ...]
-               (one needle per site without [[needles]]), split = true (mesh at twice the sizes and split every tet
-               into eight: the two-grid solver's coarse level; without it, large blocks are meshed twice), or file = "tissue.msh" + unit (layers = physical
-               groups)
-  [loading]    depth = "200 um" (required), steps = 20, continue_after_puncture = false
-  [model]      law = {} (default neo-hookean), contact = {} (default surface),
+{}               sites = [["x", "y"], ...] (one needle per site without [[needles]]); or file = "tissue.msh" + unit
+               instead of the sizes (layers = physical groups). Without split, large blocks are meshed twice.
+{}  [model]      law = {} (default neo-hookean), contact = {} (default surface),
                element = {} (default linear),
                boundary = {}
                (default sides-and-bottom-fixed)
@@ -150,7 +168,10 @@ Choices:
 {}{}{}{}{}{}{}{}{}{}{}Settings of [solver]:
 {})",
       needle::kTypicalEdgeRadius * 1e6, needle::kTypicalEdgeRadius * 1e6, choices_of(insertion::kArrayLayoutNames),
-      choices_of(insertion::kArraySymmetryNames), array_settings_help(), quoted_list(materials::tissue_preset_names()), choices_of(fem::kMaterialLawNames),
+      choices_of(insertion::kArraySymmetryNames), array_settings_help(), block_settings_help("tissue", "  [tissue]"),
+      quoted_list(materials::tissue_preset_names()), block_settings_help("mesh", "  [mesh]"),
+      settings_help(parameter_texts<insertion::Loading>(insertion::kLoadingParameters), "loading", "  [loading]"),
+      choices_of(fem::kMaterialLawNames),
       choices_of(fem::kContactModelNames), choices_of(fem::kElementOrderNames), choices_of(fem::kBoundaryConditionNames),
       choices_of(fem::kPredictorNames), choices_of(fem::kLinearSolverNames),
       choices_of(fem::kVolumetricFormulationNames), choices_of(fem::kSolverBackendNames),

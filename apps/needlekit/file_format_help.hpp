@@ -3,6 +3,7 @@
 // names exactly the values the readers accept (tests/example/test_help_choices.cpp checks it).
 #pragma once
 #include <string>
+#include <string_view>
 
 namespace needlekit::cli {
 
@@ -10,6 +11,9 @@ std::string design_file_help();      // evaluate, sweep, mesh
 std::string space_file_help();       // optimize
 std::string indentation_case_help(); // indent (and, by reference, insert)
 std::string patch_case_help();       // patch
+// The rows of group "tissue" or "mesh" of mesh::kLayeredBlockParameters, one per line with default, range and
+// meaning, the first headed by `label` ("  [mesh]"): tissue-mesh and indent.
+std::string block_settings_help(std::string_view group, std::string_view label);
 
 inline constexpr const char* kRobustSpaceHelp = R"(Robust design (optional): add
   min_success_probability = 0.99 the best nominal design whose P(success) under [uncertain] is at least this

@@ -1567,12 +1567,19 @@ Keyword constructor: every field can be given by name; quantities as SI floats o
         """Every field as a dict (SI)."""
 
 class IndentationCase:
-    """An indentation case (`needlekit indent`); read one with read_indentation_case."""
+    """An indentation case (`needlekit indent`); read one with read_indentation_case.
+
+[loading] keywords:
+  depth: m, > 0 m: final depth of the tip below the undeformed surface (along the needle's axis when it is tilted). Default: "0.0002 m" (required in files).
+  angle: rad, in [0, 1.5708) rad: the needle's axis from the skin's normal (surface contact only). Default: "0 rad".
+  azimuth: rad, any rad: the tilt's direction in the block's x-y plane from +x (a bevel's face normal turns towards it). Default: "0 rad".
+  steps: in [1, 10000]: equal load steps from 0 to the depth. Default: 20.
+  stop_at_puncture: true | false: the negation of the case file's loading.continue_after_puncture: not (go on to the final depth after the puncture point). Default: true."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def angle(self) -> float:
-        """rad, [0, pi/2): the needle's axis from the skin's normal ("15 deg"; surface contact only)"""
+        """rad, in [0, 1.5708) rad: the needle's axis from the skin's normal (surface contact only). Default: "0 rad"."""
     @angle.setter
     def angle(self, value: Any) -> None: ...
     @property
@@ -1582,7 +1589,7 @@ class IndentationCase:
     def array(self, value: Any) -> None: ...
     @property
     def azimuth(self) -> float:
-        """rad: the direction of the tilt in the block's x-y plane from +x ("90 deg"); the needle turns with it, a bevel's face normal towards the azimuth"""
+        """rad, any rad: the tilt's direction in the block's x-y plane from +x (a bevel's face normal turns towards it). Default: "0 rad"."""
     @azimuth.setter
     def azimuth(self, value: Any) -> None: ...
     @property
@@ -1592,7 +1599,7 @@ class IndentationCase:
     def block(self, value: Any) -> None: ...
     @property
     def depth(self) -> float:
-        """m, final depth (along the needle's axis when it is tilted)"""
+        """m, > 0 m: final depth of the tip below the undeformed surface (along the needle's axis when it is tilted). Default: "0.0002 m" (required in files)."""
     @depth.setter
     def depth(self, value: Any) -> None: ...
     @property
@@ -1637,12 +1644,12 @@ class IndentationCase:
     def solver(self, value: Any) -> None: ...
     @property
     def steps(self) -> int:
-        ...
+        """in [1, 10000]: equal load steps from 0 to the depth. Default: 20."""
     @steps.setter
     def steps(self, value: Any) -> None: ...
     @property
     def stop_at_puncture(self) -> bool:
-        ...
+        """true | false: the negation of the case file's loading.continue_after_puncture: not (go on to the final depth after the puncture point). Default: true."""
     @stop_at_puncture.setter
     def stop_at_puncture(self, value: Any) -> None: ...
     @property
@@ -1964,9 +1971,34 @@ class LayerQuality:
         """Every field as a dict (SI)."""
 
 class LayeredBlockOptions:
-    """A layered tissue block to mesh (§3.3; default 3000 x 3000 x 1150 um skin)."""
+    """A layered tissue block to mesh (§3.3; default 3000 x 3000 x 1150 um skin).
+
+Keywords (every field):
+  width: m, > 0 m: the block's extent in x (centred on x = 0). Default: "0.003 m".
+  length: m, > 0 m: the block's extent in y (centred on y = 0). Default: "0.003 m".
+  size_at_site: m, > 0 m: target element size at each insertion site. Default: "2e-05 m".
+  refinement_radius: m, > 0 m: radius around a site where the size is size_at_tip. Default: "0.0003 m".
+  size_far: m, > 0 m: element size far from the sites (at least size_at_tip). Default: "0.00025 m".
+  size_gradient: > 0: growth of the element size per unit distance outside the refinement radius and thin layers (0.3: 30 um per 100 um). Default: 0.3.
+  thin_layer_size_factor: >= 0: the element size inside a layer is capped at this times its thickness (0: no cap). Default: 2.
+  site_circle_radius: m, >= 0 m: a circle of this radius around each site is embedded in the top surface (nodes on a flat punch's edge; 0: none). Default: "0 m".
+  split: true | false: mesh at twice the sizes, then split every tet into eight: the coarse level of the two-grid solver. Default: false.
+  max_tetrahedra: >= 1: a block whose estimated tetrahedron count exceeds this is refused before meshing. Default: 5e+07.
+  threads: >= 0: Gmsh threads (0: one, and the same mesh bit for bit in every run). Default: 0.
+  coarse_level: true | false: also return a coarse level for the FE's two-grid solver. Default: false.
+  coarse_size_factor: > 1: the coarse level's sizes over this mesh's (coarse_level without split). Default: 3."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def coarse_level(self) -> bool:
+        """true | false: also return a coarse level for the FE's two-grid solver. Default: false."""
+    @coarse_level.setter
+    def coarse_level(self, value: Any) -> None: ...
+    @property
+    def coarse_size_factor(self) -> float:
+        """> 1: the coarse level's sizes over this mesh's (coarse_level without split). Default: 3."""
+    @coarse_size_factor.setter
+    def coarse_size_factor(self, value: Any) -> None: ...
     @property
     def insertion_sites(self) -> numpy.ndarray:
         """m, (K, 2) sites (x, y) on the top surface"""
@@ -1979,54 +2011,59 @@ class LayeredBlockOptions:
     def layers(self, value: Any) -> None: ...
     @property
     def length(self) -> float:
-        """m, extent in y"""
+        """m, > 0 m: the block's extent in y (centred on y = 0). Default: "0.003 m"."""
     @length.setter
     def length(self, value: Any) -> None: ...
     @property
+    def max_tetrahedra(self) -> float:
+        """>= 1: a block whose estimated tetrahedron count exceeds this is refused before meshing. Default: 5e+07."""
+    @max_tetrahedra.setter
+    def max_tetrahedra(self, value: Any) -> None: ...
+    @property
     def refinement_radius(self) -> float:
-        """m"""
+        """m, > 0 m: radius around a site where the size is size_at_tip. Default: "0.0003 m"."""
     @refinement_radius.setter
     def refinement_radius(self, value: Any) -> None: ...
     @property
     def site_circle_radius(self) -> float:
-        """m"""
+        """m, >= 0 m: a circle of this radius around each site is embedded in the top surface (nodes on a flat punch's edge; 0: none). Default: "0 m"."""
     @site_circle_radius.setter
     def site_circle_radius(self, value: Any) -> None: ...
     @property
     def size_at_site(self) -> float:
-        """m, element size at a site"""
+        """m, > 0 m: target element size at each insertion site. Default: "2e-05 m"."""
     @size_at_site.setter
     def size_at_site(self, value: Any) -> None: ...
     @property
     def size_far(self) -> float:
-        """m"""
+        """m, > 0 m: element size far from the sites (at least size_at_tip). Default: "0.00025 m"."""
     @size_far.setter
     def size_far(self, value: Any) -> None: ...
     @property
     def size_gradient(self) -> float:
-        ...
+        """> 0: growth of the element size per unit distance outside the refinement radius and thin layers (0.3: 30 um per 100 um). Default: 0.3."""
     @size_gradient.setter
     def size_gradient(self, value: Any) -> None: ...
     @property
     def split(self) -> bool:
-        ...
+        """true | false: mesh at twice the sizes, then split every tet into eight: the coarse level of the two-grid solver. Default: false."""
     @split.setter
     def split(self, value: Any) -> None: ...
     @property
     def thin_layer_size_factor(self) -> float:
-        ...
+        """>= 0: the element size inside a layer is capped at this times its thickness (0: no cap). Default: 2."""
     @thin_layer_size_factor.setter
     def thin_layer_size_factor(self, value: Any) -> None: ...
     @property
     def threads(self) -> int:
-        ...
+        """>= 0: Gmsh threads (0: one, and the same mesh bit for bit in every run). Default: 0."""
     @threads.setter
     def threads(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
     def width(self) -> float:
-        """m, extent in x"""
+        """m, > 0 m: the block's extent in x (centred on x = 0). Default: "0.003 m"."""
     @width.setter
     def width(self, value: Any) -> None: ...
 

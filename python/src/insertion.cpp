@@ -6,6 +6,7 @@
 #include "parameters.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/insertion/indentation.hpp"
+#include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/insertion_curve.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
@@ -113,20 +114,14 @@ void bind_indentation(py::module_& m) {
       .def_readwrite("array", &IndentationCase::array, "a NeedleArray: `needles` then holds the whole array")
       .def_readwrite("block", &IndentationCase::block)
       .def_readwrite("tissue_mesh", &IndentationCase::tissue_mesh)
-      .def_readwrite("steps", &IndentationCase::steps)
       .def_readwrite("solver", &IndentationCase::solver)
       .def_readwrite("puncture", &IndentationCase::puncture)
-      .def_readwrite("stop_at_puncture", &IndentationCase::stop_at_puncture)
       .def_readwrite("edge_radius", &IndentationCase::edge_radius,
                      "m, surface contact on a parametric needle: its edges rounded with this radius (None: the "
                      "default, 2 um or half the largest the tip allows)");
-  def_quantity(indentation, "depth", &IndentationCase::depth, Dimension::Length,
-               "m, final depth (along the needle's axis when it is tilted)");
-  def_quantity(indentation, "angle", &IndentationCase::angle, Dimension::Angle,
-               "rad, [0, pi/2): the needle's axis from the skin's normal (\"15 deg\"; surface contact only)");
-  def_quantity(indentation, "azimuth", &IndentationCase::azimuth, Dimension::Angle,
-               "rad: the direction of the tilt in the block's x-y plane from +x (\"90 deg\"); the needle turns with "
-               "it, a bevel's face normal towards the azimuth");
+  // [loading]: the rows of insertion::kLoadingParameters.
+  indentation.doc() = std::string(py::str(indentation.doc())) + "\n\n[loading] keywords:" +
+                      def_parameter_properties<Loading>(indentation, kLoadingParameters);
   indentation.def_readwrite("material", &IndentationCase::material,
                             "NeedleMaterial or None: for the bending check of the lateral load (Eqs 5.7/5.8)");
   m.def("read_indentation_case", &io::read_indentation_case, py::arg("path"),

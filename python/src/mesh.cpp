@@ -5,6 +5,8 @@
 #include "needlekit/io/tissue_config.hpp"
 #include "needlekit/io/vtu_writer.hpp"
 #include "needlekit/mesh/layered_block_mesh.hpp"
+#include "needlekit/mesh/layered_block_parameters.hpp"
+#include "parameters.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 
 namespace needlekit::python {
@@ -35,9 +37,6 @@ void bind_mesh(py::module_& m) {
 
   py::class_<LayeredBlockOptions> block(m, "LayeredBlockOptions",
                                         "A layered tissue block to mesh (§3.3; default 3000 x 3000 x 1150 um skin).");
-  def_keyword_init<LayeredBlockOptions>(block);
-  def_quantity(block, "width", &LayeredBlockOptions::width, Dimension::Length, "m, extent in x");
-  def_quantity(block, "length", &LayeredBlockOptions::length, Dimension::Length, "m, extent in y");
   block.def_readwrite("layers", &LayeredBlockOptions::layers, "top to bottom; empty: skin_layers()")
       .def_property(
           "insertion_sites",
@@ -49,15 +48,7 @@ void bind_mesh(py::module_& m) {
           },
           [](LayeredBlockOptions& o, py::handle v) { o.insertion_sites = points2_from(v, "insertion_sites"); },
           "m, (K, 2) sites (x, y) on the top surface");
-  def_quantity(block, "size_at_site", &LayeredBlockOptions::size_at_site, Dimension::Length,
-               "m, element size at a site");
-  def_quantity(block, "refinement_radius", &LayeredBlockOptions::refinement_radius, Dimension::Length, "m");
-  def_quantity(block, "size_far", &LayeredBlockOptions::size_far, Dimension::Length, "m");
-  block.def_readwrite("threads", &LayeredBlockOptions::threads)
-      .def_readwrite("size_gradient", &LayeredBlockOptions::size_gradient)
-      .def_readwrite("thin_layer_size_factor", &LayeredBlockOptions::thin_layer_size_factor)
-      .def_readwrite("split", &LayeredBlockOptions::split);
-  def_quantity(block, "site_circle_radius", &LayeredBlockOptions::site_circle_radius, Dimension::Length, "m");
+  def_parameters<LayeredBlockOptions>(block, kLayeredBlockParameters);  // every other field, from its table
   py::class_<LayerQuality>(m, "LayerQuality")
       .def_readonly("name", &LayerQuality::name)
       .def_readonly("tets", &LayerQuality::tets)

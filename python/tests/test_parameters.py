@@ -1,6 +1,7 @@
-"""SolverOptions binds exactly the rows of fem::kSolverParameters, as docs/reference.md lists them (a C++ unit test
-checks that the reference is what the tables generate): every field a property with its docstring, every field a
-keyword of the constructor, quantities with units."""
+"""Every parameter table's class binds its rows as docs/reference.md lists them (a C++ unit test checks that the
+reference is what the tables generate): SolverOptions exactly the rows of fem::kSolverParameters, every field a
+property with its docstring, every field a keyword of the constructor, quantities with units; the other tabled
+classes every row of theirs, and the commands' --help every key their files take."""
 import re
 
 import needlekit
@@ -9,11 +10,17 @@ import pytest
 from conftest import SOURCE_DIR, CLI
 
 
-def reference_rows(options):
-    """(key, python name, default) of each row of `options` in docs/reference.md."""
+def reference_sections():
+    """(title, class name, section text) of each table in docs/reference.md."""
     text = (SOURCE_DIR / "docs" / "reference.md").read_text()
-    section = text.split(f"| Python `{options}.` |")[1].split("\n## ")[0]
-    return re.findall(r"^\| `([a-z_.]+)` \| [^|]+ \| `([^`]+)` \|.*\| `([a-z_]+)` \|$", section, re.M)
+    return [(title, options, section) for title, section in re.findall(r"^## ([^\n]+)\n\n(.*?)(?=^## |\Z)", text, re.M | re.S)
+            for options in re.findall(r"\| Python `([A-Za-z]+)\.` \|", section)]
+
+
+def reference_rows(options):
+    """(key, python name, default) of each row of `options` in docs/reference.md (every table of that class)."""
+    return [row for _, name, section in reference_sections() if name == options
+            for row in re.findall(r"^\| `([a-z_.]+)` \| [^|]+ \| `([^`]+)` \|.*\| `([a-z_]+)` \|$", section, re.M)]
 
 
 def properties(cls):
@@ -49,6 +56,33 @@ def test_the_keyword_constructor_takes_every_field_and_quantities_with_units():
 
 def test_describe_lists_the_same_keys_as_the_reference():
     import subprocess
-    keys = [key for key, _, _ in reference_rows("SolverOptions")]
+    keys = [key for _, options, _ in reference_sections() for key, _, _ in reference_rows(options)]
+    keys = list(dict.fromkeys(keys))
     described = subprocess.run([CLI, "describe", "--all"], capture_output=True, text=True, check=True).stdout
-    assert re.findall(r"^([a-z_]+\.[a-z_]+)$", described, re.M) == keys
+    assert re.findall(r"^([a-z_.]+)$", described, re.M) == keys
+
+
+def test_every_tabled_class_binds_every_row_with_its_docstring():
+    for _, options, _ in reference_sections():
+        cls = getattr(needlekit, options)
+        for key, _, name in reference_rows(options):
+            assert name in properties(cls), (options, name)
+            assert "Default: " in getattr(cls, name).__doc__, (options, name)
+            assert f"  {name}: " in cls.__doc__, (options, name)
+
+
+def test_the_help_of_each_command_lists_every_key_of_its_files():
+    import subprocess
+    for title, options, _ in reference_sections():
+        for command in re.findall(r"`needlekit ([a-z-]+)`", title):
+            help_text = subprocess.run([CLI, command, "--help"], capture_output=True, text=True, check=True).stdout
+            for key, _, _ in reference_rows(options):
+                if "." in key:  # rows of no file are set by the commands' options or from Python
+                    assert re.search(rf"(^|[^a-z_]){key.split('.')[1]}( |$|,)", help_text, re.M), (command, key)
+
+
+def test_loading_reads_like_the_case_file():
+    case = needlekit.IndentationCase(depth="150 um", angle="10 deg", steps=5, stop_at_puncture=False)
+    assert case.depth == pytest.approx(150e-6) and case.angle == pytest.approx(0.174532925199)
+    assert case.steps == 5 and not case.stop_at_puncture
+    assert "negation of the case file's loading.continue_after_puncture" in needlekit.IndentationCase.stop_at_puncture.__doc__

@@ -5,6 +5,7 @@
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/needle/needle_surface_mesh.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/toml_config.hpp"
 #include "tissue_config_toml.hpp"
@@ -252,24 +253,6 @@ double two_insertion_toughness_of(const Section& puncture, const toml::node& nod
   return table.at(node, [&] { return insertion::two_insertion_toughness(first, second, options).toughness; });
 }
 
-// [loading]: the depth (along the needle's axis), the angle and azimuth (range and contact: insertion::validate),
-// the steps and whether to go on after the puncture.
-void read_loading(const Section& loading, insertion::IndentationCase& result) {
-  result.depth = positive_quantity(loading, "depth", Dimension::Length);
-  if (const toml::node* node = loading.optional("angle")) {
-    result.angle = quantity_of(loading, *node, "angle", Dimension::Angle);
-  }
-  if (const toml::node* node = loading.optional("azimuth")) {
-    result.azimuth = quantity_of(loading, *node, "azimuth", Dimension::Angle);
-  }
-  if (const toml::node* node = loading.optional("steps")) {
-    result.steps = integer_in(loading, *node, "steps", 1, limits::kMaxLoadSteps);
-  }
-  if (const toml::node* node = loading.optional("continue_after_puncture")) {
-    result.stop_at_puncture = !boolean_of(loading, *node, "continue_after_puncture");
-  }
-}
-
 // [puncture]: the rows of insertion::kPunctureParameters (the law, its material length), the critical pressure and
 // the toughness, given or from two insertions (toughness_from).
 void read_puncture(const Section& puncture, const std::filesystem::path& base_directory,
@@ -348,8 +331,10 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
   }
   check_sites_inside(root, top, result);
 
-  read_loading(top.required_subsection("loading", {"depth", "steps", "continue_after_puncture", "angle", "azimuth"}),
-               result);
+  // [loading]: the rows of insertion::kLoadingParameters (their combinations: insertion::validate below).
+  read_parameters(top.subsection(top.required("loading", "a table [loading]"), "loading",
+                                 keys_of_group(insertion::kLoadingParameters, "loading")),
+                  insertion::kLoadingParameters, "loading", result);
   if (const toml::node* node = top.optional("model")) {
     read_parameters(top.subsection(*node, "model", keys_of_group(fem::kSolverParameters, "model")),
                     fem::kSolverParameters, "model", result.solver);

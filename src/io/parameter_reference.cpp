@@ -5,7 +5,9 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
+#include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 
 namespace needlekit::io {
@@ -24,7 +26,9 @@ std::string description_of(const ParameterText& parameter, std::string_view opti
   std::string text = fmt::format("{}\n  {}\n", parameter.key, parameter.meaning);
   text += fmt::format("  kind:    {}\n", parameter.kind);
   text += fmt::format("  unit:    {}\n", parameter.unit.empty() ? "none" : parameter.unit);
-  text += fmt::format("  default: {}\n", parameter.default_text);
+  text += fmt::format("  default: {}\n", parameter.required ? fmt::format("required in files ({} in Python)",
+                                                                           parameter.default_text)
+                                                              : parameter.default_text);
   text += fmt::format("  range:   {}\n", parameter.range);
   text += fmt::format("  Python:  {}.{}\n", options, parameter.name);
   if (!parameter.choices.empty()) text += "  choices:\n" + parameter.choices;
@@ -37,8 +41,12 @@ std::vector<ParameterGroup> parameter_reference() {
   return {
       {"indentation cases (`needlekit indent`), [model] and [solver]", "SolverOptions",
        parameter_texts(fem::kSolverParameters, case_solver_defaults())},
+      {"indentation and insertion cases (`needlekit indent`; insert), [loading]", "IndentationCase",
+       parameter_texts<insertion::Loading>(insertion::kLoadingParameters)},
       {"indentation cases, [puncture] (besides critical_pressure, toughness, toughness_from)", "PunctureOptions",
        parameter_texts(insertion::kPunctureParameters, insertion::PunctureOptions{})},
+      {"tissue blocks (`needlekit tissue-mesh`; indent, insert), [tissue] and [mesh]", "LayeredBlockOptions",
+       parameter_texts<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters)},
   };
 }
 
@@ -82,7 +90,7 @@ std::string reference_markdown() {
                         group.title, group.options);
     for (const ParameterText& parameter : group.parameters) {
       text += fmt::format("| `{}` | {} | `{}` | {} | {} | `{}` |\n", parameter.key, parameter.kind,
-                          parameter.default_text, escaped_for_table(parameter.range),
+                          parameter.file_default(), escaped_for_table(parameter.range),
                           escaped_for_table(parameter.meaning), parameter.name);
     }
   }

@@ -4,8 +4,10 @@
 #include <limits>
 
 #include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/mesh/msh_import.hpp"
 #include "tissue_config_toml.hpp"
+#include "toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace config {
@@ -102,9 +104,16 @@ std::vector<Eigen::Vector2d> sites_of(const Section& section, const toml::node& 
   return sites;
 }
 
+// The keys of the rows of mesh::kLayeredBlockParameters in `group`, then `others`.
+std::vector<std::string_view> keys_with(std::string_view group, std::initializer_list<std::string_view> others) {
+  std::vector<std::string_view> keys = keys_of_group(mesh::kLayeredBlockParameters, group);
+  keys.insert(keys.end(), others);
+  return keys;
+}
+
 // The top-level table `key` (other top-level keys belong to other readers and are not checked here).
 Section table_of(const toml::node& node, std::string_view key, std::string_view file,
-                 std::initializer_list<std::string_view> allowed_keys) {
+                 const std::vector<std::string_view>& allowed_keys) {
   if (!node.is_table()) {
     throw InvalidInput(fmt::format("{} key '{}': {} is not a table, expected a table [{}] with keys {}",
                                    location(file, node.source()), key, describe(node), key,
@@ -116,9 +125,8 @@ Section table_of(const toml::node& node, std::string_view key, std::string_view 
 // [tissue]: the block's width and length, and its layers from a preset (the last layer taking the rest of a given
 // height) or from [[tissue.layers]].
 void read_tissue_table(const toml::node& node, std::string_view file, mesh::LayeredBlockOptions& o) {
-  const Section tissue = table_of(node, "tissue", file, {"width", "length", "height", "preset", "layers"});
-  if (auto w = optional_positive_quantity(tissue, "width", Dimension::Length)) o.width = *w;
-  if (auto l = optional_positive_quantity(tissue, "length", Dimension::Length)) o.length = *l;
+  const Section tissue = table_of(node, "tissue", file, keys_with("tissue", {"height", "preset", "layers"}));
+  read_parameters(tissue, mesh::kLayeredBlockParameters, "tissue", o);  // width, length
   const std::optional<double> height = optional_positive_quantity(tissue, "height", Dimension::Length);
   const toml::node* preset = tissue.optional("preset");
   const toml::node* layers = tissue.optional("layers");
@@ -150,15 +158,12 @@ void read_tissue_table(const toml::node& node, std::string_view file, mesh::Laye
 void read_mesh_table(const toml::node& node, std::string_view file, const std::filesystem::path& base_dir,
                      TissueCase& tissue) {
   mesh::LayeredBlockOptions& o = tissue.block;
-  const Section m = table_of(node, "mesh", file, {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
-                                                   "thin_layer_size_factor", "sites", "site_circle_radius", "split", "file",
-                                                   "unit", "max_tetrahedra"});
+  const Section m = table_of(node, "mesh", file, keys_with("mesh", {"sites", "file", "unit"}));
   if (const toml::node* f = m.optional("file")) {
     const std::string path = text_of(m, *f, "file", "a .msh file name");
     if (path.empty()) m.fail(*f, "file", "empty, expected a .msh file name");
     tissue.msh_file = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
-    for (std::string_view key : {"size_at_tip", "size_far", "refinement_radius", "size_gradient",
-                                 "thin_layer_size_factor", "sites", "site_circle_radius", "split", "max_tetrahedra"}) {
+    for (std::string_view key : keys_with("mesh", {"sites"})) {
       if (const toml::node* other = m.optional(key)) {
         m.fail(*other, key, "given together with file, expected either a mesh file or the block's mesh sizes");
       }
@@ -169,22 +174,8 @@ void read_mesh_table(const toml::node& node, std::string_view file, const std::f
     const std::string unit = text_of(m, *u, "unit", "a length unit such as \"um\" or \"mm\"");
     tissue.msh_unit = m.at(*u, [&] { return units::unit_factor(unit, Dimension::Length, m.what("unit")); });
   }
-  if (auto s = optional_positive_quantity(m, "size_at_tip", Dimension::Length)) o.size_at_site = *s;
-  if (auto s = optional_positive_quantity(m, "size_far", Dimension::Length)) o.size_far = *s;
-  if (auto s = optional_positive_quantity(m, "refinement_radius", Dimension::Length)) o.refinement_radius = *s;
-  if (const toml::node* g = m.optional("size_gradient")) {
-    o.size_gradient = number_at_least(m, *g, "size_gradient", 0.0);
-    if (!(o.size_gradient > 0)) m.fail(*g, "size_gradient", "is 0, expected a positive number");
-  }
-  if (const toml::node* f = m.optional("thin_layer_size_factor")) {
-    o.thin_layer_size_factor = number_at_least(m, *f, "thin_layer_size_factor", 0.0);
-  }
+  read_parameters(m, mesh::kLayeredBlockParameters, "mesh", o);  // sizes, split, limits
   if (const toml::node* s = m.optional("sites")) o.insertion_sites = sites_of(m, *s);
-  if (auto r = optional_positive_quantity(m, "site_circle_radius", Dimension::Length)) o.site_circle_radius = *r;
-  if (const toml::node* split = m.optional("split")) o.split = boolean_of(m, *split, "split");
-  if (const toml::node* limit = m.optional("max_tetrahedra")) {
-    o.max_tetrahedra = number_at_least(m, *limit, "max_tetrahedra", 1.0);
-  }
   if (o.size_far < o.size_at_site) {
     m.fail(m.optional("size_far") ? *m.optional("size_far") : node, "size_far",
            fmt::format("{:g} um is smaller than size_at_tip = {:g} um, expected size_far >= size_at_tip",

@@ -10,17 +10,42 @@
 
 namespace needlekit::io::config {
 
+namespace detail {
+// "[0, 90) deg" for a row's two-sided range in the unit of the value's text ("90 deg"), so that the message compares
+// like with like.
+template <class Options>
+std::string range_in_unit_of(const Parameter<Options, double>& row, std::string_view text) {
+  const std::size_t unit_start = text.find_first_not_of("+-0123456789.eE ");
+  const std::string_view unit = unit_start == std::string_view::npos ? "" : text.substr(unit_start);
+  const double factor = units::unit_factor(unit, row.dimension, row.key);
+  return fmt::format("{}{:g}, {:g}{} {}", row.min_bound == Bound::Open ? '(' : '[', row.min / factor,
+                     row.max / factor, row.max_bound == Bound::Open ? ')' : ']', unit);
+}
+}  // namespace detail
+
+// A quantity: written with a unit; a value outside the row's range is refused as "is not positive" for (0, inf),
+// in the value's own unit for a two-sided range, else against the range in SI.
+template <class Options>
+double quantity_of_row(const Section& section, const toml::node& node, const Parameter<Options, double>& row) {
+  if (row.min == 0 && row.min_bound == Bound::Open && !std::isfinite(row.max)) {
+    return positive_quantity_of(section, node, row.key, row.dimension);
+  }
+  const double value = quantity_of(section, node, row.key, row.dimension);
+  if (row.accepts(value)) return value;
+  const std::string& text = node.as_string()->get();
+  if (std::isfinite(row.min) && std::isfinite(row.max)) {
+    section.fail(node, row.key,
+                 fmt::format("{} is outside {}, expected the {} {} {}", text, detail::range_in_unit_of(row, text),
+                             units::dimension_name(row.dimension), row.range(), units::si_symbol(row.dimension)));
+  }
+  section.fail(node, row.key,
+               fmt::format("'{}' is out of range, expected a {} {} {}", text, units::dimension_name(row.dimension),
+                           row.range(), units::si_symbol(row.dimension)));
+}
+
 template <class Options>
 double value_of_row(const Section& section, const toml::node& node, const Parameter<Options, double>& row) {
-  if (row.dimension != Dimension::Dimensionless) {
-    const double value = quantity_of(section, node, row.key, row.dimension);
-    if (!row.accepts(value)) {
-      section.fail(node, row.key,
-                   fmt::format("'{}' is out of range, expected a {} {} {}", node.as_string()->get(),
-                               units::dimension_name(row.dimension), row.range(), units::si_symbol(row.dimension)));
-    }
-    return value;
-  }
+  if (row.dimension != Dimension::Dimensionless) return quantity_of_row(section, node, row);
   if (!node.is_number()) {
     section.fail(node, row.key, fmt::format("{} is not a number, expected a number {}", describe(node), row.range()));
   }
@@ -31,18 +56,21 @@ double value_of_row(const Section& section, const toml::node& node, const Parame
   return value;
 }
 
+// An integer; a finite upper end is a work limit (core/limits.hpp) and the message says so.
 template <class Options>
 int value_of_row(const Section& section, const toml::node& node, const Parameter<Options, int>& row) {
   const std::int64_t value = integer_of(section, node, row.key);
   if (!row.accepts(static_cast<double>(value)) || value > INT_MAX) {
-    section.fail(node, row.key, fmt::format("{} is out of range, expected an integer {}", value, row.range()));
+    section.fail(node, row.key,
+                 fmt::format("{} is out of range, expected an integer {}{}", value, row.range(),
+                             std::isfinite(row.max) ? " (the upper end is needlekit's work limit)" : ""));
   }
   return static_cast<int>(value);
 }
 
 template <class Options>
 bool value_of_row(const Section& section, const toml::node& node, const Flag<Options>& row) {
-  return boolean_of(section, node, row.key);
+  return boolean_of(section, node, row.key) != row.negated;
 }
 
 template <class Options, class Value, std::size_t N>
@@ -60,11 +88,15 @@ std::vector<std::string_view> keys_of_group(const Table& table, std::string_view
   return keys;
 }
 
-// Sets the field of every row of `group` whose key the section has; the fields of the others keep their values.
+// Sets the field of every row of `group` whose key the section has; the fields of the others keep their values. A
+// required row's key missing is an error.
 template <class Options, class Table>
 void read_parameters(const Section& section, const Table& table, std::string_view group, Options& options) {
   for_each_parameter(table, [&](const auto& row) {
     if (row.group != group) return;
+    if constexpr (requires { row.required; }) {
+      if (row.required) section.required(row.key, expected_quantity(row.dimension));
+    }
     if (const toml::node* node = section.optional(row.key)) options.*row.field = value_of_row(section, *node, row);
   });
 }

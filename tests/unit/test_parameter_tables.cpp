@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -12,7 +13,10 @@
 
 #include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
+#include "needlekit/io/tissue_config.hpp"
+#include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/parameter_reference.hpp"
 
@@ -43,6 +47,14 @@ TEST(ParameterTables, EveryFieldOfSolverOptionsHasOneRow) {
 TEST(ParameterTables, EveryFieldOfPunctureOptionsHasOneRowButTheOptionalQuantities) {
   expect_one_row_per_field<insertion::PunctureOptions>(insertion::kPunctureParameters,
                                                        insertion::kPunctureOptionalFields);
+}
+
+TEST(ParameterTables, EveryFieldOfLoadingHasOneRow) {
+  expect_one_row_per_field<insertion::Loading>(insertion::kLoadingParameters, 0);
+}
+
+TEST(ParameterTables, EveryFieldOfLayeredBlockOptionsHasOneRow) {
+  expect_one_row_per_field<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters, mesh::kLayeredBlockListFields);
 }
 
 // field_count on aggregates like the option structs (a callback, a string, nested aggregates: one field each).
@@ -96,6 +108,87 @@ TEST(ParameterTables, ValidationAndTheReaderRefuseANumberOutsideItsRangeNamingTh
   });
 }
 
+// "[group]\nkey = default\n..." for every row of a table in `group` (a required row at its struct default too).
+template <class Options, class Table>
+std::string table_at_defaults(const Table& table, std::string_view group, const Options& defaults = Options{}) {
+  std::string text = fmt::format("[{}]\n", group);
+  for (const ParameterText& parameter : parameter_texts(table, defaults)) {
+    const std::size_t dot = parameter.key.find('.');
+    if (parameter.key.substr(0, dot) != group) continue;
+    text += fmt::format("{} = {}\n", parameter.key.substr(dot + 1), parameter.default_text);
+  }
+  return text;
+}
+
+// The default texts of every row of `options`.
+template <class Options, class Table>
+std::vector<std::string> default_texts(const Table& table, const Options& options) {
+  std::vector<std::string> texts;
+  for (const ParameterText& parameter : parameter_texts(table, options)) texts.push_back(parameter.default_text);
+  return texts;
+}
+
+// For each number of `group` whose range excludes -1: `read` of "[group]\nkey = -1 (in um or deg)" throws naming the
+// key and the range (a positive quantity: "is not positive", as the reader's positive_quantity_of says).
+template <class Table, class Read>
+void expect_the_reader_refuses_values_below_range(const Table& table, std::string_view group, Read&& read) {
+  for_each_parameter(table, [&](const auto& row) {
+    if constexpr (requires { row.accepts(0.0); }) {
+      if (row.accepts(-1) || row.group != group) return;
+      SCOPED_TRACE(std::string(row.key));
+      const std::string unit = row.dimension == units::Dimension::Dimensionless ? ""
+                               : row.dimension == units::Dimension::Angle   ? " deg"
+                                                                              : " um";
+      const std::string value = unit.empty() ? "-1" : fmt::format("\"-1{}\"", unit);
+      const bool positive = !unit.empty() && row.min == 0 && row.min_bound == Bound::Open && !std::isfinite(row.max);
+      EXPECT_THAT([&] { read(fmt::format("{} = {}\n", row.key, value)); },
+                  testing::ThrowsMessage<InvalidInput>(
+                      testing::AllOf(HasSubstr(fmt::format("'{}.{}'", group, row.key)),
+                                     HasSubstr(positive ? std::string("is not positive") : row.range()))));
+    }
+  });
+}
+
+// Every [loading] key at its default (the reader knows every key) reads back as the default.
+TEST(ParameterTables, TheCaseReaderReadsEveryKeyOfTheLoadingTableAtItsDefault) {
+  const std::string without_loading = kCase.substr(0, kCase.find("[loading]"));
+  const insertion::IndentationCase read = io::parse_indentation_case_toml(
+      without_loading + table_at_defaults<insertion::Loading>(insertion::kLoadingParameters, "loading"), "case.toml");
+  EXPECT_EQ(default_texts(insertion::kLoadingParameters, static_cast<const insertion::Loading&>(read)),
+            default_texts(insertion::kLoadingParameters, insertion::Loading{}));
+  EXPECT_THAT([&] { io::parse_indentation_case_toml(without_loading + "[loading]\nsteps = 3\n", "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("key 'loading.depth': missing")));
+}
+
+TEST(ParameterTables, TheCaseReaderRefusesALoadingValueOutsideItsRange) {
+  const std::string without_loading = kCase.substr(0, kCase.find("[loading]"));
+  expect_the_reader_refuses_values_below_range(insertion::kLoadingParameters, "loading", [&](const std::string& line) {
+    const std::string depth = line.starts_with("depth") ? "" : "depth = \"10 um\"\n";
+    io::parse_indentation_case_toml(without_loading + "[loading]\n" + depth + line, "case.toml");
+  });
+}
+
+// Every key of [tissue] and [mesh] in the table at its default reads back as the default; the rows of no group are
+// not keys of the file.
+TEST(ParameterTables, TheTissueReaderReadsEveryKeyOfTheBlockTableAtItsDefault) {
+  const auto& table = mesh::kLayeredBlockParameters;
+  const io::TissueCase read = io::parse_tissue_case_toml(
+      table_at_defaults<mesh::LayeredBlockOptions>(table, "tissue") + "preset = \"skin\"\n" +
+          table_at_defaults<mesh::LayeredBlockOptions>(table, "mesh"),
+      "case.toml");
+  EXPECT_EQ(default_texts(table, read.block), default_texts(table, mesh::LayeredBlockOptions{}));
+  EXPECT_THAT([] { io::parse_tissue_case_toml("[tissue]\npreset = \"skin\"\n[mesh]\nthreads = 2\n", "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'mesh.threads'")));
+}
+
+TEST(ParameterTables, TheTissueReaderRefusesABlockValueOutsideItsRange) {
+  for (const std::string group : {"tissue", "mesh"}) {
+    expect_the_reader_refuses_values_below_range(mesh::kLayeredBlockParameters, group, [&](const std::string& line) {
+      io::parse_tissue_case_toml(group == "tissue" ? "[tissue]\n" + line : "[tissue]\n[mesh]\n" + line, "case.toml");
+    });
+  }
+}
+
 TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {
   const std::string friction = io::described("solver.friction");
   EXPECT_THAT(friction, HasSubstr("Coulomb friction coefficient"));
@@ -107,6 +200,9 @@ TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {
   // The defaults of case files: neo-Hookean and surface contact, not the struct's.
   EXPECT_THAT(io::described("model.law"), HasSubstr("default: \"neo-hookean\""));
   EXPECT_THAT(io::described("model.element"), HasSubstr("Python:  SolverOptions.order"));
+  EXPECT_THAT(io::described("loading.depth"), HasSubstr("default: required in files (\"0.0002 m\" in Python)"));
+  EXPECT_THAT(io::described("loading.continue_after_puncture"),
+              testing::AllOf(HasSubstr("default: false\n"), HasSubstr("Python:  IndentationCase.stop_at_puncture")));
   EXPECT_THAT([] { io::described("solver.no_such_key"); },
               testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown parameter 'solver.no_such_key', expected one "
                                                              "of: model.law, model.element")));

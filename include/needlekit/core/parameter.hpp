@@ -1,7 +1,8 @@
 // One declaration per parameter (FEBio's parameter lists are the model): the key it has in files, the field of the
 // Options struct it sets (whose initializer is the default: declared there, nowhere else), its valid range, its unit
 // and a one-line meaning. An Options struct's table is a std::tuple of such rows, one per field, of three kinds:
-//   Parameter<Options, double|int>  a number, with its range and (for a quantity) its dimension
+//   Parameter<Options, double|int>  a number, with its range and (for a quantity) its dimension; a finite upper
+//                                   end of an integer is one of needlekit's work limits (core/limits.hpp)
 //   Flag<Options>                   true or false
 //   Choice<Options, Enum, N>        one of the names of an enum's table (core/enum_table.hpp)
 // The config readers, their range checks, the validation of the struct, the CLI help, `needlekit describe`,
@@ -42,6 +43,7 @@ struct Parameter {
   std::string_view group = "";  // the table of the file it is written in ("solver"); "" for none
   units::Dimension dimension = units::Dimension::Dimensionless;  // a quantity: written with a unit in files
   std::string_view name = "";   // the field's name in C++ and Python where it is not the key
+  bool required = false;        // files must give it (the struct's initializer is then Python's default only)
 
   std::string_view attribute() const { return name.empty() ? key : name; }
 
@@ -72,9 +74,10 @@ template <class Options>
 struct Flag {
   std::string_view key;
   bool Options::*field;
-  std::string_view meaning;
+  std::string_view meaning;  // of the key as files write it
   std::string_view group = "";
   std::string_view name = "";
+  bool negated = false;  // the file's key is the field's negation ([loading] continue_after_puncture: stop_at_puncture)
 
   std::string_view attribute() const { return name.empty() ? key : name; }
 };

@@ -19,6 +19,8 @@ struct ParameterText {
   std::string range;         // "in (0, 1)", ">= 0", "true | false", "\"a\" | \"b\""
   std::string meaning;       // one line
   std::string choices;       // a choice's names, one line each with its meaning ("" otherwise)
+  bool required = false;     // files must give it: default_text is then the struct's initializer, Python's default
+  std::string file_default() const { return required ? "required" : default_text; }  // what a file gets without it
 };
 
 namespace detail {
@@ -34,12 +36,18 @@ ParameterText text_of_row(const Parameter<Options, Value>& row, const Options& d
           quantity ? fmt::format("quantity ({})", units::dimension_name(row.dimension))
                    : (std::is_integral_v<Value> ? "integer" : "number"),
           unit, quantity ? fmt::format("\"{:g} {}\"", value, unit) : fmt::format("{:g}", value),
-          quantity ? fmt::format("{} {}", row.range(), unit) : row.range(), std::string(row.meaning), ""};
+          quantity ? fmt::format("{} {}", row.range(), unit) : row.range(), std::string(row.meaning), "",
+          row.required};
 }
+// A negated flag's default is the file's (the negation of the field's), its meaning the key's and then the field's.
 template <class Options>
 ParameterText text_of_row(const Flag<Options>& row, const Options& defaults) {
-  return {dotted_key(row.group, row.key), std::string(row.attribute()), "boolean", "",
-          defaults.*row.field ? "true" : "false", "true | false", std::string(row.meaning), ""};
+  const bool file_value = row.negated ? !(defaults.*row.field) : defaults.*row.field;
+  return {dotted_key(row.group, row.key), std::string(row.attribute()), "boolean", "", file_value ? "true" : "false",
+          "true | false",
+          row.negated ? fmt::format("{} ({} in Python is its negation)", row.meaning, row.attribute())
+                      : std::string(row.meaning),
+          ""};
 }
 template <class Options, class Value, std::size_t N>
 ParameterText text_of_row(const Choice<Options, Value, N>& row, const Options& defaults) {
@@ -60,8 +68,8 @@ std::vector<ParameterText> parameter_texts(const Table& table, const Options& de
 
 // "(0, 1): meaning. Default: 1e-06." for a docstring or a help line.
 inline std::string docstring_of(const ParameterText& text) {
-  return fmt::format("{}{}: {}. Default: {}.", text.unit.empty() ? "" : text.unit + ", ", text.range, text.meaning,
-                     text.default_text);
+  return fmt::format("{}{}: {}. Default: {}{}.", text.unit.empty() ? "" : text.unit + ", ", text.range, text.meaning,
+                     text.default_text, text.required ? " (required in files)" : "");
 }
 
 }  // namespace needlekit

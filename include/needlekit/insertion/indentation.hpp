@@ -44,7 +44,21 @@ struct NeedleSite {
   double tip_height = 0;  // m, >= 0: height of the tip above the undeformed surface at the start (0: touching)
 };
 
-struct IndentationCase {
+// How the needles move: a case file's [loading]. Its fields are IndentationCase's own (c.depth, c.steps), declared in
+// this base so that its parameter table (insertion/loading_parameters.hpp) can be checked field by field.
+struct Loading {
+  double depth = 200e-6;                     // m, > 0: final depth of the tip below the undeformed surface (along
+                                             // the needle's axis when it is tilted)
+  // rad, [0, π/2): the needle's axis from the skin's normal (surface contact only; above kSteepAngle a note).
+  double angle = 0;
+  // rad: the direction of the tilt in the block's x–y plane, from +x (the way the tip travels sideways); the needle is
+  // turned about its axis with it, a bevel's face normal towards the azimuth.
+  double azimuth = 0;
+  int steps = 20;                            // >= 1: equal load steps from 0 to `depth`
+  bool stop_at_puncture = true;              // false: continue to `depth` after the puncture point
+};
+
+struct IndentationCase : Loading {
   std::string name = "indentation";          // for messages and output file names
   geometry::TriangleMesh needle;             // m, closed and outward-oriented, in the needle frame (tip at max z)
   std::optional<needle::NeedleGeometry> geometry;  // the parametric needle the mesh was built from, if any
@@ -60,19 +74,10 @@ struct IndentationCase {
   std::optional<NeedleArray> array;
   mesh::LayeredBlockOptions block;           // the tissue block (insertion_sites are taken from `needles`)
   std::optional<mesh::TetMesh> tissue_mesh;  // when set, used as is instead of meshing `block`
-  double depth = 200e-6;                     // m, > 0: final depth of the tip below the undeformed surface (along
-                                             // the needle's axis when it is tilted)
-  // rad, [0, π/2): the needle's axis from the skin's normal (surface contact only; above kSteepAngle a note).
-  double angle = 0;
-  // rad: the direction of the tilt in the block's x–y plane, from +x (the way the tip travels sideways); the needle is
-  // turned about its axis with it, a bevel's face normal towards the azimuth.
-  double azimuth = 0;
   // The needle's material, for the bending check of the lateral load (analysis/bending.hpp); unset: no check.
   std::optional<materials::NeedleMaterial> material;
-  int steps = 20;                            // >= 1: equal load steps from 0 to `depth`
   fem::SolverOptions solver;                 // law, element order, contact model, boundary, tolerances
   PunctureOptions puncture;                  // criteria evaluated after each step (none: never punctures)
-  bool stop_at_puncture = true;              // false: continue to `depth` after the puncture point
 };
 
 // rad: angles steeper than this from the normal get a note (the dissertation's §5.2 designs angled insertion up to 45°).
