@@ -5,10 +5,19 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::insertion {
 
 enum class PunctureCriterion { None, CriticalPressure, FractureEnergy };
-std::string to_string(PunctureCriterion criterion);
+inline constexpr EnumTable<PunctureCriterion, 3> kPunctureCriterionNames{{
+    {PunctureCriterion::None, "none", "no puncture criterion"},
+    {PunctureCriterion::CriticalPressure, "critical-pressure",
+     "the contact pressure under the tip reaches P_c (Eq 3.17)"},
+    {PunctureCriterion::FractureEnergy, "fracture-energy",
+     "the released strain energy reaches the fracture energy G_c"},
+}};
+std::string_view to_string(PunctureCriterion criterion);
 
 struct PuncturePoint {
   double depth = 0;   // m, needle tip displacement below the undeformed surface at puncture
