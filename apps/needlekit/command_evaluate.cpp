@@ -47,7 +47,7 @@ void print_table(const io::DesignFile& file, const analysis::PerformanceIndexRes
   fmt::print("\n");
   print_row("tip area A", fmt::format("{:.6g} um^2", r.tip_area * 1e12));
   print_row("puncture force law", fmt::format("{} ({})", analysis::to_string(r.puncture_force_law),
-                                              analysis::puncture_force_law_info(r.puncture_force_law).source));
+                                              analysis::puncture_force_law_source(r.puncture_force_law)));
   print_row("puncture force F(A)", fmt::format("{:.6g} N{}", r.puncture_force,
                                                r.puncture_force_in_range ? "" : "  (outside the law's range: note)"));
   print_row("deformation d (Eq 4.3)", fmt::format("{:.6g} um{}", r.deformation * 1e6,

@@ -48,7 +48,7 @@ void print_table(const analysis::DesignSpace& space, const analysis::OptimizerRe
   }
   const analysis::PunctureForceLawKind law = space.conditions.tissue.force_law.kind;
   fmt::print("models: puncture force law {} ({}){}\n", analysis::to_string(law),
-             analysis::puncture_force_law_info(law).source,
+             analysis::puncture_force_law_source(law),
              result.top.empty() ? ""
                                 : fmt::format("; buckling {} ({}, K = {:g})",
                                               analysis::to_string(result.top.front().details.buckling.end_condition),

@@ -73,9 +73,9 @@ void run_uncertainty(const UncertaintyArguments& arguments) {
 // design_inputs.hpp).
 std::string tables_help() {
   std::string help = "\nDistributions:\n";
-  for (const auto& d : uncertainty::distribution_kinds()) help += fmt::format("  {:<18}{}\n", d.name, d.meaning);
+  for (const auto& d : uncertainty::kDistributionKindNames) help += fmt::format("  {:<18}{}\n", d.name, d.meaning);
   help += "Sampling methods:\n";
-  for (const auto& m : uncertainty::sampling_methods()) help += fmt::format("  {:<18}{}\n", m.name, m.meaning);
+  for (const auto& m : uncertainty::kSamplingMethodNames) help += fmt::format("  {:<18}{}\n", m.name, m.meaning);
   help += "Uncertain inputs (key, unit, meaning):\n";
   for (const auto& i : uncertainty::design_inputs()) {
     help += fmt::format("  {:<34}{:<5}{}\n", i.key, i.unit, i.meaning);

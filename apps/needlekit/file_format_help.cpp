@@ -124,8 +124,10 @@ std::string puncture_force_law_help() {
   std::string help =
       "\nPuncture-force laws (puncture_force = NAME, or a table { law = NAME, ... } for the user laws; D = the tip's "
       "equivalent diameter sqrt(4A/pi)):\n";
-  for (const auto& law : analysis::puncture_force_laws())
-    help += fmt::format("  {:<16}{}\n  {:<16}  source: {}\n", law.name, law.meaning, "", law.source);
+  for (const auto& law : analysis::kPunctureForceLawKindNames) {
+    help += fmt::format("  {:<16}{}\n  {:<16}  source: {}\n", law.name, law.meaning, "",
+                        analysis::puncture_force_law_source(law.value));
+  }
   help += "  linear-area: slope = \"0.00019 N/um2\", intercept = \"-0.66 N\"; linear-diameter: slope = \"4594 N/m\", "
           "intercept = \"-3 mN\";\n  table: tip_diameter = [\"5 um\", \"37 um\"], force = [\"20 mN\", \"167 mN\"]; "
           "any law: valid_tip_diameter = [\"min\", \"max\"]\n  Outside a law's validity range the result carries a note.";

@@ -30,7 +30,7 @@ inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (b
   [sampling]     samples = 4096 (>= 2), method (below, default "sobol"), seed = 1, sobol_indices = true
                  (N*(k+2) runs for k inputs)
   [[correlation]] inputs = ["tissue.alpha", "tissue.tau"], rho = 0.5   (between normal scores, optional))";
-// The puncture-force laws of [tissue] puncture_force, from the law table (analysis::puncture_force_laws()).
+// The puncture-force laws of [tissue] puncture_force, from the law table (analysis::kPunctureForceLawKindNames).
 std::string puncture_force_law_help();
 
 }  // namespace needlekit::cli

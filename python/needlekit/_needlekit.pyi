@@ -5,11 +5,13 @@ from typing import Any, ClassVar, Dict, List, Optional, Tuple
 import numpy
 
 class Approach:
-    """Members:
+    """The direction a patch approaches the surface from.
 
-  MinusZ
+Members:
 
-  SurfaceNormal"""
+  MinusZ : "-z": the patch moves along -Z (§5.2: the input force is vertical)
+
+  SurfaceNormal : "normal": the patch moves against the surface normal at the centre point"""
     MinusZ: ClassVar[Approach]
     SurfaceNormal: ClassVar[Approach]
     def __int__(self) -> int: ...
@@ -50,9 +52,9 @@ class ArrayLayout:
 
 Members:
 
-  Square
+  Square : "square": rows and columns a pitch apart
 
-  Hexagonal"""
+  Hexagonal : "hexagonal": every other row shifted by half a pitch, rows pitch*sqrt(3)/2 apart: each needle a pitch from six neighbours"""
     Square: ClassVar[ArrayLayout]
     Hexagonal: ClassVar[ArrayLayout]
     def __int__(self) -> int: ...
@@ -91,11 +93,11 @@ class ArraySymmetry:
 
 Members:
 
-  None_
+  None_ : "none": the whole array is solved
 
-  Half
+  Half : "half": the half y >= 0, a symmetry plane through the centre line between the rows (square; hexagonal with odd rows)
 
-  Quarter"""
+  Quarter : "quarter": the quarter x >= 0, y >= 0, symmetry planes through both centre lines (square)"""
     None_: ClassVar[ArraySymmetry]
     Half: ClassVar[ArraySymmetry]
     Quarter: ClassVar[ArraySymmetry]
@@ -122,19 +124,21 @@ class BendingCheck:
         """Every field as a dict (SI)."""
 
 class BoundaryCondition:
-    """Members:
+    """How the tissue block is held.
 
-  SidesAndBottomFixed
+Members:
 
-  BottomFixed
+  SidesAndBottomFixed : "sides-and-bottom-fixed": §3.4: the four sides and the bottom fixed
 
-  BottomFixedSidesRoller
+  BottomFixed : "bottom-fixed": the bottom fixed, the sides free
 
-  SymmetryPlanes
+  BottomFixedSidesRoller : "bottom-fixed-sides-roller": the bottom fixed, the sides slide
 
-  QuarterSymmetry
+  SymmetryPlanes : "symmetry-planes": u_x = 0 on x = min, u_y = 0 on y = min, u_z = 0 on the bottom (uniaxial tests)
 
-  HalfSymmetry"""
+  QuarterSymmetry : "quarter-symmetry": symmetry planes through the needle axis at x = min and y = min, the other sides and the bottom fixed
+
+  HalfSymmetry : "half-symmetry": a symmetry plane through the needles at y = min, the other sides and the bottom fixed"""
     SidesAndBottomFixed: ClassVar[BoundaryCondition]
     BottomFixed: ClassVar[BoundaryCondition]
     BottomFixedSidesRoller: ClassVar[BoundaryCondition]
@@ -148,13 +152,15 @@ class BoundaryCondition:
     def value(self) -> int: ...
 
 class BucklingMethod:
-    """Members:
+    """How the critical buckling load was obtained.
 
-  Euler
+Members:
 
-  Johnson
+  Euler : "euler": uniform column, Eq 2.28 (Table 4.1 for cylinders)
 
-  TaperedEigenvalue"""
+  Johnson : "johnson": uniform short column, Eq 2.35 (slenderness below C_c)
+
+  TaperedEigenvalue : "tapered_eigenvalue": cone or bevel: eigenvalue of the varying-section column (Eq 2.36)"""
     Euler: ClassVar[BucklingMethod]
     Johnson: ClassVar[BucklingMethod]
     TaperedEigenvalue: ClassVar[BucklingMethod]
@@ -349,15 +355,17 @@ class CalibrationSolverSettings:
         """Every field as a dict (SI)."""
 
 class CalibrationStatus:
-    """Members:
+    """The outcome of a calibration.
 
-  Converged
+Members:
 
-  NotConverged
+  Converged : "converged": a convergence test of the solver holds
 
-  Failed
+  NotConverged : "not-converged": max_iterations reached; the best point so far is the result
 
-  Stopped"""
+  Failed : "failed": the model failed at the initial point or the solver gave up; the last good point is kept
+
+  Stopped : "stopped": the progress callback asked to stop; the best point so far is the result"""
     Converged: ClassVar[CalibrationStatus]
     NotConverged: ClassVar[CalibrationStatus]
     Failed: ClassVar[CalibrationStatus]
@@ -488,13 +496,15 @@ class CompleteInsertionResult:
         """Every field as a dict (SI)."""
 
 class CompleteInsertionStatus:
-    """Members:
+    """The outcome of a complete insertion.
 
-  Complete
+Members:
 
-  NoPuncture
+  Complete : "complete": the curve reaches the final depth
 
-  SolverFailed"""
+  NoPuncture : "no-puncture": a needle did not puncture within its pre-puncture curve: the curve stops there
+
+  SolverFailed : "solver-failed": the FE indentation did not converge a load step: the curve holds the steps that did"""
     Complete: ClassVar[CompleteInsertionStatus]
     NoPuncture: ClassVar[CompleteInsertionStatus]
     SolverFailed: ClassVar[CompleteInsertionStatus]
@@ -505,11 +515,13 @@ class CompleteInsertionStatus:
     def value(self) -> int: ...
 
 class ContactModel:
-    """Members:
+    """How the needle touches the tissue.
 
-  TipNodes
+Members:
 
-  Surface"""
+  TipNodes : "tip-nodes": the dissertation's rule: nodes under a flat tip follow it in z
+
+  Surface : "surface": penalty contact of the tissue's top surface with the needle's surface mesh"""
     TipNodes: ClassVar[ContactModel]
     Surface: ClassVar[ContactModel]
     def __int__(self) -> int: ...
@@ -594,21 +606,21 @@ class DesignCase:
         """Every field as a dict (SI)."""
 
 class DesignEvent:
-    """The events whose probabilities design_uncertainty estimates (design_events()).
+    """The events whose probabilities design_uncertainty estimates.
 
 Members:
 
-  Puncture : the needle punctures: |F(A)| > 0 and cutting depth L - d > 0
+  Puncture : "puncture": the needle punctures: |F(A)| > 0 and cutting depth L - d > 0
 
-  BucklingFailure : phi = 0: the axial force reaches the critical buckling load
+  BucklingFailure : "buckling_failure": phi = 0: the axial force reaches the critical buckling load
 
-  BendingFailure : omega = 0: the lateral force reaches the critical bending load (undefined where not assessed)
+  BendingFailure : "bending_failure": omega = 0: the lateral force reaches the critical bending load (undefined where not assessed)
 
-  ReachesTarget : L - d >= T: the tip reaches the target depth
+  ReachesTarget : "reaches_target": L - d >= T: the tip reaches the target depth
 
-  Success : punctures, neither buckles nor bends, and reaches the target
+  Success : "success": punctures, neither buckles nor bends, and reaches the target
 
-  InvalidSample : the sampled values make no valid needle (counted as failure)"""
+  InvalidSample : "invalid_sample": the sampled values make no valid needle (counted as failure)"""
     Puncture: ClassVar[DesignEvent]
     BucklingFailure: ClassVar[DesignEvent]
     BendingFailure: ClassVar[DesignEvent]
@@ -782,27 +794,27 @@ class Dimension:
 
 Members:
 
-  Dimensionless
+  Dimensionless : "dimensionless number": a pure number, e.g. a Poisson ratio or a count
 
-  Length
+  Length : "length": SI unit m
 
-  Area
+  Area : "area": SI unit m^2
 
-  Volume
+  Volume : "volume": SI unit m^3
 
-  Force
+  Force : "force": SI unit N
 
-  Pressure
+  Pressure : "pressure (or modulus, stress)": SI unit Pa (also Young's modulus, stress)
 
-  Energy
+  Energy : "energy": SI unit J
 
-  Angle
+  Angle : "angle": SI unit rad
 
-  InverseLength
+  InverseLength : "inverse length": SI unit 1/m (the tissue's exponential constant tau)
 
-  Stiffness
+  Stiffness : "stiffness (force per length)": SI unit N/m (spring constants)
 
-  ForcePerArea"""
+  ForcePerArea : "force per area": SI unit N/m^2 (the slope of a force per unit area)"""
     Dimensionless: ClassVar[Dimension]
     Length: ClassVar[Dimension]
     Area: ClassVar[Dimension]
@@ -821,11 +833,13 @@ Members:
     def value(self) -> int: ...
 
 class DistanceStatus:
-    """Members:
+    """Whether a geodesic distance was found.
 
-  Converged
+Members:
 
-  NotConverged"""
+  Converged : "converged": a straightest geodesic from `from` ends at `to` within the tolerance
+
+  NotConverged : "not converged": no shot reached `to`; the best shot is kept"""
     Converged: ClassVar[DistanceStatus]
     NotConverged: ClassVar[DistanceStatus]
     def __int__(self) -> int: ...
@@ -882,19 +896,19 @@ class Distribution:
         """Every field as a dict (SI)."""
 
 class DistributionKind:
-    """The distributions of an uncertain input (distribution_kinds()).
+    """The distributions of an uncertain input.
 
 Members:
 
-  Normal : mean, sd >= 0
+  Normal : "normal": mean, sd >= 0
 
-  TruncatedNormal : mean, sd > 0, min < max: the normal restricted to [min, max]
+  TruncatedNormal : "truncated-normal": mean, sd > 0, min < max: the normal restricted to [min, max]
 
-  Lognormal : median > 0, sigma_log >= 0 (the sd of ln x)
+  Lognormal : "lognormal": median > 0, sigma_log >= 0 (the sd of ln x)
 
-  Uniform : min < max
+  Uniform : "uniform": min < max
 
-  Triangular : min < max, mode in [min, max] (default the midpoint)"""
+  Triangular : "triangular": min < max, mode in [min, max] (default the midpoint)"""
     Normal: ClassVar[DistributionKind]
     TruncatedNormal: ClassVar[DistributionKind]
     Lognormal: ClassVar[DistributionKind]
@@ -907,11 +921,13 @@ Members:
     def value(self) -> int: ...
 
 class EffectiveLengthValue:
-    """Members:
+    """The effective-length factors K of the end conditions: theoretical or practical (Mott 2008).
 
-  Theoretical
+Members:
 
-  Practical"""
+  Theoretical : "theoretical": K = 2.0, 0.7, 0.5 (fixed-free, fixed-pinned, fixed-fixed)
+
+  Practical : "practical": K = 2.1, 0.8, 0.65 (Mott 2008's recommended values)"""
     Theoretical: ClassVar[EffectiveLengthValue]
     Practical: ClassVar[EffectiveLengthValue]
     def __int__(self) -> int: ...
@@ -921,11 +937,13 @@ class EffectiveLengthValue:
     def value(self) -> int: ...
 
 class ElementOrder:
-    """Members:
+    """Linear (4-node) or quadratic (10-node) tetrahedra.
 
-  Linear
+Members:
 
-  Quadratic"""
+  Linear : "linear": 4-node tetrahedra (the dissertation's; lock as nu -> 0.5)
+
+  Quadratic : "quadratic": 10-node tetrahedra: free of volumetric locking"""
     Linear: ClassVar[ElementOrder]
     Quadratic: ClassVar[ElementOrder]
     def __int__(self) -> int: ...
@@ -935,13 +953,15 @@ class ElementOrder:
     def value(self) -> int: ...
 
 class EndCondition:
-    """Members:
+    """How the needle's column is held at its ends (§2.5).
 
-  FixedFree
+Members:
 
-  FixedPinned
+  FixedFree : "fixed-free": base clamped, tip free (the dissertation's, K = 2)
 
-  FixedFixed"""
+  FixedPinned : "fixed-pinned": base clamped, tip pinned (K = 0.7)
+
+  FixedFixed : "fixed-fixed": both ends clamped (K = 0.5)"""
     FixedFree: ClassVar[EndCondition]
     FixedPinned: ClassVar[EndCondition]
     FixedFixed: ClassVar[EndCondition]
@@ -988,15 +1008,15 @@ class ExitCode:
 
 Members:
 
-  Success
+  Success : "success": 0: the command did what it was asked
 
-  InternalError
+  InternalError : "internal-error": 1: a defect in needlekit (an unexpected exception)
 
-  InvalidInput
+  InvalidInput : "invalid-input": 2: bad input (file, key, value, command line); nothing was written
 
-  NumericalFailure
+  NumericalFailure : "numerical-failure": 3: a numerical failure; the result says why
 
-  Interrupted"""
+  Interrupted : "interrupted": 130: SIGINT / SIGTERM; stopped cleanly, no half-written file left"""
     Success: ClassVar[ExitCode]
     InternalError: ClassVar[ExitCode]
     InvalidInput: ClassVar[ExitCode]
@@ -1038,11 +1058,11 @@ class ExperimentKind:
 
 Members:
 
-  Design
+  Design : "design": a design file: the analytic model (§4.2)
 
-  Indentation
+  Indentation : "indent": an indent case: the FE curve and the puncture point
 
-  Insertion"""
+  Insertion : "insert": an insert case: the complete curve and the puncture point"""
     Design: ClassVar[ExperimentKind]
     Indentation: ClassVar[ExperimentKind]
     Insertion: ClassVar[ExperimentKind]
@@ -1199,13 +1219,15 @@ class FeSurrogateRun:
         """Every field as a dict (SI)."""
 
 class FeSurrogateStatus:
-    """Members:
+    """The outcome of fe_surrogate.
 
-  Ok
+Members:
 
-  CensoredRuns
+  Ok : "ok": every FE run punctured within the loading depth
 
-  Failed"""
+  CensoredRuns : "censored_runs": some FE runs did not puncture within the loading depth: left out of the fit
+
+  Failed : "failed": too few punctured runs to fit; nothing was sampled"""
     Ok: ClassVar[FeSurrogateStatus]
     CensoredRuns: ClassVar[FeSurrogateStatus]
     Failed: ClassVar[FeSurrogateStatus]
@@ -1248,11 +1270,13 @@ class FeUncertaintyFile:
         """Every field as a dict (SI)."""
 
 class FirstNode:
-    """Members:
+    """The node a flexible fit starts from (Alg 5.1).
 
-  FirstContact
+Members:
 
-  Corner"""
+  FirstContact : "first-contact": the node that touches first when the flat patch is lowered
+
+  Corner : "corner": N(0,0), the corner of minimum U and V (Alg 5.1 as printed)"""
     FirstContact: ClassVar[FirstNode]
     Corner: ClassVar[FirstNode]
     def __int__(self) -> int: ...
@@ -1342,19 +1366,21 @@ class FitOptions:
         """Every field as a dict (SI)."""
 
 class FitStatus:
-    """Members:
+    """The outcome of a patch fit.
 
-  Ok
+Members:
 
-  BoundaryReached
+  Ok : "ok": the patch was fitted
 
-  DegenerateSurface
+  BoundaryReached : "boundary_reached": a traverse or a needle ran off the surface's boundary
 
-  EnergyCapExceeded
+  DegenerateSurface : "degenerate_surface": a traverse met a degenerate triangle and stopped there
 
-  NotConverged
+  EnergyCapExceeded : "energy_cap_exceeded": some springs could not be kept under E_cri
 
-  MissesSurface"""
+  NotConverged : "not_converged": the equilibrium solver stopped at its iteration limit
+
+  MissesSurface : "misses_surface": the patch does not reach the surface at all"""
     Ok: ClassVar[FitStatus]
     BoundaryReached: ClassVar[FitStatus]
     DegenerateSurface: ClassVar[FitStatus]
@@ -1747,13 +1773,15 @@ class IndentationResult:
         """s"""
 
 class IndentationStatus:
-    """Members:
+    """The outcome of an indentation run.
 
-  Punctured
+Members:
 
-  ReachedDepth
+  Punctured : "punctured": a puncture criterion fired
 
-  SolverFailed"""
+  ReachedDepth : "reached-depth": the final depth was reached without puncture
+
+  SolverFailed : "solver-failed": a load step did not converge after all cut-backs; completed steps are kept"""
     Punctured: ClassVar[IndentationStatus]
     ReachedDepth: ClassVar[IndentationStatus]
     SolverFailed: ClassVar[IndentationStatus]
@@ -1905,11 +1933,13 @@ class InsertionCurveOptions:
         """Every field as a dict (SI)."""
 
 class InsertionPhase:
-    """Members:
+    """The phase of a point of an insertion curve.
 
-  Indentation
+Members:
 
-  Cutting"""
+  Indentation : "indentation": before puncture: the tissue is indented
+
+  Cutting : "cutting": after puncture: the needle cuts into the tissue"""
     Indentation: ClassVar[InsertionPhase]
     Cutting: ClassVar[InsertionPhase]
     def __int__(self) -> int: ...
@@ -1919,11 +1949,13 @@ class InsertionPhase:
     def value(self) -> int: ...
 
 class InsertionStatus:
-    """Members:
+    """The outcome of insertion_curve.
 
-  Complete
+Members:
 
-  NoPuncture"""
+  Complete : "complete": the curve reaches final_depth
+
+  NoPuncture : "no-puncture": some needle has not punctured by the end of its pre-puncture curve: the curve stops there"""
     Complete: ClassVar[InsertionStatus]
     NoPuncture: ClassVar[InsertionStatus]
     def __int__(self) -> int: ...
@@ -2084,15 +2116,17 @@ class LayeredBlockResult:
         """Every field as a dict (SI)."""
 
 class LinearSolver:
-    """Members:
+    """The linear solve of each Newton iteration.
 
-  Automatic
+Members:
 
-  Cholesky
+  Automatic : "auto": two-grid for quadratic elements, a split mesh or a large meshed block, else cholesky-cg
 
-  CholeskyCg
+  Cholesky : "cholesky": a fresh CHOLMOD factorization per Newton iteration
 
-  TwoGrid"""
+  CholeskyCg : "cholesky-cg": CG preconditioned by the last CHOLMOD factorization
+
+  TwoGrid : "two-grid": CG with a two-grid preconditioner: memory and time linear in the mesh"""
     Automatic: ClassVar[LinearSolver]
     Cholesky: ClassVar[LinearSolver]
     CholeskyCg: ClassVar[LinearSolver]
@@ -2104,11 +2138,13 @@ class LinearSolver:
     def value(self) -> int: ...
 
 class MaterialLaw:
-    """Members:
+    """The hyperelastic law of a tissue layer.
 
-  StVenantKirchhoff
+Members:
 
-  NeoHookean"""
+  StVenantKirchhoff : "svk": St Venant-Kirchhoff, the dissertation's S = D E (Eqs 3.3-3.5)
+
+  NeoHookean : "neo-hookean": compressible neo-Hookean: robust under large compression"""
     StVenantKirchhoff: ClassVar[MaterialLaw]
     NeoHookean: ClassVar[MaterialLaw]
     def __int__(self) -> int: ...
@@ -2474,13 +2510,15 @@ class OptimizerResult:
         """best first"""
 
 class OptimizerStatus:
-    """Members:
+    """The outcome of an optimization.
 
-  Optimal
+Members:
 
-  Infeasible
+  Optimal : "optimal": the best feasible design was found
 
-  Cancelled"""
+  Infeasible : "infeasible": no design of the space is feasible
+
+  Cancelled : "cancelled": the search was stopped before it finished"""
     Optimal: ClassVar[OptimizerStatus]
     Infeasible: ClassVar[OptimizerStatus]
     Cancelled: ClassVar[OptimizerStatus]
@@ -2762,13 +2800,15 @@ class PatchFrame:
         ...
 
 class PatchKind:
-    """Members:
+    """How a patch is fitted to a surface (ch. 5).
 
-  Rigid
+Members:
 
-  Flexible
+  Rigid : "rigid": a flat patch lowered until its first needle touches (§6.4.1)
 
-  Equilibrium"""
+  Flexible : "flexible": node sweeping: each node follows the surface up to the spring-energy cap E_cri (Alg 5.1-5.3)
+
+  Equilibrium : "equilibrium": the static equilibrium of the springs under a load per node (beyond the dissertation)"""
     Rigid: ClassVar[PatchKind]
     Flexible: ClassVar[PatchKind]
     Equilibrium: ClassVar[PatchKind]
@@ -2869,15 +2909,17 @@ class PatchUncertaintyResult:
         """Every field as a dict (SI)."""
 
 class PathStatus:
-    """Members:
+    """How a surface path ended.
 
-  Completed
+Members:
 
-  HitBoundary
+  Completed : "completed": the full length was travelled
 
-  DegenerateTriangle
+  HitBoundary : "hit boundary": the path reached the surface boundary first
 
-  StepLimit"""
+  DegenerateTriangle : "degenerate triangle": the next triangle has (nearly) no area
+
+  StepLimit : "step limit": more triangles than max_steps, or no progress at a vertex"""
     Completed: ClassVar[PathStatus]
     HitBoundary: ClassVar[PathStatus]
     DegenerateTriangle: ClassVar[PathStatus]
@@ -3008,17 +3050,19 @@ class PerformanceIndexResult:
         """Every field as a dict (SI)."""
 
 class PerformanceStatus:
-    """Members:
+    """The outcome of one evaluation of the performance index.
 
-  Ok
+Members:
 
-  ConstraintViolated
+  Ok : "ok": PI > 0
 
-  TooShort
+  ConstraintViolated : "constraint_violated": a design constraint of §4.8 does not hold
 
-  Buckles
+  TooShort : "too_short": L < d + T: the needle does not reach the target depth (Eq 4.23)
 
-  Bends"""
+  Buckles : "buckles": phi = 0 (Eq 4.5)
+
+  Bends : "bends": omega = 0 (§5.2)"""
     Ok: ClassVar[PerformanceStatus]
     ConstraintViolated: ClassVar[PerformanceStatus]
     TooShort: ClassVar[PerformanceStatus]
@@ -3177,15 +3221,17 @@ class PropagationOptions:
         """Every field as a dict (SI)."""
 
 class PunctureCriterion:
-    """Members:
+    """The criterion that decides puncture in an FE run (§3.5).
 
-  None_
+Members:
 
-  CriticalPressure
+  None_ : "none": no puncture criterion
 
-  FractureEnergy
+  CriticalPressure : "critical-pressure": the contact pressure under the tip reaches P_c (Eq 3.17)
 
-  AveragedPressure"""
+  FractureEnergy : "fracture-energy": the released strain energy reaches the fracture energy G_c
+
+  AveragedPressure : "averaged-pressure": the contact pressure averaged over a disc of the material length reaches p_c (Taylor 2007)"""
     None_: ClassVar[PunctureCriterion]
     CriticalPressure: ClassVar[PunctureCriterion]
     FractureEnergy: ClassVar[PunctureCriterion]
@@ -3264,19 +3310,19 @@ class PunctureForceLaw:
     def valid_min_tip_diameter(self, value: Any) -> None: ...
 
 class PunctureForceLawKind:
-    """The puncture-force laws (puncture_force_laws()).
+    """The puncture-force laws ([tissue] puncture_force).
 
 Members:
 
-  Eq4_2
+  Eq4_2 : "eq-4.2": F = 0.00019 N/um2 * A - 0.66 N (linear in the tip area)
 
-  Romgens2014
+  Romgens2014 : "romgens-2014": F linear in the tip diameter: 20 mN at 5 um to 167 mN at 37 um
 
-  LinearArea
+  LinearArea : "linear-area": F = slope * A + intercept (user coefficients)
 
-  LinearDiameter
+  LinearDiameter : "linear-diameter": F = slope * D + intercept (user coefficients)
 
-  Table"""
+  Table : "table": F(D) interpolated linearly in a table of tip diameters and forces"""
     Eq4_2: ClassVar[PunctureForceLawKind]
     Romgens2014: ClassVar[PunctureForceLawKind]
     LinearArea: ClassVar[PunctureForceLawKind]
@@ -3289,11 +3335,13 @@ Members:
     def value(self) -> int: ...
 
 class PunctureLaw:
-    """Members:
+    """The puncture law of an FE run: the dissertation's criteria or the averaged contact pressure.
 
-  Dissertation
+Members:
 
-  AveragedPressure"""
+  Dissertation : "dissertation": §3.5: mean pressure F/A over the contact area >= critical_pressure, and/or strain energy >= toughness x area
+
+  AveragedPressure : "averaged-pressure": contact pressure averaged over a disc of radius material_length, at its highest, >= critical_pressure (surface contact)"""
     Dissertation: ClassVar[PunctureLaw]
     AveragedPressure: ClassVar[PunctureLaw]
     def __int__(self) -> int: ...
@@ -3502,11 +3550,13 @@ class RobustSpec:
         """Every field as a dict (SI)."""
 
 class RobustStatus:
-    """Members:
+    """The outcome of robust_design.
 
-  Found
+Members:
 
-  NotFound"""
+  Found : "found": a design meets the level
+
+  NotFound : "not_found": none of the checked candidates (or no feasible design) meets it"""
     Found: ClassVar[RobustStatus]
     NotFound: ClassVar[RobustStatus]
     def __int__(self) -> int: ...
@@ -3516,13 +3566,13 @@ class RobustStatus:
     def value(self) -> int: ...
 
 class SamplingMethod:
-    """How the samples are drawn (sampling_methods()).
+    """How the samples are drawn.
 
 Members:
 
-  MonteCarlo : pseudo-random points; error ~ 1/sqrt(N)
+  MonteCarlo : "monte-carlo": pseudo-random points; error ~ 1/sqrt(N)
 
-  Sobol : Owen-scrambled Sobol' points (randomised quasi-Monte Carlo); error down to ~1/N for smooth outputs, use N = 2^m"""
+  Sobol : "sobol": Owen-scrambled Sobol' points (randomised quasi-Monte Carlo); error down to ~1/N for smooth outputs, use N = 2^m"""
     MonteCarlo: ClassVar[SamplingMethod]
     Sobol: ClassVar[SamplingMethod]
     def __int__(self) -> int: ...
@@ -3532,11 +3582,13 @@ Members:
     def value(self) -> int: ...
 
 class SearchMethod:
-    """Members:
+    """How the optimizer searches the design space.
 
-  BruteForce
+Members:
 
-  Certified"""
+  BruteForce : "brute-force": every point of the design grid
+
+  Certified : "certified": branch and bound with certified bounds"""
     BruteForce: ClassVar[SearchMethod]
     Certified: ClassVar[SearchMethod]
     def __int__(self) -> int: ...
@@ -3572,11 +3624,11 @@ class Shape:
 
 Members:
 
-  Cylinder
+  Cylinder : "cylinder": constant diameter (D1 = D2), flat tip
 
-  Cone
+  Cone : "cone": frustum from the base diameter D2 to the tip diameter D1 < D2
 
-  Bevel"""
+  Bevel : "bevel": cylinder of diameter D2 cut by a plane through the base edge; D1 is the tip face's sagitta"""
     Cylinder: ClassVar[Shape]
     Cone: ClassVar[Shape]
     Bevel: ClassVar[Shape]
@@ -3613,11 +3665,13 @@ class SobolIndex:
         """NaN when undefined"""
 
 class SolverBackend:
-    """Members:
+    """Where the linear solves run.
 
-  Builtin
+Members:
 
-  Petsc"""
+  Builtin : "builtin": this library's linear solves (linear_solver), one process
+
+  Petsc : "petsc": PETSc's CG + GAMG across MPI ranks (mpirun -np N); -ksp_*/-pc_* options apply"""
     Builtin: ClassVar[SolverBackend]
     Petsc: ClassVar[SolverBackend]
     def __int__(self) -> int: ...
@@ -3984,23 +4038,25 @@ class SweepOptions:
         """Every field as a dict (SI)."""
 
 class SweepParameter:
-    """Members:
+    """The design parameter a sensitivity sweep varies.
 
-  TipDiameter
+Members:
 
-  BaseDiameter
+  TipDiameter : "tip_diameter": D1 (length)
 
-  BoreDiameter
+  BaseDiameter : "base_diameter": D2 (length)
 
-  Length
+  BoreDiameter : "bore_diameter": D3 (length)
 
-  Width
+  Length : "length": L (length)
 
-  NeedlesPerRow
+  Width : "width": w, the array's width (length)
 
-  Angle
+  NeedlesPerRow : "needles_per_row": n (a count)
 
-  TargetDepth"""
+  Angle : "angle": insertion angle (angle)
+
+  TargetDepth : "target_depth": T (length)"""
     TipDiameter: ClassVar[SweepParameter]
     BaseDiameter: ClassVar[SweepParameter]
     BoreDiameter: ClassVar[SweepParameter]
@@ -4234,11 +4290,13 @@ class UncertaintyFile:
         """Every field as a dict (SI)."""
 
 class UncertaintyStatus:
-    """Members:
+    """The outcome of design_uncertainty.
 
-  Ok
+Members:
 
-  InvalidSamples"""
+  Ok : "ok": every sample was a valid design
+
+  InvalidSamples : "invalid_samples": some samples made an invalid design; they count as failures"""
     Ok: ClassVar[UncertaintyStatus]
     InvalidSamples: ClassVar[UncertaintyStatus]
     def __int__(self) -> int: ...
@@ -4261,13 +4319,15 @@ class VertexCrossing:
         ...
 
 class VolumetricFormulation:
-    """Members:
+    """How the volumetric part of the neo-Hookean law is integrated.
 
-  Automatic
+Members:
 
-  Element
+  Automatic : "auto": nodal-average for linear neo-Hookean layers with nu >= 0.45, else element
 
-  NodalAverage"""
+  Element : "element": per element, as every other term (linear tetrahedra lock as nu -> 0.5)
+
+  NodalAverage : "nodal-average": the volume ratio averaged at the nodes (Bonet & Burton 1998): locking-free linear tetrahedra"""
     Automatic: ClassVar[VolumetricFormulation]
     Element: ClassVar[VolumetricFormulation]
     NodalAverage: ClassVar[VolumetricFormulation]
@@ -4278,11 +4338,13 @@ class VolumetricFormulation:
     def value(self) -> int: ...
 
 class WalkMethod:
-    """Members:
+    """How a flexible fit walks the surface between nodes.
 
-  CuttingPlane
+Members:
 
-  Unfolding"""
+  CuttingPlane : "cutting-plane": Alg 5.3: the surface cut by the plane through the direction and the normal
+
+  Unfolding : "unfolding": straightest geodesic by edge unfolding (exact on developable surfaces)"""
     CuttingPlane: ClassVar[WalkMethod]
     Unfolding: ClassVar[WalkMethod]
     def __int__(self) -> int: ...

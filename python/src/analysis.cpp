@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/analysis/bending.hpp"
 #include "needlekit/analysis/buckling.hpp"
 #include "needlekit/analysis/design_optimizer.hpp"
@@ -50,12 +51,7 @@ void def_range(Class& cls, const char* name, GridRange DesignSpace::*member, Dim
 }
 
 void bind_puncture_and_buckling(py::module_& m) {
-  py::enum_<PunctureForceLawKind>(m, "PunctureForceLawKind", "The puncture-force laws (puncture_force_laws()).")
-      .value("Eq4_2", PunctureForceLawKind::Eq4_2)
-      .value("Romgens2014", PunctureForceLawKind::Romgens2014)
-      .value("LinearArea", PunctureForceLawKind::LinearArea)
-      .value("LinearDiameter", PunctureForceLawKind::LinearDiameter)
-      .value("Table", PunctureForceLawKind::Table);
+  bind_enum<kPunctureForceLawKindNames>(m, "PunctureForceLawKind", "The puncture-force laws ([tissue] puncture_force).");
   py::class_<PunctureForceLaw> law(m, "PunctureForceLaw",
                                    "The puncture force F(A) of the analytic engine ([tissue] puncture_force).");
   def_keyword_init<PunctureForceLaw>(law);
@@ -88,17 +84,9 @@ void bind_puncture_and_buckling(py::module_& m) {
   m.def("skin_deformation", &skin_deformation, py::arg("tip_area"), py::arg("model"), "d of Eq 4.3.");
   m.def("small_tip_area_limit", &small_tip_area_limit, py::arg("model"), "m^2");
 
-  py::enum_<EndCondition>(m, "EndCondition")
-      .value("FixedFree", EndCondition::FixedFree)
-      .value("FixedPinned", EndCondition::FixedPinned)
-      .value("FixedFixed", EndCondition::FixedFixed);
-  py::enum_<EffectiveLengthValue>(m, "EffectiveLengthValue")
-      .value("Theoretical", EffectiveLengthValue::Theoretical)
-      .value("Practical", EffectiveLengthValue::Practical);
-  py::enum_<BucklingMethod>(m, "BucklingMethod")
-      .value("Euler", BucklingMethod::Euler)
-      .value("Johnson", BucklingMethod::Johnson)
-      .value("TaperedEigenvalue", BucklingMethod::TaperedEigenvalue);
+  bind_enum<kEndConditionNames>(m, "EndCondition", "How the needle's column is held at its ends (§2.5).");
+  bind_enum<kEffectiveLengthNames>(m, "EffectiveLengthValue", "The effective-length factors K of the end conditions: theoretical or practical (Mott 2008).");
+  bind_enum<kBucklingMethodNames>(m, "BucklingMethod", "How the critical buckling load was obtained.");
   py::class_<BucklingOptions> buckling(m, "BucklingOptions", "End condition and column formulas (§2.5).");
   def_keyword_init<BucklingOptions>(buckling);
   buckling.def_readwrite("end_condition", &BucklingOptions::end_condition)
@@ -155,12 +143,7 @@ void bind_performance_index(py::module_& m) {
   def_optional_quantity(options, "index_pitch", &PerformanceIndexOptions::index_pitch, Dimension::Length,
                         "m, pitch used in the index (None: w/n)");
 
-  py::enum_<PerformanceStatus>(m, "PerformanceStatus")
-      .value("Ok", PerformanceStatus::Ok)
-      .value("ConstraintViolated", PerformanceStatus::ConstraintViolated)
-      .value("TooShort", PerformanceStatus::TooShort)
-      .value("Buckles", PerformanceStatus::Buckles)
-      .value("Bends", PerformanceStatus::Bends);
+  bind_enum<kPerformanceStatusNames>(m, "PerformanceStatus", "The outcome of one evaluation of the performance index.");
   m.def(
       "performance_status_name", [](PerformanceStatus s) { return std::string(to_string(s)); }, py::arg("status"),
       "\"ok\", \"constraint_violated\", \"too_short\", \"buckles\", \"bends\"");
@@ -247,9 +230,7 @@ void bind_optimizer(py::module_& m) {
         "The dissertation's Fig 6.20 grid for one needle type (silicon, skin, T = 50 um, beta = 3).");
   m.def("design_space_size", &design_space_size, py::arg("space"));
 
-  py::enum_<SearchMethod>(m, "SearchMethod")
-      .value("BruteForce", SearchMethod::BruteForce)
-      .value("Certified", SearchMethod::Certified);
+  bind_enum<kSearchMethodNames>(m, "SearchMethod", "How the optimizer searches the design space.");
   py::class_<OptimizerOptions> options(m, "OptimizerOptions");
   def_keyword_init<OptimizerOptions>(options);
   options.def_readwrite("method", &OptimizerOptions::method)
@@ -268,10 +249,7 @@ void bind_optimizer(py::module_& m) {
       .def_readonly("length", &DesignCandidate::length, "m")
       .def_readonly("performance_index", &DesignCandidate::performance_index, "1/m")
       .def_readonly("details", &DesignCandidate::details);
-  py::enum_<OptimizerStatus>(m, "OptimizerStatus")
-      .value("Optimal", OptimizerStatus::Optimal)
-      .value("Infeasible", OptimizerStatus::Infeasible)
-      .value("Cancelled", OptimizerStatus::Cancelled);
+  bind_enum<kOptimizerStatusNames>(m, "OptimizerStatus", "The outcome of an optimization.");
   py::class_<OptimizerResult>(m, "OptimizerResult")
       .def_readonly("status", &OptimizerResult::status)
       .def_readonly("reason", &OptimizerResult::reason)
@@ -304,15 +282,7 @@ void bind_optimizer(py::module_& m) {
 }
 
 void bind_sweep(py::module_& m) {
-  py::enum_<SweepParameter>(m, "SweepParameter")
-      .value("TipDiameter", SweepParameter::TipDiameter)
-      .value("BaseDiameter", SweepParameter::BaseDiameter)
-      .value("BoreDiameter", SweepParameter::BoreDiameter)
-      .value("Length", SweepParameter::Length)
-      .value("Width", SweepParameter::Width)
-      .value("NeedlesPerRow", SweepParameter::NeedlesPerRow)
-      .value("Angle", SweepParameter::Angle)
-      .value("TargetDepth", SweepParameter::TargetDepth);
+  bind_enum<kSweepParameterNames>(m, "SweepParameter", "The design parameter a sensitivity sweep varies.");
   m.def("sweep_parameter_from_string", &sweep_parameter_from_string, py::arg("text"), py::arg("what") = "parameter");
   m.def("sweep_parameter_dimension", &sweep_parameter_dimension, py::arg("parameter"));
   py::class_<SweepOptions> options(m, "SweepOptions",

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
@@ -15,10 +16,7 @@ namespace {
 using namespace calibration;
 
 void bind_problem(py::module_& m) {
-  py::enum_<ExperimentKind>(m, "ExperimentKind", "What an experiment's case file is.")
-      .value("Design", ExperimentKind::Design)
-      .value("Indentation", ExperimentKind::Indentation)
-      .value("Insertion", ExperimentKind::Insertion);
+  bind_enum<kExperimentKindNames>(m, "ExperimentKind", "What an experiment's case file is.");
   py::class_<ParameterSpec>(m, "ParameterSpec", "A fitted parameter: a TOML path of the case files, SI values.")
       .def_readonly("path", &ParameterSpec::path, "e.g. 'tissue.layers.0.youngs_modulus'")
       .def_readonly("dimension", &ParameterSpec::dimension)
@@ -56,11 +54,7 @@ void bind_problem(py::module_& m) {
 }
 
 void bind_result(py::module_& m) {
-  py::enum_<CalibrationStatus>(m, "CalibrationStatus")
-      .value("Converged", CalibrationStatus::Converged)
-      .value("NotConverged", CalibrationStatus::NotConverged)
-      .value("Failed", CalibrationStatus::Failed)
-      .value("Stopped", CalibrationStatus::Stopped);
+  bind_enum<kCalibrationStatusNames>(m, "CalibrationStatus", "The outcome of a calibration.");
   py::class_<CalibrationProgress>(m, "CalibrationProgress", "Passed to calibrate's progress callback per iteration.")
       .def_readonly("iteration", &CalibrationProgress::iteration, "0: the initial point")
       .def_readonly("rms_relative", &CalibrationProgress::rms_relative)

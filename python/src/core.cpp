@@ -1,22 +1,12 @@
 // needlekit/core: units (parse and format quantities) and the exit codes.
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/core/exit_codes.hpp"
 
 namespace needlekit::python {
 
 void bind_core(py::module_& m) {
-  py::enum_<Dimension>(m, "Dimension", "The physical dimension of a quantity (its SI unit: si_symbol()).")
-      .value("Dimensionless", Dimension::Dimensionless)
-      .value("Length", Dimension::Length)
-      .value("Area", Dimension::Area)
-      .value("Volume", Dimension::Volume)
-      .value("Force", Dimension::Force)
-      .value("Pressure", Dimension::Pressure)
-      .value("Energy", Dimension::Energy)
-      .value("Angle", Dimension::Angle)
-      .value("InverseLength", Dimension::InverseLength)
-      .value("Stiffness", Dimension::Stiffness)
-      .value("ForcePerArea", Dimension::ForcePerArea);
+  bind_enum<units::kDimensionNames>(m, "Dimension", "The physical dimension of a quantity (its SI unit: si_symbol()).");
   m.def(
       "si_symbol", [](Dimension d) { return std::string(units::si_symbol(d)); }, py::arg("dimension"),
       "The SI unit symbol of a dimension (\"m\", \"Pa\", ...).");
@@ -29,12 +19,7 @@ void bind_core(py::module_& m) {
         "The factor that converts a value in `unit` to SI.");
   m.def("format", &units::format, py::arg("value_si"), py::arg("unit"), py::arg("significant_digits") = 6,
         "An SI value in the given unit, e.g. format(2.3e-4, \"um\") == \"230 um\".");
-  py::enum_<ExitCode>(m, "ExitCode", "The needlekit tool's exit codes.")
-      .value("Success", ExitCode::Success)
-      .value("InternalError", ExitCode::InternalError)
-      .value("InvalidInput", ExitCode::InvalidInput)
-      .value("NumericalFailure", ExitCode::NumericalFailure)
-      .value("Interrupted", ExitCode::Interrupted);
+  bind_enum<kExitCodeNames, 256>(m, "ExitCode", "The needlekit tool's exit codes.");
 }
 
 }  // namespace needlekit::python

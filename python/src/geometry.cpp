@@ -1,6 +1,7 @@
 // needlekit/geometry: triangle meshes (numpy vertices and triangles), body surfaces with closest-point and ray
 // queries, straightest geodesics and geodesic distances.
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/geometry/geodesic_distance.hpp"
 #include "needlekit/geometry/geodesic_trace.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
@@ -101,11 +102,7 @@ void bind_geometry(py::module_& m) {
   m.def("vertex_location", &vertex_location, py::arg("surface"), py::arg("vertex"));
   m.def("position", &position, py::arg("surface"), py::arg("location"), "m");
 
-  py::enum_<PathStatus>(m, "PathStatus")
-      .value("Completed", PathStatus::Completed)
-      .value("HitBoundary", PathStatus::HitBoundary)
-      .value("DegenerateTriangle", PathStatus::DegenerateTriangle)
-      .value("StepLimit", PathStatus::StepLimit);
+  bind_enum<geometry::kPathStatusNames>(m, "PathStatus", "How a surface path ended.");
   py::class_<TraceOptions> trace(m, "TraceOptions");
   def_keyword_init<TraceOptions>(trace);
   trace.def_readwrite("max_steps", &TraceOptions::max_steps)
@@ -146,9 +143,7 @@ void bind_geometry(py::module_& m) {
       .def_readwrite("graph_fallback", &GeodesicDistanceOptions::graph_fallback)
       .def_readwrite("saddle_detour", &GeodesicDistanceOptions::saddle_detour)
       .def_readwrite("trace", &GeodesicDistanceOptions::trace);
-  py::enum_<DistanceStatus>(m, "DistanceStatus")
-      .value("Converged", DistanceStatus::Converged)
-      .value("NotConverged", DistanceStatus::NotConverged);
+  bind_enum<geometry::kDistanceStatusNames>(m, "DistanceStatus", "Whether a geodesic distance was found.");
   py::class_<GeodesicDistance>(m, "GeodesicDistance")
       .def_readonly("status", &GeodesicDistance::status)
       .def_readonly("reason", &GeodesicDistance::reason)

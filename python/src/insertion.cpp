@@ -1,6 +1,7 @@
 // needlekit/insertion: indentation cases and runs (progress callbacks, GIL released, Ctrl-C stops the run, optional
 // ParaView output), puncture points, post-puncture loads and the complete insertion curve.
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "parameters.hpp"
@@ -29,14 +30,10 @@ py::array_t<double> step_column(const IndentationResult& r, Member member) {
 }
 
 void bind_indentation(py::module_& m) {
-  py::enum_<PunctureCriterion>(m, "PunctureCriterion")
-      .value("None_", PunctureCriterion::None)
-      .value("CriticalPressure", PunctureCriterion::CriticalPressure)
-      .value("FractureEnergy", PunctureCriterion::FractureEnergy)
-      .value("AveragedPressure", PunctureCriterion::AveragedPressure);
-  py::enum_<PunctureLaw>(m, "PunctureLaw")
-      .value("Dissertation", PunctureLaw::Dissertation)
-      .value("AveragedPressure", PunctureLaw::AveragedPressure);
+  bind_enum<kPunctureCriterionNames>(m, "PunctureCriterion", "The criterion that decides puncture in an FE run (§3.5).");
+  bind_enum<kPunctureLawNames>(m, "PunctureLaw",
+                               "The puncture law of an FE run: the dissertation's criteria or the averaged contact "
+                               "pressure.");
   py::class_<PuncturePoint> point(m, "PuncturePoint");
   def_keyword_init<PuncturePoint>(point);
   def_quantity(point, "depth", &PuncturePoint::depth, Dimension::Length, "m");
@@ -69,34 +66,13 @@ void bind_indentation(py::module_& m) {
   def_parameters<PunctureOptions>(puncture, kPunctureParameters);  // criterion, material_length; keyword init
 
   using fem::SolverOptions;
-  py::enum_<fem::MaterialLaw>(m, "MaterialLaw")
-      .value("StVenantKirchhoff", fem::MaterialLaw::StVenantKirchhoff)
-      .value("NeoHookean", fem::MaterialLaw::NeoHookean);
-  py::enum_<fem::ElementOrder>(m, "ElementOrder")
-      .value("Linear", fem::ElementOrder::Linear)
-      .value("Quadratic", fem::ElementOrder::Quadratic);
-  py::enum_<fem::ContactModel>(m, "ContactModel")
-      .value("TipNodes", fem::ContactModel::TipNodes)
-      .value("Surface", fem::ContactModel::Surface);
-  py::enum_<fem::LinearSolver>(m, "LinearSolver")
-      .value("Automatic", fem::LinearSolver::Automatic)
-      .value("Cholesky", fem::LinearSolver::Cholesky)
-      .value("CholeskyCg", fem::LinearSolver::CholeskyCg)
-      .value("TwoGrid", fem::LinearSolver::TwoGrid);
-  py::enum_<fem::BoundaryCondition>(m, "BoundaryCondition")
-      .value("SidesAndBottomFixed", fem::BoundaryCondition::SidesAndBottomFixed)
-      .value("BottomFixed", fem::BoundaryCondition::BottomFixed)
-      .value("BottomFixedSidesRoller", fem::BoundaryCondition::BottomFixedSidesRoller)
-      .value("SymmetryPlanes", fem::BoundaryCondition::SymmetryPlanes)
-      .value("QuarterSymmetry", fem::BoundaryCondition::QuarterSymmetry)
-      .value("HalfSymmetry", fem::BoundaryCondition::HalfSymmetry);
-  py::enum_<fem::VolumetricFormulation>(m, "VolumetricFormulation")
-      .value("Automatic", fem::VolumetricFormulation::Automatic)
-      .value("Element", fem::VolumetricFormulation::Element)
-      .value("NodalAverage", fem::VolumetricFormulation::NodalAverage);
-  py::enum_<fem::SolverBackend>(m, "SolverBackend")
-      .value("Builtin", fem::SolverBackend::Builtin)
-      .value("Petsc", fem::SolverBackend::Petsc);
+  bind_enum<fem::kMaterialLawNames>(m, "MaterialLaw", "The hyperelastic law of a tissue layer.");
+  bind_enum<fem::kElementOrderNames>(m, "ElementOrder", "Linear (4-node) or quadratic (10-node) tetrahedra.");
+  bind_enum<fem::kContactModelNames>(m, "ContactModel", "How the needle touches the tissue.");
+  bind_enum<fem::kLinearSolverNames>(m, "LinearSolver", "The linear solve of each Newton iteration.");
+  bind_enum<fem::kBoundaryConditionNames>(m, "BoundaryCondition", "How the tissue block is held.");
+  bind_enum<fem::kVolumetricFormulationNames>(m, "VolumetricFormulation", "How the volumetric part of the neo-Hookean law is integrated.");
+  bind_enum<fem::kSolverBackendNames>(m, "SolverBackend", "Where the linear solves run.");
   py::class_<SolverOptions> solver(m, "SolverOptions", "The FE solver's law, elements, contact and tolerances (§3.4).");
   def_parameters<SolverOptions>(solver, fem::kSolverParameters);  // every field but the progress callback
 
@@ -129,10 +105,7 @@ void bind_indentation(py::module_& m) {
   m.def(
       "validate_indentation_case", [](const IndentationCase& c) { validate(c); }, py::arg("case"));
 
-  py::enum_<IndentationStatus>(m, "IndentationStatus")
-      .value("Punctured", IndentationStatus::Punctured)
-      .value("ReachedDepth", IndentationStatus::ReachedDepth)
-      .value("SolverFailed", IndentationStatus::SolverFailed);
+  bind_enum<kIndentationStatusNames>(m, "IndentationStatus", "The outcome of an indentation run.");
   py::class_<IndentationProgress>(m, "IndentationProgress")
       .def_readonly("stage", &IndentationProgress::stage)
       .def_readonly("step", &IndentationProgress::step)
@@ -266,12 +239,8 @@ void bind_post_puncture(py::module_& m) {
       py::arg("loads"), py::arg("inserted_depths"), py::arg("stiffness"), py::arg("scale"),
       "Post-puncture force (N) at inserted depths (m); stiffness K in N/m^2 (\"0.84 N/mm2\"), scale S (Eq 3.18).");
 
-  py::enum_<InsertionPhase>(m, "InsertionPhase")
-      .value("Indentation", InsertionPhase::Indentation)
-      .value("Cutting", InsertionPhase::Cutting);
-  py::enum_<InsertionStatus>(m, "InsertionStatus")
-      .value("Complete", InsertionStatus::Complete)
-      .value("NoPuncture", InsertionStatus::NoPuncture);
+  bind_enum<kInsertionPhaseNames>(m, "InsertionPhase", "The phase of a point of an insertion curve.");
+  bind_enum<kInsertionStatusNames>(m, "InsertionStatus", "The outcome of insertion_curve.");
   py::class_<PunctureEvent>(m, "PunctureEvent")
       .def_readonly("needle", &PunctureEvent::needle)
       .def_readonly("displacement", &PunctureEvent::displacement, "m")
@@ -342,10 +311,7 @@ void bind_complete_insertion(py::module_& m) {
       .def_readwrite("classification", &CompleteInsertionOptions::classification)
       .def_readwrite("curve", &CompleteInsertionOptions::curve)
       .def_readwrite("pre_puncture", &CompleteInsertionOptions::pre_puncture);
-  py::enum_<CompleteInsertionStatus>(m, "CompleteInsertionStatus")
-      .value("Complete", CompleteInsertionStatus::Complete)
-      .value("NoPuncture", CompleteInsertionStatus::NoPuncture)
-      .value("SolverFailed", CompleteInsertionStatus::SolverFailed);
+  bind_enum<kCompleteInsertionStatusNames>(m, "CompleteInsertionStatus", "The outcome of a complete insertion.");
   py::class_<CompleteInsertionResult>(m, "CompleteInsertionResult")
       .def_readonly("status", &CompleteInsertionResult::status)
       .def_readonly("reason", &CompleteInsertionResult::reason)

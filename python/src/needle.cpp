@@ -1,6 +1,7 @@
 // needlekit/needle and needlekit/materials: needle geometry, sections, surface meshes, needle materials and tissue
 // layer presets.
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/materials/needle_material.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
@@ -12,10 +13,7 @@ namespace needlekit::python {
 void bind_needle(py::module_& m) {
   using needle::NeedleGeometry;
   using needle::Shape;
-  py::enum_<Shape>(m, "Shape", "Needle shape (dissertation §4.3-4.5).")
-      .value("Cylinder", Shape::Cylinder)
-      .value("Cone", Shape::Cone)
-      .value("Bevel", Shape::Bevel);
+  bind_enum<needle::kShapeNames>(m, "Shape", "Needle shape (dissertation §4.3-4.5).");
   m.def("shape_from_string", &needle::shape_from_string, py::arg("text"), py::arg("what") = "shape",
         "\"cylinder\", \"cone\" or \"bevel\".");
 

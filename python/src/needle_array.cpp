@@ -1,6 +1,7 @@
 // needlekit/insertion: microneedle arrays (issue 36) — the `[array]` of an indentation case, and the per-needle and
 // whole-array results of a run (IndentationResult.needles, .array).
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/insertion/needle_array.hpp"
 
@@ -8,13 +9,8 @@ namespace needlekit::python {
 
 void bind_needle_array(py::module_& m) {
   using namespace insertion;
-  py::enum_<ArrayLayout>(m, "ArrayLayout", "How the needles of an array are placed ([array] layout).")
-      .value("Square", ArrayLayout::Square)
-      .value("Hexagonal", ArrayLayout::Hexagonal);
-  py::enum_<ArraySymmetry>(m, "ArraySymmetry", "The reduced model an array's symmetry allows ([array] symmetry).")
-      .value("None_", ArraySymmetry::None)
-      .value("Half", ArraySymmetry::Half)
-      .value("Quarter", ArraySymmetry::Quarter);
+  bind_enum<kArrayLayoutNames>(m, "ArrayLayout", "How the needles of an array are placed ([array] layout).");
+  bind_enum<kArraySymmetryNames>(m, "ArraySymmetry", "The reduced model an array's symmetry allows ([array] symmetry).");
 
   py::class_<NeedleArray> array(m, "NeedleArray",
                                 "A needle array: the case's needle repeated on a grid, all needles moving together "

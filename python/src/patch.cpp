@@ -1,6 +1,7 @@
 // needlekit/patch: patch designs, placement, rigid / flexible / equilibrium fits and the per-needle evaluation
 // (numpy arrays of per-needle quantities), patch case files and their CSV/JSON as the CLI writes them.
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
@@ -68,7 +69,7 @@ void bind_design_and_fit(py::module_& m) {
       .def("node_count", &PatchDesign::node_count);
   m.def("patch_design", &patch_design, py::arg("options"));
 
-  py::enum_<Approach>(m, "Approach").value("MinusZ", Approach::MinusZ).value("SurfaceNormal", Approach::SurfaceNormal);
+  bind_enum<kApproachNames>(m, "Approach", "The direction a patch approaches the surface from.");
   py::class_<Placement> placement(m, "Placement", "Where and how a patch is applied (§5.7).");
   def_keyword_init<Placement>(placement);
   placement.def_readwrite("center", &Placement::center, "m")
@@ -87,16 +88,9 @@ void bind_design_and_fit(py::module_& m) {
   m.def("patch_frame", &patch_frame, py::arg("surface"), py::arg("placement"), py::arg("patch_diagonal"),
         py::arg("needle_length"));
 
-  py::enum_<PatchKind>(m, "PatchKind")
-      .value("Rigid", PatchKind::Rigid)
-      .value("Flexible", PatchKind::Flexible)
-      .value("Equilibrium", PatchKind::Equilibrium);
-  py::enum_<FirstNode>(m, "FirstNode")
-      .value("FirstContact", FirstNode::FirstContact)
-      .value("Corner", FirstNode::Corner);
-  py::enum_<WalkMethod>(m, "WalkMethod")
-      .value("CuttingPlane", WalkMethod::CuttingPlane)
-      .value("Unfolding", WalkMethod::Unfolding);
+  bind_enum<kPatchKindNames>(m, "PatchKind", "How a patch is fitted to a surface (ch. 5).");
+  bind_enum<kFirstNodeNames>(m, "FirstNode", "The node a flexible fit starts from (Alg 5.1).");
+  bind_enum<kWalkMethodNames>(m, "WalkMethod", "How a flexible fit walks the surface between nodes.");
   py::class_<FlexibleFitOptions> flexible(m, "FlexibleFitOptions");
   def_keyword_init<FlexibleFitOptions>(flexible);
   def_quantity(flexible, "max_spring_energy", &FlexibleFitOptions::max_spring_energy, Dimension::Energy,
@@ -116,13 +110,7 @@ void bind_design_and_fit(py::module_& m) {
   fit.def_readwrite("kind", &FitOptions::kind)
       .def_readwrite("flexible", &FitOptions::flexible)
       .def_readwrite("equilibrium", &FitOptions::equilibrium);
-  py::enum_<FitStatus>(m, "FitStatus")
-      .value("Ok", FitStatus::Ok)
-      .value("BoundaryReached", FitStatus::BoundaryReached)
-      .value("DegenerateSurface", FitStatus::DegenerateSurface)
-      .value("EnergyCapExceeded", FitStatus::EnergyCapExceeded)
-      .value("NotConverged", FitStatus::NotConverged)
-      .value("MissesSurface", FitStatus::MissesSurface);
+  bind_enum<kFitStatusNames>(m, "FitStatus", "The outcome of a patch fit.");
   py::class_<FittedPatch>(m, "FittedPatch",
                           "A patch after fitting: node positions and normals as (N, 3) numpy views (m).")
       .def_property_readonly(

@@ -1,10 +1,9 @@
 // needlekit/uncertainty: distributions, uncertainty files, design_uncertainty (`needlekit uncertainty`) and
-// robust_design (`needlekit optimize` with min_success_probability), with their JSON as the CLI writes it. The
-// enum names come from the library's tables (distribution_kinds(), sampling_methods(), design_events()).
-#include <cctype>
+// robust_design (`needlekit optimize` with min_success_probability), with their JSON as the CLI writes it.
 #include <string>
 
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
@@ -16,31 +15,8 @@ namespace {
 
 using namespace uncertainty;
 
-// "truncated-normal" -> "TruncatedNormal": a table name as a Python enum member name.
-std::string member_name(std::string_view name) {
-  std::string out;
-  bool upper = true;
-  for (char c : name) {
-    if (c == '-' || c == '_') {
-      upper = true;
-    } else {
-      out += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
-      upper = false;
-    }
-  }
-  return out;
-}
-
-template <class Enum, class Table>
-void def_enum_from_table(py::module_& m, const char* name, const Table& table, Enum Table::value_type::*member,
-                         const char* doc) {
-  py::enum_<Enum> e(m, name, doc);
-  for (const auto& row : table) e.value(member_name(row.name).c_str(), row.*member, std::string(row.meaning).c_str());
-}
-
 void bind_distributions(py::module_& m) {
-  def_enum_from_table(m, "DistributionKind", distribution_kinds(), &DistributionKindInfo::kind,
-                      "The distributions of an uncertain input (distribution_kinds()).");
+  bind_enum<kDistributionKindNames>(m, "DistributionKind", "The distributions of an uncertain input.");
   py::class_<Distribution> d(m, "Distribution", "A distribution of one input, SI values (see DistributionKind).");
   def_keyword_init<Distribution>(d);
   d.def_readwrite("kind", &Distribution::kind)
@@ -55,8 +31,7 @@ void bind_distributions(py::module_& m) {
   m.def("distribution_quantile", &quantile, py::arg("distribution"), py::arg("u"), "F^-1(u), u in (0, 1).");
   m.def("validate_distribution", &validate, py::arg("distribution"), py::arg("what") = "distribution");
 
-  def_enum_from_table(m, "SamplingMethod", sampling_methods(), &SamplingMethodInfo::method,
-                      "How the samples are drawn (sampling_methods()).");
+  bind_enum<kSamplingMethodNames>(m, "SamplingMethod", "How the samples are drawn.");
   py::class_<PropagationOptions> sampling(m, "PropagationOptions", "The [sampling] table of an uncertainty file.");
   def_keyword_init<PropagationOptions>(sampling);
   sampling.def_readwrite("samples", &PropagationOptions::samples, "N >= 2")
@@ -88,8 +63,7 @@ void bind_distributions(py::module_& m) {
 }
 
 void bind_results(py::module_& m) {
-  def_enum_from_table(m, "DesignEvent", design_events(), &DesignEventInfo::event,
-                      "The events whose probabilities design_uncertainty estimates (design_events()).");
+  bind_enum<kDesignEventNames>(m, "DesignEvent", "The events whose probabilities design_uncertainty estimates.");
   py::class_<Interval>(m, "Interval").def_readonly("lo", &Interval::lo).def_readonly("hi", &Interval::hi);
   py::class_<SobolIndex>(m, "SobolIndex")
       .def_readonly("value", &SobolIndex::value, "NaN when undefined")
@@ -113,9 +87,7 @@ void bind_results(py::module_& m) {
       .def_readonly("high", &OneAtATime::high, "SI")
       .def_readonly("index_low", &OneAtATime::index_low, "1/m")
       .def_readonly("index_high", &OneAtATime::index_high, "1/m");
-  py::enum_<UncertaintyStatus>(m, "UncertaintyStatus")
-      .value("Ok", UncertaintyStatus::Ok)
-      .value("InvalidSamples", UncertaintyStatus::InvalidSamples);
+  bind_enum<kUncertaintyStatusNames>(m, "UncertaintyStatus", "The outcome of design_uncertainty.");
   py::class_<DesignUncertaintyResult>(m, "DesignUncertaintyResult",
                                       "Event probabilities, the index's distribution (1/m) and Sobol' indices.")
       .def_readonly("status", &DesignUncertaintyResult::status)
@@ -184,9 +156,7 @@ void bind_files_and_runs(py::module_& m) {
       .def_readwrite("sampling", &RobustDesignOptions::sampling, "per candidate")
       .def_readwrite("optimizer", &RobustDesignOptions::optimizer)
       .def_readwrite("max_candidates", &RobustDesignOptions::max_candidates, ">= 1");
-  py::enum_<RobustStatus>(m, "RobustStatus")
-      .value("Found", RobustStatus::Found)
-      .value("NotFound", RobustStatus::NotFound);
+  bind_enum<kRobustStatusNames>(m, "RobustStatus", "The outcome of robust_design.");
   py::class_<CandidateCheck>(m, "CandidateCheck")
       .def_readonly("candidate", &CandidateCheck::candidate)
       .def_readonly("success_probability", &CandidateCheck::success_probability)

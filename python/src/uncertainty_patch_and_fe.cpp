@@ -3,6 +3,7 @@
 // their JSON as `needlekit uncertainty` writes it. Long runs release the GIL; fe_surrogate's progress callback runs
 // after every FE run and Ctrl-C stops it there.
 #include "common.hpp"
+#include "enum_binding.hpp"
 #include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/fe_uncertainty_config.hpp"
 #include "needlekit/io/patch_uncertainty_config.hpp"
@@ -107,10 +108,7 @@ void bind_fe_surrogate(py::module_& m) {
       .def_readwrite("options", &io::FeUncertaintyFile::options);
   m.def("read_fe_uncertainty_file", &io::read_fe_uncertainty_file, py::arg("path"),
         "Reads an FE uncertainty file; raises InvalidInput naming file, line and key.");
-  py::enum_<FeSurrogateStatus>(m, "FeSurrogateStatus")
-      .value("Ok", FeSurrogateStatus::Ok)
-      .value("CensoredRuns", FeSurrogateStatus::CensoredRuns)
-      .value("Failed", FeSurrogateStatus::Failed);
+  bind_enum<kFeSurrogateStatusNames>(m, "FeSurrogateStatus", "The outcome of fe_surrogate.");
   py::class_<FeRun>(m, "FeSurrogateRun", "One FE run of the surrogate's design or validation.")
       .def_readonly("inputs", &FeRun::inputs, "SI, in the order of the inputs")
       .def_readonly("status", &FeRun::status)

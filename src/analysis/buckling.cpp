@@ -42,27 +42,11 @@ double tapered_column_factor(const needle::NeedleGeometry& n, EndCondition end_c
                               eigen);
 }
 
-std::string_view to_string(EndCondition end_condition) {
-  switch (end_condition) {
-    case EndCondition::FixedFree: return "fixed-free";
-    case EndCondition::FixedPinned: return "fixed-pinned";
-    case EndCondition::FixedFixed: return "fixed-fixed";
-  }
-  return "?";
-}
+std::string_view to_string(EndCondition end_condition) { return name_of(kEndConditionNames, end_condition); }
 
-std::string_view to_string(EffectiveLengthValue value) {
-  return value == EffectiveLengthValue::Theoretical ? "theoretical" : "practical";
-}
+std::string_view to_string(EffectiveLengthValue value) { return name_of(kEffectiveLengthNames, value); }
 
-std::string_view to_string(BucklingMethod method) {
-  switch (method) {
-    case BucklingMethod::Euler: return "euler";
-    case BucklingMethod::Johnson: return "johnson";
-    case BucklingMethod::TaperedEigenvalue: return "tapered_eigenvalue";
-  }
-  return "?";
-}
+std::string_view to_string(BucklingMethod method) { return name_of(kBucklingMethodNames, method); }
 
 BucklingResult critical_buckling_load(const needle::NeedleGeometry& n, const materials::NeedleMaterial& material,
                                       const BucklingOptions& options, std::optional<double> known_tapered_factor) {

@@ -18,14 +18,7 @@
 
 namespace needlekit::analysis {
 
-std::string_view to_string(OptimizerStatus status) {
-  switch (status) {
-    case OptimizerStatus::Optimal: return "optimal";
-    case OptimizerStatus::Infeasible: return "infeasible";
-    case OptimizerStatus::Cancelled: return "cancelled";
-  }
-  return "?";
-}
+std::string_view to_string(OptimizerStatus status) { return name_of(kOptimizerStatusNames, status); }
 
 namespace {
 

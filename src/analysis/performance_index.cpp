@@ -9,16 +9,7 @@
 
 namespace needlekit::analysis {
 
-std::string_view to_string(PerformanceStatus status) {
-  switch (status) {
-    case PerformanceStatus::Ok: return "ok";
-    case PerformanceStatus::ConstraintViolated: return "constraint_violated";
-    case PerformanceStatus::TooShort: return "too_short";
-    case PerformanceStatus::Buckles: return "buckles";
-    case PerformanceStatus::Bends: return "bends";
-  }
-  return "?";
-}
+std::string_view to_string(PerformanceStatus status) { return name_of(kPerformanceStatusNames, status); }
 
 namespace {
 

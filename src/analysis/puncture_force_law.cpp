@@ -12,18 +12,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-constexpr std::array<PunctureForceLawInfo, 5> kLaws{{
-    {PunctureForceLawKind::Eq4_2, "eq-4.2", "F = 0.00019 N/um2 * A - 0.66 N (linear in the tip area)",
-     "dissertation Eq 4.2 / 5.1, after Davis et al. 2004, J Biomech 37:1155 (insertion forces of ~0.1-3 N: tip "
-     "areas 4000-19300 um2, equivalent tip diameters 71-157 um)"},
-    {PunctureForceLawKind::Romgens2014, "romgens-2014",
-     "F linear in the tip diameter: 20 mN at 5 um to 167 mN at 37 um",
-     "Romgens et al. 2014, J Mech Behav Biomed Mater 40:397 (single microneedles in ex vivo human skin, tip diameters "
-     "5-37 um)"},
-    {PunctureForceLawKind::LinearArea, "linear-area", "F = slope * A + intercept (user coefficients)", "user"},
-    {PunctureForceLawKind::LinearDiameter, "linear-diameter", "F = slope * D + intercept (user coefficients)", "user"},
-    {PunctureForceLawKind::Table, "table", "F(D) interpolated linearly in a table of tip diameters and forces", "user"},
-}};
 
 bool diameter_law(PunctureForceLawKind kind) {
   return kind == PunctureForceLawKind::Romgens2014 || kind == PunctureForceLawKind::LinearDiameter;
@@ -33,25 +21,34 @@ std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
 
 }  // namespace
 
-std::span<const PunctureForceLawInfo> puncture_force_laws() { return kLaws; }
+std::string_view to_string(PunctureForceLawKind kind) { return name_of(kPunctureForceLawKindNames, kind); }
 
-const PunctureForceLawInfo& puncture_force_law_info(PunctureForceLawKind kind) {
-  for (const auto& info : kLaws)
-    if (info.kind == kind) return info;
-  return kLaws.front();
+std::string_view puncture_force_law_source(PunctureForceLawKind kind) {
+  switch (kind) {
+    case PunctureForceLawKind::Eq4_2:
+      return "dissertation Eq 4.2 / 5.1, after Davis et al. 2004, J Biomech 37:1155 (insertion forces of ~0.1-3 N: "
+             "tip areas 4000-19300 um2, equivalent tip diameters 71-157 um)";
+    case PunctureForceLawKind::Romgens2014:
+      return "Romgens et al. 2014, J Mech Behav Biomed Mater 40:397 (single microneedles in ex vivo human skin, tip "
+             "diameters 5-37 um)";
+    case PunctureForceLawKind::LinearArea:
+    case PunctureForceLawKind::LinearDiameter:
+    case PunctureForceLawKind::Table: break;
+  }
+  return "user";
 }
-
-std::string_view to_string(PunctureForceLawKind kind) { return puncture_force_law_info(kind).name; }
 
 std::string puncture_force_law_names() {
   std::string names;
-  for (const auto& info : kLaws) names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", info.name);
+  for (const auto& law : kPunctureForceLawKindNames) {
+    names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", law.name);
+  }
   return names;
 }
 
 PunctureForceLawKind puncture_force_law_from_string(std::string_view name, std::string_view what) {
-  for (const auto& info : kLaws)
-    if (info.name == name) return info.kind;
+  for (const auto& law : kPunctureForceLawKindNames)
+    if (law.name == name) return law.value;
   throw InvalidInput(fmt::format("{}: unknown puncture force law '{}', expected one of: {}", what, name,
                                  puncture_force_law_names()));
 }

@@ -382,15 +382,7 @@ void stopped_in_a_run(CalibrationResult& result) {
 
 }  // namespace
 
-std::string_view to_string(CalibrationStatus status) {
-  switch (status) {
-    case CalibrationStatus::Converged: return "converged";
-    case CalibrationStatus::NotConverged: return "not-converged";
-    case CalibrationStatus::Failed: return "failed";
-    case CalibrationStatus::Stopped: return "stopped";
-  }
-  return "?";
-}
+std::string_view to_string(CalibrationStatus status) { return name_of(kCalibrationStatusNames, status); }
 
 std::vector<double> CalibrationResult::values() const {
   std::vector<double> v;

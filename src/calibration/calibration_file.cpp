@@ -128,14 +128,7 @@ ExperimentSpec read_experiment(const Section& entry, const std::string& where, c
 
 }  // namespace
 
-std::string_view to_string(ExperimentKind kind) {
-  switch (kind) {
-    case ExperimentKind::Design: return "design";
-    case ExperimentKind::Indentation: return "indent";
-    case ExperimentKind::Insertion: return "insert";
-  }
-  return "?";
-}
+std::string_view to_string(ExperimentKind kind) { return name_of(kExperimentKindNames, kind); }
 
 CalibrationProblem parse_calibration_toml(std::string_view text, std::string_view source_name,
                                           const std::filesystem::path& base) {

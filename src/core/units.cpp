@@ -90,22 +90,7 @@ std::string_view si_symbol(Dimension d) {
   return "";
 }
 
-std::string_view dimension_name(Dimension d) {
-  switch (d) {
-    case Dimension::Dimensionless: return "dimensionless number";
-    case Dimension::Length: return "length";
-    case Dimension::Area: return "area";
-    case Dimension::Volume: return "volume";
-    case Dimension::Force: return "force";
-    case Dimension::Pressure: return "pressure (or modulus, stress)";
-    case Dimension::ForcePerArea: return "force per area";
-    case Dimension::Energy: return "energy";
-    case Dimension::Angle: return "angle";
-    case Dimension::InverseLength: return "inverse length";
-    case Dimension::Stiffness: return "stiffness (force per length)";
-  }
-  return "";
-}
+std::string_view dimension_name(Dimension d) { return name_of(kDimensionNames, d); }
 
 double unit_factor(std::string_view unit, Dimension expected, std::string_view what) {
   unit = trim(unit);

@@ -250,17 +250,7 @@ bool QuasiStaticSolver::Impl::substep(double target, StepResult& res, Failure& f
   }
 }
 
-std::string to_string(StepStatus status) {
-  switch (status) {
-    case StepStatus::Converged: return "converged";
-    case StepStatus::InvertedElement: return "inverted-element";
-    case StepStatus::IterationLimit: return "newton-iteration-limit";
-    case StepStatus::LinearSolverFailure: return "linear-solver-failure";
-    case StepStatus::ContactCycling: return "contact-cycling";
-    case StepStatus::InvalidTarget: return "invalid-target";
-  }
-  return "unknown";
-}
+std::string_view to_string(StepStatus status) { return name_of(kStepStatusNames, status); }
 
 StepResult QuasiStaticSolver::advance_to(double target) { return impl_->advance(target, nullptr); }
 

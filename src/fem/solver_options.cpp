@@ -6,13 +6,13 @@
 
 namespace needlekit::fem {
 
-std::string to_string(MaterialLaw law) { return std::string(name_of(kMaterialLawNames, law)); }
-std::string to_string(ElementOrder order) { return std::string(name_of(kElementOrderNames, order)); }
-std::string to_string(ContactModel contact) { return std::string(name_of(kContactModelNames, contact)); }
-std::string to_string(LinearSolver solver) { return std::string(name_of(kLinearSolverNames, solver)); }
-std::string to_string(BoundaryCondition c) { return std::string(name_of(kBoundaryConditionNames, c)); }
-std::string to_string(VolumetricFormulation f) { return std::string(name_of(kVolumetricFormulationNames, f)); }
-std::string to_string(SolverBackend b) { return std::string(name_of(kSolverBackendNames, b)); }
+std::string_view to_string(MaterialLaw law) { return name_of(kMaterialLawNames, law); }
+std::string_view to_string(ElementOrder order) { return name_of(kElementOrderNames, order); }
+std::string_view to_string(ContactModel contact) { return name_of(kContactModelNames, contact); }
+std::string_view to_string(LinearSolver solver) { return name_of(kLinearSolverNames, solver); }
+std::string_view to_string(BoundaryCondition c) { return name_of(kBoundaryConditionNames, c); }
+std::string_view to_string(VolumetricFormulation f) { return name_of(kVolumetricFormulationNames, f); }
+std::string_view to_string(SolverBackend b) { return name_of(kSolverBackendNames, b); }
 
 MaterialLaw material_law_from_string(const std::string& t, const std::string& what) {
   if (t == "st-venant-kirchhoff") return MaterialLaw::StVenantKirchhoff;  // the long name, kept as an alias
@@ -49,8 +49,9 @@ bool nodal_average_applies(const SolverOptions& o, double poisson_ratio) {
 void SolverOptions::validate() const {
   check_ranges(kSolverParameters, *this, "solver");  // each number against its row's range
   if (!backend_compiled(backend))
-    throw InvalidInput("solver backend = \"" + to_string(backend) + "\": this build has no such backend, expected " +
-                       compiled_backend_names() + " (PETSc: configure with -DNEEDLEKIT_WITH_PETSC=ON)");
+    throw InvalidInput("solver backend = \"" + std::string(to_string(backend)) +
+                       "\": this build has no such backend, expected " + compiled_backend_names() +
+                       " (PETSc: configure with -DNEEDLEKIT_WITH_PETSC=ON)");
   if (volumetric == VolumetricFormulation::NodalAverage) {
     if (law != MaterialLaw::NeoHookean)
       throw InvalidInput("solver volumetric = \"nodal-average\" averages the neo-Hookean law's volumetric term: "

@@ -14,13 +14,7 @@
 
 namespace needlekit::geometry {
 
-const char* to_string(DistanceStatus status) {
-  switch (status) {
-    case DistanceStatus::Converged: return "converged";
-    case DistanceStatus::NotConverged: return "not converged";
-  }
-  return "unknown";
-}
+std::string_view to_string(DistanceStatus status) { return name_of(kDistanceStatusNames, status); }
 
 namespace {
 

@@ -12,15 +12,7 @@
 
 namespace needlekit::geometry {
 
-const char* to_string(PathStatus status) {
-  switch (status) {
-    case PathStatus::Completed: return "completed";
-    case PathStatus::HitBoundary: return "hit boundary";
-    case PathStatus::DegenerateTriangle: return "degenerate triangle";
-    case PathStatus::StepLimit: return "step limit";
-  }
-  return "unknown";
-}
+std::string_view to_string(PathStatus status) { return name_of(kPathStatusNames, status); }
 
 Eigen::Vector3d position(const SurfaceMesh& surface, const SurfaceLocation& location) {
   const auto& t = surface.mesh().triangles.at(location.triangle);

@@ -26,16 +26,6 @@ std::string lower_extension(const std::filesystem::path& path) {
   return ext;
 }
 
-std::string_view format_name(MeshFormat format) {
-  switch (format) {
-    case MeshFormat::Obj: return "OBJ";
-    case MeshFormat::Stl: return "STL";
-    case MeshFormat::Ply: return "PLY";
-    case MeshFormat::Off: return "OFF";
-  }
-  return "?";
-}
-
 detail::PolygonSoup read_obj_soup(std::string_view bytes, std::string_view source_name) {
   using Point = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<Point> points;
@@ -103,6 +93,8 @@ TriangleMesh from_soup(std::string_view source_name, std::string_view format, co
 
 }  // namespace
 
+std::string_view to_string(MeshFormat format) { return name_of(kMeshFormatNames, format); }
+
 TriangleMesh parse_triangle_mesh(std::string_view bytes, MeshFormat format, std::string_view source_name,
                                  double unit_to_metre) {
   if (!std::isfinite(unit_to_metre) || unit_to_metre <= 0) {
@@ -111,11 +103,12 @@ TriangleMesh parse_triangle_mesh(std::string_view bytes, MeshFormat format, std:
   }
   switch (format) {
     case MeshFormat::Stl: return parse_stl(bytes, source_name, unit_to_metre);
-    case MeshFormat::Obj: return from_soup(source_name, "OBJ", read_obj_soup(bytes, source_name), unit_to_metre);
+    case MeshFormat::Obj:
+      return from_soup(source_name, to_string(format), read_obj_soup(bytes, source_name), unit_to_metre);
     case MeshFormat::Ply:
-      return from_soup(source_name, "PLY", detail::read_ply_soup(bytes, source_name), unit_to_metre);
+      return from_soup(source_name, to_string(format), detail::read_ply_soup(bytes, source_name), unit_to_metre);
     case MeshFormat::Off:
-      return from_soup(source_name, "OFF", detail::read_off_soup(bytes, source_name), unit_to_metre);
+      return from_soup(source_name, to_string(format), detail::read_off_soup(bytes, source_name), unit_to_metre);
   }
   throw InvalidInput(fmt::format("{}: unknown mesh format {}", source_name, static_cast<int>(format)));
 }
@@ -132,7 +125,7 @@ TriangleMesh read_triangle_mesh(const std::filesystem::path& path, double unit_t
   else if (ext == ".ply") format = MeshFormat::Ply;
   else if (ext == ".off") format = MeshFormat::Off;
   else throw IoError(fmt::format("{}: unknown mesh format '{}'; expected .obj, .stl, .ply or .off", path.string(), ext));
-  const std::string bytes = read_file_bytes(path, fmt::format("{} mesh file", format_name(format)));
+  const std::string bytes = read_file_bytes(path, fmt::format("{} mesh file", to_string(format)));
   return parse_triangle_mesh(bytes, format, path.string(), unit_to_metre);
 }
 

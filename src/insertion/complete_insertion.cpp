@@ -32,14 +32,7 @@ PrePunctureCurve needle_pre_puncture_curve(const IndentationResult& result, std:
 
 }  // namespace
 
-std::string_view to_string(CompleteInsertionStatus status) {
-  switch (status) {
-    case CompleteInsertionStatus::Complete: return "complete";
-    case CompleteInsertionStatus::NoPuncture: return "no-puncture";
-    case CompleteInsertionStatus::SolverFailed: return "solver-failed";
-  }
-  return "unknown";
-}
+std::string_view to_string(CompleteInsertionStatus status) { return name_of(kCompleteInsertionStatusNames, status); }
 
 CompleteInsertionResult complete_insertion(const IndentationCase& indentation_case,
                                            const CompleteInsertionOptions& options) {

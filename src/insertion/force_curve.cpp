@@ -2,14 +2,6 @@
 
 namespace needlekit::insertion {
 
-std::string to_string(PunctureCriterion criterion) {
-  switch (criterion) {
-    case PunctureCriterion::CriticalPressure: return "critical-pressure";
-    case PunctureCriterion::FractureEnergy: return "fracture-energy";
-    case PunctureCriterion::AveragedPressure: return "averaged-pressure";
-    case PunctureCriterion::None: break;
-  }
-  return "none";
-}
+std::string_view to_string(PunctureCriterion criterion) { return name_of(kPunctureCriterionNames, criterion); }
 
 }  // namespace needlekit::insertion

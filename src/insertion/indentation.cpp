@@ -174,14 +174,7 @@ const std::vector<Eigen::Vector3d>* warm_start_at(const std::vector<StepDisplace
 
 }  // namespace
 
-std::string to_string(IndentationStatus status) {
-  switch (status) {
-    case IndentationStatus::Punctured: return "punctured";
-    case IndentationStatus::ReachedDepth: return "reached-depth";
-    case IndentationStatus::SolverFailed: return "solver-failed";
-  }
-  return "unknown";
-}
+std::string_view to_string(IndentationStatus status) { return name_of(kIndentationStatusNames, status); }
 
 Eigen::Vector3d needle_axis(const IndentationCase& c) {
   return {std::sin(c.angle) * std::cos(c.azimuth), std::sin(c.angle) * std::sin(c.azimuth), -std::cos(c.angle)};

@@ -36,13 +36,9 @@ struct Sample {
 
 }  // namespace
 
-std::string to_string(InsertionPhase phase) {
-  return phase == InsertionPhase::Cutting ? "cutting" : "indentation";
-}
+std::string_view to_string(InsertionPhase phase) { return name_of(kInsertionPhaseNames, phase); }
 
-std::string to_string(InsertionStatus status) {
-  return status == InsertionStatus::Complete ? "complete" : "no-puncture";
-}
+std::string_view to_string(InsertionStatus status) { return name_of(kInsertionStatusNames, status); }
 
 namespace {
 

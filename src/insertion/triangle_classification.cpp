@@ -38,17 +38,7 @@ bool ray_hits_needle(const geometry::SurfaceMesh& surface, const Eigen::Vector3d
 
 }  // namespace
 
-std::string to_string(TriangleClass triangle_class) {
-  switch (triangle_class) {
-    case TriangleClass::Side: return "side";
-    case TriangleClass::Alpha: return "alpha";
-    case TriangleClass::Beta: return "beta";
-    case TriangleClass::Back: return "back";
-    case TriangleClass::Channel: return "channel";
-    case TriangleClass::Occluded: return "occluded";
-  }
-  return "unknown";
-}
+std::string_view to_string(TriangleClass triangle_class) { return name_of(kTriangleClassNames, triangle_class); }
 
 void validate_needle_surface(const geometry::TriangleMesh& needle, std::string_view what) {
   if (needle.vertices.empty() || needle.triangles.empty())

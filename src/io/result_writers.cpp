@@ -74,7 +74,7 @@ nlohmann::json performance_json(const analysis::ArrayDesign& design, const analy
       {"tip_area_um2", um2(r.tip_area)},
       {"puncture_force_N", r.puncture_force},
       {"puncture_force_law", analysis::to_string(r.puncture_force_law)},
-      {"puncture_force_law_source", analysis::puncture_force_law_info(r.puncture_force_law).source},
+      {"puncture_force_law_source", analysis::puncture_force_law_source(r.puncture_force_law)},
       {"puncture_force_in_range", r.puncture_force_in_range},
       {"deformation_um", um(r.deformation)},
       {"small_tip_branch", r.small_tip_branch},

@@ -83,8 +83,8 @@ nlohmann::json uncertainty_json(const UncertaintyFile& file, const uncertainty::
   });
 
   nlohmann::json probabilities = nlohmann::json::object();
-  for (const auto& event : uncertainty::design_events()) {
-    probabilities[std::string(event.name)] = probability_of(r.event(event.event));
+  for (const auto& event : uncertainty::kDesignEventNames) {
+    probabilities[std::string(event.name)] = probability_of(r.event(event.value));
   }
   json["probabilities"] = probabilities;
 
@@ -96,8 +96,8 @@ nlohmann::json uncertainty_json(const UncertaintyFile& file, const uncertainty::
   if (!index.first.empty()) {
     nlohmann::json sobol = sobol_of(index, r.keys);
     nlohmann::json events = nlohmann::json::object();
-    for (const auto& event : uncertainty::design_events()) {
-      events[std::string(event.name)] = sobol_of(r.event(event.event), r.keys);
+    for (const auto& event : uncertainty::kDesignEventNames) {
+      events[std::string(event.name)] = sobol_of(r.event(event.value), r.keys);
     }
     sobol["events"] = events;
     json["sobol"] = sobol;

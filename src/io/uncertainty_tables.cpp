@@ -29,11 +29,9 @@ uncertainty::DesignUncertainInput uncertain_input(const toml::table& table, cons
   const std::string path = fmt::format("uncertain.\"{}\"", key);
   const Section section(table, path, file,
                         {"distribution", "mean", "sd", "median", "sigma_log", "min", "max", "mode"});
-  std::vector<std::string_view> names;
-  for (const auto& info : uncertainty::distribution_kinds()) names.push_back(info.name);
-  const toml::node& kind_node =
-      section.required("distribution", fmt::format("one of: {}", fmt::join(names, ", ")));
-  const std::string kind_text = text_of(section, kind_node, "distribution", fmt::format("one of: {}", fmt::join(names, ", ")));
+  const std::string expected = "one of: " + choices_of(uncertainty::kDistributionKindNames);
+  const toml::node& kind_node = section.required("distribution", expected);
+  const std::string kind_text = text_of(section, kind_node, "distribution", expected);
   uncertainty::DesignUncertainInput input;
   input.key = key;
   input.distribution.kind =
@@ -115,9 +113,7 @@ void read_sampling(const Section& sampling, uncertainty::PropagationOptions& opt
     options.samples = static_cast<std::size_t>(samples);
   }
   if (const toml::node* node = sampling.optional("method")) {
-    std::vector<std::string_view> names;
-    for (const auto& info : uncertainty::sampling_methods()) names.push_back(info.name);
-    const std::string text = text_of(sampling, *node, "method", fmt::format("one of: {}", fmt::join(names, ", ")));
+    const std::string text = text_of(sampling, *node, "method", "one of: " + choices_of(uncertainty::kSamplingMethodNames));
     options.method = sampling.at(*node, [&] { return uncertainty::sampling_method_from_string(text, sampling.what("method")); });
   }
   if (const toml::node* node = sampling.optional("seed")) {

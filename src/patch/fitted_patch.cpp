@@ -5,17 +5,7 @@
 
 namespace needlekit::patch {
 
-std::string_view to_string(FitStatus status) {
-  switch (status) {
-    case FitStatus::Ok: return "ok";
-    case FitStatus::BoundaryReached: return "boundary_reached";
-    case FitStatus::DegenerateSurface: return "degenerate_surface";
-    case FitStatus::EnergyCapExceeded: return "energy_cap_exceeded";
-    case FitStatus::NotConverged: return "not_converged";
-    case FitStatus::MissesSurface: return "misses_surface";
-  }
-  return "?";
-}
+std::string_view to_string(FitStatus status) { return name_of(kFitStatusNames, status); }
 
 std::vector<Eigen::Vector3d> flat_positions(const PatchDesign& design, const PatchFrame& frame, double height) {
   std::vector<Eigen::Vector3d> positions(design.node_count());

@@ -7,15 +7,7 @@
 
 namespace needlekit::patch {
 
-std::string_view to_string(SpringDirection direction) {
-  switch (direction) {
-    case SpringDirection::U: return "u";
-    case SpringDirection::V: return "v";
-    case SpringDirection::Diagonal: return "diagonal";
-    case SpringDirection::AntiDiagonal: return "anti-diagonal";
-  }
-  return "?";
-}
+std::string_view to_string(SpringDirection direction) { return name_of(kSpringDirectionNames, direction); }
 
 namespace {
 

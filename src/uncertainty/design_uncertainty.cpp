@@ -6,7 +6,6 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/uncertainty/design_outcome.hpp"
-#include "name_table.hpp"
 #include "windowed_input.hpp"
 
 namespace needlekit::uncertainty {
@@ -50,28 +49,9 @@ InputTransform noted_transform(std::vector<UncertainInput> inputs, const std::ve
 
 }  // namespace detail
 
-const std::vector<DesignEventInfo>& design_events() {
-  static const std::vector<DesignEventInfo> events{
-      {DesignEvent::Puncture, "puncture", "the needle punctures: |F(A)| > 0 and cutting depth L - d > 0"},
-      {DesignEvent::BucklingFailure, "buckling_failure", "phi = 0: the axial force reaches the critical buckling load"},
-      {DesignEvent::BendingFailure, "bending_failure",
-       "omega = 0: the lateral force reaches the critical bending load (undefined where not assessed)"},
-      {DesignEvent::ReachesTarget, "reaches_target", "L - d >= T: the tip reaches the target depth"},
-      {DesignEvent::Success, "success", "punctures, neither buckles nor bends, and reaches the target"},
-      {DesignEvent::InvalidSample, "invalid_sample", "the sampled values make no valid needle (counted as failure)"},
-  };
-  return events;
-}
+std::string_view to_string(DesignEvent event) { return name_of(kDesignEventNames, event); }
 
-std::string_view to_string(DesignEvent event) { return detail::name_of(design_events(), &DesignEventInfo::event, event); }
-
-std::string_view to_string(UncertaintyStatus status) {
-  switch (status) {
-    case UncertaintyStatus::Ok: return "ok";
-    case UncertaintyStatus::InvalidSamples: return "invalid_samples";
-  }
-  return "?";
-}
+std::string_view to_string(UncertaintyStatus status) { return name_of(kUncertaintyStatusNames, status); }
 
 struct DesignModel::Impl {
   DesignOutcomeEvaluator evaluator;
@@ -82,7 +62,7 @@ struct DesignModel::Impl {
 DesignModel::DesignModel(const DesignCase& nominal, std::vector<DesignInput> inputs)
     : impl_(new Impl{DesignOutcomeEvaluator(nominal), std::move(inputs), {}}) {
   impl_->outputs.push_back({std::string(kPerformanceIndexOutput), OutputKind::Continuous});
-  for (const DesignEventInfo& event : design_events()) {
+  for (const EnumEntry<DesignEvent>& event : kDesignEventNames) {
     impl_->outputs.push_back({std::string(event.name), OutputKind::Indicator});
   }
 }

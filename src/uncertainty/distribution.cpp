@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 
 #include "needlekit/core/errors.hpp"
-#include "name_table.hpp"
 
 namespace needlekit::uncertainty {
 namespace {
@@ -36,23 +35,10 @@ std::pair<double, double> truncation_window(const Distribution& d) {
 
 }  // namespace
 
-const std::vector<DistributionKindInfo>& distribution_kinds() {
-  static const std::vector<DistributionKindInfo> kinds{
-      {DistributionKind::Normal, "normal", "mean, sd >= 0"},
-      {DistributionKind::TruncatedNormal, "truncated-normal", "mean, sd > 0, min < max: the normal restricted to [min, max]"},
-      {DistributionKind::Lognormal, "lognormal", "median > 0, sigma_log >= 0 (the sd of ln x)"},
-      {DistributionKind::Uniform, "uniform", "min < max"},
-      {DistributionKind::Triangular, "triangular", "min < max, mode in [min, max] (default the midpoint)"},
-  };
-  return kinds;
-}
-
-std::string_view to_string(DistributionKind kind) {
-  return detail::name_of(distribution_kinds(), &DistributionKindInfo::kind, kind);
-}
+std::string_view to_string(DistributionKind kind) { return name_of(kDistributionKindNames, kind); }
 
 DistributionKind distribution_kind_from_string(std::string_view name, std::string_view what) {
-  return detail::value_named(distribution_kinds(), &DistributionKindInfo::kind, name, what, "distribution");
+  return value_of(kDistributionKindNames, name, what);
 }
 
 void validate(const Distribution& d, std::string_view what) {

@@ -185,14 +185,7 @@ std::function<void(const double*, double&, double&)> fitted_surrogate(
 
 }  // namespace
 
-std::string_view to_string(FeSurrogateStatus status) {
-  switch (status) {
-    case FeSurrogateStatus::Ok: return "ok";
-    case FeSurrogateStatus::CensoredRuns: return "censored_runs";
-    case FeSurrogateStatus::Failed: return "failed";
-  }
-  return "?";
-}
+std::string_view to_string(FeSurrogateStatus status) { return name_of(kFeSurrogateStatusNames, status); }
 
 FeInput fe_input_from_key(std::string_view key, const insertion::IndentationCase& c, std::string_view what) {
   if (key == "puncture.critical_pressure") {

@@ -41,7 +41,7 @@ double nominal_of(const PatchInputInfo& entry, const DesignValues& values, const
   return *entry.placement == PlacementInput::Rotation ? placement.rotation : 0.0;
 }
 
-// The per-needle events of one evaluated needle, in design_events() order (puncture .. success).
+// The per-needle events of one evaluated needle, in kDesignEventNames order (puncture .. success).
 void needle_events(const patch::NeedleState& s, const patch::PatchEvaluation& e, double length, double target,
                    double* y) {
   const bool punctures = s.penetrates && std::abs(e.reference.puncture_force) > 0;
@@ -67,7 +67,7 @@ public:
     for (double f : fractions_) outputs_.push_back({fmt::format("at_least_{:g}_percent", 100 * f), OutputKind::Indicator});
     for (int k = 0; k < needles_; ++k) {
       for (std::size_t event = 0; event < kNeedleEvents; ++event) {
-        outputs_.push_back({fmt::format("needle_{}.{}", k, design_events()[event].name), OutputKind::Indicator});
+        outputs_.push_back({fmt::format("needle_{}.{}", k, kDesignEventNames[event].name), OutputKind::Indicator});
       }
     }
   }

@@ -7,13 +7,7 @@
 
 namespace needlekit::uncertainty {
 
-std::string_view to_string(RobustStatus status) {
-  switch (status) {
-    case RobustStatus::Found: return "found";
-    case RobustStatus::NotFound: return "not_found";
-  }
-  return "?";
-}
+std::string_view to_string(RobustStatus status) { return name_of(kRobustStatusNames, status); }
 
 DesignCase candidate_case(const analysis::DesignSpace& space, const analysis::DesignCandidate& c,
                           const analysis::OptimizerOptions& optimizer) {

@@ -5,7 +5,6 @@
 #include <random>
 
 #include "needlekit/core/errors.hpp"
-#include "name_table.hpp"
 
 namespace needlekit::uncertainty {
 namespace {
@@ -73,22 +72,10 @@ std::uint64_t mix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-const std::vector<SamplingMethodInfo>& sampling_methods() {
-  static const std::vector<SamplingMethodInfo> methods{
-      {SamplingMethod::MonteCarlo, "monte-carlo", "pseudo-random points; error ~ 1/sqrt(N)"},
-      {SamplingMethod::Sobol, "sobol",
-       "Owen-scrambled Sobol' points (randomised quasi-Monte Carlo); error down to ~1/N for smooth outputs, use "
-       "N = 2^m"},
-  };
-  return methods;
-}
-
-std::string_view to_string(SamplingMethod method) {
-  return detail::name_of(sampling_methods(), &SamplingMethodInfo::method, method);
-}
+std::string_view to_string(SamplingMethod method) { return name_of(kSamplingMethodNames, method); }
 
 SamplingMethod sampling_method_from_string(std::string_view name, std::string_view what) {
-  return detail::value_named(sampling_methods(), &SamplingMethodInfo::method, name, what, "sampling method");
+  return value_of(kSamplingMethodNames, name, what);
 }
 
 void uniform_points(SamplingMethod method, std::uint64_t seed, std::uint64_t group, std::size_t dimension,

@@ -70,7 +70,7 @@ TEST(FemInputs, TipNodeRuleNeedsAVerticalNeedleAndOptionsAreChecked) {
   expect_invalid([&] { QuasiStaticSolver(small_block(), {}); }, "no needle");
   expect_invalid([&] { material_law_from_string("hooke"); }, "law: unknown value 'hooke', expected one of: \"neo-hookean\" | \"svk\"");
   EXPECT_EQ(contact_model_from_string("surface"), ContactModel::Surface);
-  EXPECT_EQ(boundary_condition_from_string(to_string(BoundaryCondition::QuarterSymmetry)),
+  EXPECT_EQ(boundary_condition_from_string(std::string(to_string(BoundaryCondition::QuarterSymmetry))),
             BoundaryCondition::QuarterSymmetry);
 }
 

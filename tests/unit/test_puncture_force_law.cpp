@@ -51,10 +51,10 @@ TEST(PunctureForceLaw, TableInterpolatesInTheEquivalentDiameter) {
 }
 
 TEST(PunctureForceLaw, NamesComeFromOneTable) {
-  for (const auto& info : analysis::puncture_force_laws()) {
-    EXPECT_EQ(analysis::puncture_force_law_from_string(info.name, "x"), info.kind);
-    EXPECT_EQ(analysis::to_string(info.kind), info.name);
-    EXPECT_NE(analysis::puncture_force_law_names().find(info.name), std::string::npos);
+  for (const auto& law : analysis::kPunctureForceLawKindNames) {
+    EXPECT_EQ(analysis::puncture_force_law_from_string(law.name, "x"), law.value);
+    EXPECT_EQ(analysis::to_string(law.value), law.name);
+    EXPECT_NE(analysis::puncture_force_law_names().find(law.name), std::string::npos);
   }
   test::expect_invalid([] { analysis::puncture_force_law_from_string("davis", "tissue.puncture_force"); },
                        "expected one of: \"eq-4.2\"");

@@ -72,8 +72,8 @@ TEST(UncertaintyConfig, BadInputNamesFileLineAndKey) {
   expect_invalid([] { parse(R"("needle.bore_diameter" = { distribution = "normal", sd = "2 um" })"); },
                  "uq.toml:13: uncertain.\"needle.bore_diameter\": the needle is solid");
   expect_invalid([] { parse(R"("needle.tip_diameter" = { distribution = "weibull", sd = "2 um" })"); },
-                 "uq.toml:13: key 'uncertain.\"needle.tip_diameter\".distribution': unknown distribution 'weibull', "
-                 "expected one of: normal, truncated-normal, lognormal, uniform, triangular");
+                 "uq.toml:13: key 'uncertain.\"needle.tip_diameter\".distribution': unknown value 'weibull', expected "
+                 "one of: \"normal\" | \"truncated-normal\" | \"lognormal\" | \"uniform\" | \"triangular\"");
   expect_invalid([] { parse(R"("needle.tip_diameter" = { distribution = "normal", sd = 2 })"); },
                  "key 'uncertain.\"needle.tip_diameter\".sd': 2 is a bare number without a unit");
   expect_invalid([] { parse(R"("needle.tip_diameter" = { distribution = "normal", median = "30 um", sd = "2 um" })"); },
@@ -83,7 +83,7 @@ TEST(UncertaintyConfig, BadInputNamesFileLineAndKey) {
                  "uq.toml:15: key 'sampling.samples': 1 is out of range, expected an integer in [2, 1e8]");
   expect_invalid([] { parse(R"("needle.tip_diameter" = { distribution = "normal", sd = "2 um" })",
                             "[sampling]\nmethod = \"latin\"\n"); },
-                 "key 'sampling.method': unknown sampling method 'latin', expected one of: monte-carlo, sobol");
+                 "key 'sampling.method': unknown value 'latin', expected one of: \"monte-carlo\" | \"sobol\"");
   expect_invalid([] { parse(""); }, "table [uncertain]: missing or empty");
 }
 

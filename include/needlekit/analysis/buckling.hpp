@@ -47,6 +47,12 @@ enum class BucklingMethod {
   Johnson,                // uniform short column, Eq 2.35 (slenderness below C_c)
   TaperedEigenvalue,      // cone or bevel: eigenvalue of the varying-section column (Eq 2.36 with computed m)
 };
+inline constexpr EnumTable<BucklingMethod, 3> kBucklingMethodNames{{
+    {BucklingMethod::Euler, "euler", "uniform column, Eq 2.28 (Table 4.1 for cylinders)"},
+    {BucklingMethod::Johnson, "johnson", "uniform short column, Eq 2.35 (slenderness below C_c)"},
+    {BucklingMethod::TaperedEigenvalue, "tapered_eigenvalue",
+     "cone or bevel: eigenvalue of the varying-section column (Eq 2.36)"},
+}};
 std::string_view to_string(BucklingMethod method);
 
 struct BucklingOptions {

@@ -17,12 +17,17 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/analysis/design_space.hpp"
 #include "needlekit/core/limits.hpp"
 
 namespace needlekit::analysis {
 
 enum class SearchMethod { BruteForce, Certified };
+inline constexpr EnumTable<SearchMethod, 2> kSearchMethodNames{{
+    {SearchMethod::BruteForce, "brute-force", "every point of the design grid"},
+    {SearchMethod::Certified, "certified", "branch and bound with certified bounds"},
+}};
 
 struct OptimizerOptions {
   SearchMethod method = SearchMethod::BruteForce;
@@ -54,6 +59,11 @@ struct DesignCandidate {
 };
 
 enum class OptimizerStatus { Optimal, Infeasible, Cancelled };
+inline constexpr EnumTable<OptimizerStatus, 3> kOptimizerStatusNames{{
+    {OptimizerStatus::Optimal, "optimal", "the best feasible design was found"},
+    {OptimizerStatus::Infeasible, "infeasible", "no design of the space is feasible"},
+    {OptimizerStatus::Cancelled, "cancelled", "the search was stopped before it finished"},
+}};
 std::string_view to_string(OptimizerStatus status);
 
 struct OptimizerResult {

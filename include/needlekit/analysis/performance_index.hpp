@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/analysis/buckling.hpp"
 #include "needlekit/analysis/puncture_model.hpp"
 #include "needlekit/materials/needle_material.hpp"
@@ -48,6 +49,13 @@ enum class PerformanceStatus {
   Buckles,             // φ = 0 (Eq 4.5)
   Bends,               // ω = 0 (§5.2)
 };
+inline constexpr EnumTable<PerformanceStatus, 5> kPerformanceStatusNames{{
+    {PerformanceStatus::Ok, "ok", "PI > 0"},
+    {PerformanceStatus::ConstraintViolated, "constraint_violated", "a design constraint of §4.8 does not hold"},
+    {PerformanceStatus::TooShort, "too_short", "L < d + T: the needle does not reach the target depth (Eq 4.23)"},
+    {PerformanceStatus::Buckles, "buckles", "phi = 0 (Eq 4.5)"},
+    {PerformanceStatus::Bends, "bends", "omega = 0 (§5.2)"},
+}};
 std::string_view to_string(PerformanceStatus status);
 
 struct PerformanceIndexResult {

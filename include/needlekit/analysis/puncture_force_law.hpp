@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::analysis {
 
 enum class PunctureForceLawKind {
@@ -19,16 +21,18 @@ enum class PunctureForceLawKind {
   Table,           // F(D) interpolated linearly in a user table of tip diameters and forces
 };
 
-// The one table of the laws: the name used in files, help and JSON, a one-line meaning and the source.
-struct PunctureForceLawInfo {
-  PunctureForceLawKind kind;
-  std::string_view name;
-  std::string_view meaning;
-  std::string_view source;
-};
-std::span<const PunctureForceLawInfo> puncture_force_laws();
+// The one table of the laws' names, as files, help and JSON write them, with a one-line meaning.
+inline constexpr EnumTable<PunctureForceLawKind, 5> kPunctureForceLawKindNames{{
+    {PunctureForceLawKind::Eq4_2, "eq-4.2", "F = 0.00019 N/um2 * A - 0.66 N (linear in the tip area)"},
+    {PunctureForceLawKind::Romgens2014, "romgens-2014",
+     "F linear in the tip diameter: 20 mN at 5 um to 167 mN at 37 um"},
+    {PunctureForceLawKind::LinearArea, "linear-area", "F = slope * A + intercept (user coefficients)"},
+    {PunctureForceLawKind::LinearDiameter, "linear-diameter", "F = slope * D + intercept (user coefficients)"},
+    {PunctureForceLawKind::Table, "table", "F(D) interpolated linearly in a table of tip diameters and forces"},
+}};
 std::string_view to_string(PunctureForceLawKind kind);
-const PunctureForceLawInfo& puncture_force_law_info(PunctureForceLawKind kind);
+// Where the law comes from: the publication it was measured in, or "user" for the laws of user coefficients.
+std::string_view puncture_force_law_source(PunctureForceLawKind kind);
 // Throws InvalidInput naming `what` and listing the accepted names.
 PunctureForceLawKind puncture_force_law_from_string(std::string_view name, std::string_view what);
 // "eq-4.2, romgens-2014, ..." for messages and help.

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/calibration/calibration_problem.hpp"
 #include "needlekit/calibration/experiment_model.hpp"
 
@@ -26,6 +27,13 @@ enum class CalibrationStatus {
   Failed,        // the model failed at the initial point or the solver gave up; the last good point is kept
   Stopped,       // the progress callback asked to stop (Ctrl-C); the best point so far is the result
 };
+inline constexpr EnumTable<CalibrationStatus, 4> kCalibrationStatusNames{{
+    {CalibrationStatus::Converged, "converged", "a convergence test of the solver holds"},
+    {CalibrationStatus::NotConverged, "not-converged", "max_iterations reached; the best point so far is the result"},
+    {CalibrationStatus::Failed, "failed",
+     "the model failed at the initial point or the solver gave up; the last good point is kept"},
+    {CalibrationStatus::Stopped, "stopped", "the progress callback asked to stop; the best point so far is the result"},
+}};
 std::string_view to_string(CalibrationStatus status);
 
 struct CalibrationProgress {

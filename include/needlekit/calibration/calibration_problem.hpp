@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/force_curve.hpp"
 
@@ -44,6 +45,11 @@ enum class ExperimentKind {
   Indentation,  // an indent case: the FE curve (continued past puncture) and the puncture point
   Insertion,    // an insert case: the complete curve (FE to puncture, then the cutting force) and the puncture point
 };
+inline constexpr EnumTable<ExperimentKind, 3> kExperimentKindNames{{
+    {ExperimentKind::Design, "design", "a design file: the analytic model (§4.2)"},
+    {ExperimentKind::Indentation, "indent", "an indent case: the FE curve and the puncture point"},
+    {ExperimentKind::Insertion, "insert", "an insert case: the complete curve and the puncture point"},
+}};
 std::string_view to_string(ExperimentKind kind);
 
 struct MeasuredPuncture {

@@ -1,6 +1,9 @@
 // One table per enum: {value, "name", "one-line meaning"}, declared once beside the enum. Every place that turns the
 // enum into text or back — to_string, the config readers, the list of accepted names in error messages, the CLI help
-// and the JSON writers — reads the table, so they cannot drift apart.
+// and the JSON writers — reads the table, so they cannot drift apart. Every enum that has a text has a table (the
+// enum-table test finds an enumerator without a row), the Python module binds each enum from its table
+// (python/src/enum_binding.hpp), and every `to_string(Enum)` returns name_of's std::string_view: the tables are
+// constexpr, so the text lives as long as the program, and a caller that needs a std::string makes one.
 //
 //   inline constexpr EnumTable<Shape, 3> kShapeNames{{
 //       {Shape::Cylinder, "cylinder", "constant diameter D1 = D2"}, ...}};
@@ -32,6 +35,15 @@ constexpr std::string_view name_of(const EnumTable<Value, N>& table, Value value
     if (entry.value == value) return entry.name;
   }
   return "?";
+}
+
+// The one-line meaning of `value` ("" if the table lacks it).
+template <class Value, std::size_t N>
+constexpr std::string_view meaning_of(const EnumTable<Value, N>& table, Value value) {
+  for (const EnumEntry<Value>& entry : table) {
+    if (entry.value == value) return entry.meaning;
+  }
+  return "";
 }
 
 // The accepted names as the help and error messages show them: "a" | "b" | "c".

@@ -4,6 +4,8 @@
 #include <string>
 #include <string_view>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::units {
 
 enum class Dimension {
@@ -20,9 +22,24 @@ enum class Dimension {
   ForcePerArea,   // N/m^2 per unit area slope (the same dimension as Pressure, kept for clarity of messages)
 };
 
-// The SI unit symbol of a dimension ("m", "Pa", ...).
+// The names of the dimensions, as error messages write them ("length", "pressure (or modulus, stress)").
+inline constexpr EnumTable<Dimension, 11> kDimensionNames{{
+    {Dimension::Dimensionless, "dimensionless number", "a pure number, e.g. a Poisson ratio or a count"},
+    {Dimension::Length, "length", "SI unit m"},
+    {Dimension::Area, "area", "SI unit m^2"},
+    {Dimension::Volume, "volume", "SI unit m^3"},
+    {Dimension::Force, "force", "SI unit N"},
+    {Dimension::Pressure, "pressure (or modulus, stress)", "SI unit Pa (also Young's modulus, stress)"},
+    {Dimension::Energy, "energy", "SI unit J"},
+    {Dimension::Angle, "angle", "SI unit rad"},
+    {Dimension::InverseLength, "inverse length", "SI unit 1/m (the tissue's exponential constant tau)"},
+    {Dimension::Stiffness, "stiffness (force per length)", "SI unit N/m (spring constants)"},
+    {Dimension::ForcePerArea, "force per area", "SI unit N/m^2 (the slope of a force per unit area)"},
+}};
+
+// The SI unit symbol of a dimension ("m", "Pa", ...): a unit, not a name (Pressure and ForcePerArea share "Pa").
 std::string_view si_symbol(Dimension dimension);
-// A human name of a dimension ("length", "pressure", ...), for error messages.
+// A human name of a dimension ("length", "pressure", ...), for error messages: its name in kDimensionNames.
 std::string_view dimension_name(Dimension dimension);
 
 // Parses "<number> <unit>" (the space is optional) into SI. Accepted units include nm um µm mm cm m; um2 mm2 m2

@@ -18,7 +18,7 @@ inline constexpr EnumTable<MaterialLaw, 2> kMaterialLawNames{{
     {MaterialLaw::NeoHookean, "neo-hookean", "compressible neo-Hookean: robust under large compression"},
     {MaterialLaw::StVenantKirchhoff, "svk", "St Venant-Kirchhoff, the dissertation's S = D E (Eqs 3.3-3.5)"},
 }};
-std::string to_string(MaterialLaw law);
+std::string_view to_string(MaterialLaw law);
 // Parse the names of kMaterialLawNames (and "st-venant-kirchhoff" for svk). Throws InvalidInput naming `what`.
 MaterialLaw material_law_from_string(const std::string& text, const std::string& what = "law");
 

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/fem/solver_options.hpp"
 #include "needlekit/mesh/tet_mesh.hpp"
 #include "needlekit/mesh/coarse_level.hpp"
@@ -46,7 +47,16 @@ enum class StepStatus {
   ContactCycling,       // Newton did not converge while the set of contact nodes kept changing between iterations
   InvalidTarget,        // the target displacement is not finite
 };
-std::string to_string(StepStatus status);
+inline constexpr EnumTable<StepStatus, 6> kStepStatusNames{{
+    {StepStatus::Converged, "converged", "the target displacement was reached"},
+    {StepStatus::InvertedElement, "inverted-element", "every cut-back still inverted an element (J <= 0)"},
+    {StepStatus::IterationLimit, "newton-iteration-limit", "Newton did not reach the tolerances within max_iterations"},
+    {StepStatus::LinearSolverFailure, "linear-solver-failure", "the tangent system could not be solved"},
+    {StepStatus::ContactCycling, "contact-cycling",
+     "Newton did not converge while the set of contact nodes kept changing"},
+    {StepStatus::InvalidTarget, "invalid-target", "the target displacement is not finite"},
+}};
+std::string_view to_string(StepStatus status);
 
 struct StepResult {
   bool converged = false;                // status == StepStatus::Converged

@@ -96,12 +96,12 @@ inline constexpr EnumTable<VolumetricFormulation, 3> kVolumetricFormulationNames
      "the volume ratio averaged at the nodes (Bonet & Burton 1998): locking-free linear tetrahedra"},
 }};
 
-std::string to_string(ElementOrder order);
-std::string to_string(ContactModel contact);
-std::string to_string(LinearSolver solver);
-std::string to_string(BoundaryCondition condition);
-std::string to_string(VolumetricFormulation formulation);
-std::string to_string(SolverBackend backend);
+std::string_view to_string(ElementOrder order);
+std::string_view to_string(ContactModel contact);
+std::string_view to_string(LinearSolver solver);
+std::string_view to_string(BoundaryCondition condition);
+std::string_view to_string(VolumetricFormulation formulation);
+std::string_view to_string(SolverBackend backend);
 // Parse the names of the tables above; throw InvalidInput naming `what` and the accepted names.
 ElementOrder element_order_from_string(const std::string& text, const std::string& what = "order");
 ContactModel contact_model_from_string(const std::string& text, const std::string& what = "contact");

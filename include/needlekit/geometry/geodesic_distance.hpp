@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <string>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/geodesic_trace.hpp"
 
 namespace needlekit::geometry {
@@ -47,7 +48,11 @@ enum class DistanceStatus {
   Converged,     // a straightest geodesic from `from` ends at `to` within the tolerance
   NotConverged,  // no shot reached `to`; the best shot is kept
 };
-const char* to_string(DistanceStatus status);
+inline constexpr EnumTable<DistanceStatus, 2> kDistanceStatusNames{{
+    {DistanceStatus::Converged, "converged", "a straightest geodesic from `from` ends at `to` within the tolerance"},
+    {DistanceStatus::NotConverged, "not converged", "no shot reached `to`; the best shot is kept"},
+}};
+std::string_view to_string(DistanceStatus status);
 
 struct GeodesicDistance {
   DistanceStatus status = DistanceStatus::NotConverged;

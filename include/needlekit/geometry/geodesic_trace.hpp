@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 
 namespace needlekit::geometry {
@@ -30,7 +31,13 @@ enum class PathStatus {
   DegenerateTriangle,  // the next triangle has (nearly) no area, so no direction can be carried across it
   StepLimit,           // more triangles than TraceOptions::max_steps, or no progress at a vertex
 };
-const char* to_string(PathStatus status);
+inline constexpr EnumTable<PathStatus, 4> kPathStatusNames{{
+    {PathStatus::Completed, "completed", "the full length was travelled"},
+    {PathStatus::HitBoundary, "hit boundary", "the path reached the surface boundary first"},
+    {PathStatus::DegenerateTriangle, "degenerate triangle", "the next triangle has (nearly) no area"},
+    {PathStatus::StepLimit, "step limit", "more triangles than max_steps, or no progress at a vertex"},
+}};
+std::string_view to_string(PathStatus status);
 
 struct TraceOptions {
   // Triangles a path may cross, [1, inf). Guards against endless walks; a 10 mm path on the 1.5 mm neck mesh

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 
 namespace needlekit::geometry {
@@ -82,6 +83,13 @@ SurfaceCheck surface_check(const TriangleMesh& mesh);
 TriangleMesh read_triangle_mesh(const std::filesystem::path& path, double unit_to_metre);
 
 enum class MeshFormat { Obj, Stl, Ply, Off };
+inline constexpr EnumTable<MeshFormat, 4> kMeshFormatNames{{
+    {MeshFormat::Obj, "OBJ", "Wavefront OBJ (.obj)"},
+    {MeshFormat::Stl, "STL", "STL, ASCII or binary (.stl)"},
+    {MeshFormat::Ply, "PLY", "Stanford PLY, ASCII or binary (.ply)"},
+    {MeshFormat::Off, "OFF", "Object File Format (.off)"},
+}};
+std::string_view to_string(MeshFormat format);
 // The same from the file's bytes; `source_name` stands for the file in messages.
 TriangleMesh parse_triangle_mesh(std::string_view bytes, MeshFormat format, std::string_view source_name,
                                  double unit_to_metre);

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/insertion/force_curve.hpp"
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/insertion/insertion_curve.hpp"
@@ -36,6 +37,13 @@ enum class CompleteInsertionStatus {
   NoPuncture,    // a needle did not puncture within its pre-puncture curve: the curve stops at its end
   SolverFailed,  // the FE indentation did not converge a load step: the curve holds the steps that did (if any)
 };
+inline constexpr EnumTable<CompleteInsertionStatus, 3> kCompleteInsertionStatusNames{{
+    {CompleteInsertionStatus::Complete, "complete", "the curve reaches the final depth"},
+    {CompleteInsertionStatus::NoPuncture, "no-puncture",
+     "a needle did not puncture within its pre-puncture curve: the curve stops there"},
+    {CompleteInsertionStatus::SolverFailed, "solver-failed",
+     "the FE indentation did not converge a load step: the curve holds the steps that did"},
+}};
 std::string_view to_string(CompleteInsertionStatus status);  // "complete" | "no-puncture" | "solver-failed"
 
 struct CompleteInsertionResult {

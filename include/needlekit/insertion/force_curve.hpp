@@ -5,12 +5,23 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::insertion {
 
 // Which criterion fired: the dissertation's two (puncture_criteria.hpp) or the averaged contact pressure
 // (averaged_contact_pressure.hpp).
 enum class PunctureCriterion { None, CriticalPressure, FractureEnergy, AveragedPressure };
-std::string to_string(PunctureCriterion criterion);
+inline constexpr EnumTable<PunctureCriterion, 4> kPunctureCriterionNames{{
+    {PunctureCriterion::None, "none", "no puncture criterion"},
+    {PunctureCriterion::CriticalPressure, "critical-pressure",
+     "the contact pressure under the tip reaches P_c (Eq 3.17)"},
+    {PunctureCriterion::FractureEnergy, "fracture-energy",
+     "the released strain energy reaches the fracture energy G_c"},
+    {PunctureCriterion::AveragedPressure, "averaged-pressure",
+     "the contact pressure averaged over a disc of the material length reaches p_c (Taylor 2007)"},
+}};
+std::string_view to_string(PunctureCriterion criterion);
 
 struct PuncturePoint {
   double depth = 0;   // m, needle tip displacement below the undeformed surface at puncture

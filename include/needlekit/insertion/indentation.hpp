@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 #include "needlekit/insertion/force_curve.hpp"
@@ -139,7 +140,13 @@ enum class IndentationStatus {
   ReachedDepth,  // the final depth was reached without puncture
   SolverFailed,  // a load step did not converge after all cut-backs; every completed step is kept
 };
-std::string to_string(IndentationStatus status);
+inline constexpr EnumTable<IndentationStatus, 3> kIndentationStatusNames{{
+    {IndentationStatus::Punctured, "punctured", "a puncture criterion fired"},
+    {IndentationStatus::ReachedDepth, "reached-depth", "the final depth was reached without puncture"},
+    {IndentationStatus::SolverFailed, "solver-failed",
+     "a load step did not converge after all cut-backs; completed steps are kept"},
+}};
+std::string_view to_string(IndentationStatus status);
 
 // One converged load step.
 struct IndentationStep {

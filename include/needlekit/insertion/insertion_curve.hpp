@@ -14,13 +14,18 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/insertion/force_curve.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
 
 namespace needlekit::insertion {
 
 enum class InsertionPhase { Indentation, Cutting };
-std::string to_string(InsertionPhase phase);  // "indentation" | "cutting"
+inline constexpr EnumTable<InsertionPhase, 2> kInsertionPhaseNames{{
+    {InsertionPhase::Indentation, "indentation", "before puncture: the tissue is indented"},
+    {InsertionPhase::Cutting, "cutting", "after puncture: the needle cuts into the tissue"},
+}};
+std::string_view to_string(InsertionPhase phase);  // "indentation" | "cutting"
 
 // One needle of the insertion.
 struct NeedleInsertion {
@@ -41,7 +46,12 @@ enum class InsertionStatus {
   NoPuncture,          // some needle has not punctured by the end of its pre-puncture curve, which ends before
                        // final_depth: the curve stops there
 };
-std::string to_string(InsertionStatus status);
+inline constexpr EnumTable<InsertionStatus, 2> kInsertionStatusNames{{
+    {InsertionStatus::Complete, "complete", "the curve reaches final_depth"},
+    {InsertionStatus::NoPuncture, "no-puncture",
+     "some needle has not punctured by the end of its pre-puncture curve: the curve stops there"},
+}};
+std::string_view to_string(InsertionStatus status);
 
 struct PunctureEvent {
   int needle = 0;

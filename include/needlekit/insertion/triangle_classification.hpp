@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/geometry/triangle_mesh.hpp"
 
 namespace needlekit::geometry {
@@ -37,7 +38,15 @@ enum class TriangleClass {
   Channel,   // group 2 (or 1) on the bore / an internal structure: excluded
   Occluded,  // group 2 hidden behind other needle material along d: excluded
 };
-std::string to_string(TriangleClass triangle_class);
+inline constexpr EnumTable<TriangleClass, 6> kTriangleClassNames{{
+    {TriangleClass::Side, "side", "group 1"},
+    {TriangleClass::Alpha, "alpha", "group 2, alpha"},
+    {TriangleClass::Beta, "beta", "group 2, beta"},
+    {TriangleClass::Back, "back", "group 3"},
+    {TriangleClass::Channel, "channel", "group 2 (or 1) on the bore or an internal structure: excluded"},
+    {TriangleClass::Occluded, "occluded", "group 2 hidden behind other needle material along d: excluded"},
+}};
+std::string_view to_string(TriangleClass triangle_class);
 
 struct TriangleClassificationOptions {
   // Insertion direction d, any length > 0 (normalised inside). Default +z: the needle frame's tip direction.

@@ -310,7 +310,7 @@ inline analysis::PunctureModel tissue_model_of(const Section& parent, std::strin
   return model;
 }
 
-// [tissue] puncture_force = a law name (analysis::puncture_force_laws(): "eq-4.2", "romgens-2014") or a table
+// [tissue] puncture_force = a law name (analysis::kPunctureForceLawKindNames: "eq-4.2", "romgens-2014") or a table
 // { law = "linear-area", slope = "0.00019 N/um2", intercept = "-0.66 N" } | { law = "linear-diameter", slope =
 // "4594 N/m", intercept = "-3 mN" } | { law = "table", tip_diameter = ["5 um", ...], force = ["20 mN", ...] },
 // each with an optional valid_tip_diameter = ["min", "max"]. Eq 4.2 when the key is absent.

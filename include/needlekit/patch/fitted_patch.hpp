@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/patch/patch_design.hpp"
 #include "needlekit/patch/patch_placement.hpp"
 
@@ -19,6 +20,14 @@ enum class FitStatus {
   NotConverged,      // the equilibrium solver stopped at its iteration limit
   MissesSurface,     // the patch does not reach the surface at all
 };
+inline constexpr EnumTable<FitStatus, 6> kFitStatusNames{{
+    {FitStatus::Ok, "ok", "the patch was fitted"},
+    {FitStatus::BoundaryReached, "boundary_reached", "a traverse or a needle ran off the surface's boundary"},
+    {FitStatus::DegenerateSurface, "degenerate_surface", "a traverse met a degenerate triangle and stopped there"},
+    {FitStatus::EnergyCapExceeded, "energy_cap_exceeded", "some springs could not be kept under E_cri"},
+    {FitStatus::NotConverged, "not_converged", "the equilibrium solver stopped at its iteration limit"},
+    {FitStatus::MissesSurface, "misses_surface", "the patch does not reach the surface at all"},
+}};
 std::string_view to_string(FitStatus status);
 
 struct FittedPatch {

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/materials/needle_material.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 
@@ -19,6 +20,12 @@ enum class SpringDirection {
   Diagonal,      // shear, N(i,j)–N(i+1,j+1)
   AntiDiagonal,  // shear, N(i+1,j)–N(i,j+1)
 };
+inline constexpr EnumTable<SpringDirection, 4> kSpringDirectionNames{{
+    {SpringDirection::U, "u", "structural, N(i,j)-N(i+1,j)"},
+    {SpringDirection::V, "v", "structural, N(i,j)-N(i,j+1)"},
+    {SpringDirection::Diagonal, "diagonal", "shear, N(i,j)-N(i+1,j+1)"},
+    {SpringDirection::AntiDiagonal, "anti-diagonal", "shear, N(i+1,j)-N(i,j+1)"},
+}};
 std::string_view to_string(SpringDirection direction);
 
 struct Spring {

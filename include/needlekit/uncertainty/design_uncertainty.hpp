@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/uncertainty/design_inputs.hpp"
 #include "needlekit/uncertainty/propagation.hpp"
 
@@ -14,12 +15,15 @@ namespace needlekit::uncertainty {
 
 // The events, declared once: {event, "name", "meaning"}; outputs 1..6 of the design model (output 0 is the index).
 enum class DesignEvent { Puncture, BucklingFailure, BendingFailure, ReachesTarget, Success, InvalidSample };
-struct DesignEventInfo {
-  DesignEvent event;
-  std::string_view name;
-  std::string_view meaning;
-};
-const std::vector<DesignEventInfo>& design_events();
+inline constexpr EnumTable<DesignEvent, 6> kDesignEventNames{{
+    {DesignEvent::Puncture, "puncture", "the needle punctures: |F(A)| > 0 and cutting depth L - d > 0"},
+    {DesignEvent::BucklingFailure, "buckling_failure", "phi = 0: the axial force reaches the critical buckling load"},
+    {DesignEvent::BendingFailure, "bending_failure",
+     "omega = 0: the lateral force reaches the critical bending load (undefined where not assessed)"},
+    {DesignEvent::ReachesTarget, "reaches_target", "L - d >= T: the tip reaches the target depth"},
+    {DesignEvent::Success, "success", "punctures, neither buckles nor bends, and reaches the target"},
+    {DesignEvent::InvalidSample, "invalid_sample", "the sampled values make no valid needle (counted as failure)"},
+}};
 std::string_view to_string(DesignEvent event);
 
 // The name of output 0, the performance index (1/m).
@@ -34,7 +38,7 @@ struct DesignUncertainInput {
   bool centred_on_nominal = false;
 };
 
-// The sampled model: inputs in the order given, outputs {performance_index, design_events()...}.
+// The sampled model: inputs in the order given, outputs {performance_index, kDesignEventNames...}.
 class DesignModel : public Model {
 public:
   DesignModel(const DesignCase& nominal, std::vector<DesignInput> inputs);
@@ -57,6 +61,11 @@ enum class UncertaintyStatus {
   Ok,              // every sample was a valid design
   InvalidSamples,  // some samples made an invalid design (e.g. D1 > D2); they count as failures (reason: how many)
 };
+inline constexpr EnumTable<UncertaintyStatus, 2> kUncertaintyStatusNames{{
+    {UncertaintyStatus::Ok, "ok", "every sample was a valid design"},
+    {UncertaintyStatus::InvalidSamples, "invalid_samples",
+     "some samples made an invalid design; they count as failures"},
+}};
 std::string_view to_string(UncertaintyStatus status);
 
 struct DesignUncertaintyOptions {
@@ -76,7 +85,7 @@ struct DesignUncertaintyResult {
   std::string reason;
   std::vector<std::string> keys;       // the uncertain inputs, as given
   analysis::PerformanceIndexResult nominal;  // the deterministic evaluation at the nominal values
-  PropagationResult propagation;       // outputs: performance_index, then design_events()
+  PropagationResult propagation;       // outputs: performance_index, then kDesignEventNames
   std::vector<OneAtATime> one_at_a_time;  // per input
   std::vector<std::string> notes;      // truncations, correlation caveats, events not assessed
 

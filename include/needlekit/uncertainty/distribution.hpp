@@ -6,17 +6,20 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::uncertainty {
 
 enum class DistributionKind { Normal, TruncatedNormal, Lognormal, Uniform, Triangular };
 
 // The one table of distribution names: {kind, "name", "parameters and meaning"}.
-struct DistributionKindInfo {
-  DistributionKind kind;
-  std::string_view name;
-  std::string_view meaning;
-};
-const std::vector<DistributionKindInfo>& distribution_kinds();
+inline constexpr EnumTable<DistributionKind, 5> kDistributionKindNames{{
+    {DistributionKind::Normal, "normal", "mean, sd >= 0"},
+    {DistributionKind::TruncatedNormal, "truncated-normal", "mean, sd > 0, min < max: the normal restricted to [min, max]"},
+    {DistributionKind::Lognormal, "lognormal", "median > 0, sigma_log >= 0 (the sd of ln x)"},
+    {DistributionKind::Uniform, "uniform", "min < max"},
+    {DistributionKind::Triangular, "triangular", "min < max, mode in [min, max] (default the midpoint)"},
+}};
 std::string_view to_string(DistributionKind kind);
 // Throws InvalidInput naming `what` and listing the names for an unknown name.
 DistributionKind distribution_kind_from_string(std::string_view name, std::string_view what);

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/uncertainty/design_uncertainty.hpp"
 #include "needlekit/uncertainty/response_surface.hpp"
@@ -64,6 +65,12 @@ enum class FeSurrogateStatus {
   CensoredRuns,  // some FE runs did not puncture within the loading depth: left out of the fit (reason: how many)
   Failed,        // too few punctured runs to fit (nothing was sampled; reason says why)
 };
+inline constexpr EnumTable<FeSurrogateStatus, 3> kFeSurrogateStatusNames{{
+    {FeSurrogateStatus::Ok, "ok", "every FE run punctured within the loading depth"},
+    {FeSurrogateStatus::CensoredRuns, "censored_runs",
+     "some FE runs did not puncture within the loading depth: left out of the fit"},
+    {FeSurrogateStatus::Failed, "failed", "too few punctured runs to fit; nothing was sampled"},
+}};
 std::string_view to_string(FeSurrogateStatus status);
 
 struct FeSurrogateResult {

@@ -1,8 +1,8 @@
 // The probability that every needle of a patch works when the patch lands somewhere near its intended place and its
 // needles and the skin vary: the placement (offsets of the centre along the patch axes, the rotation) and the
 // needle's and tissue's inputs (design_inputs.hpp) are sampled; every sample places, fits and evaluates the patch
-// (patch::fit_and_evaluate, dissertation ch. 5, §6.4) and records per needle the events of design_events() with the
-// patch's own meanings (Eqs 5.2–5.12):
+// (patch::fit_and_evaluate, dissertation ch. 5, §6.4) and records per needle the events of kDesignEventNames with
+// the patch's own meanings (Eqs 5.2–5.12):
 //   puncture          x_ij > d (Eqs 5.11, 5.12) and |F(A)| > 0,
 //   buckling_failure  φ = 0: SF·|F|/cos θ >= P_cr (Eqs 5.3, 5.5),
 //   bending_failure   ω = 0: SF·|F|·tan θ >= P_Be (Eqs 5.4, 5.7; undefined when not assessed and θ > 0),
@@ -56,7 +56,7 @@ struct PatchUncertaintyOptions {
   std::vector<double> success_fractions = {0.5, 0.9, 0.99};  // each in (0, 1]: P(fraction of successes >= X)
 };
 
-// The order of the model's outputs: kPatchOutputs, then one per success fraction, then per needle design_events()
+// The order of the model's outputs: kPatchOutputs, then one per success fraction, then per needle kDesignEventNames
 // but invalid_sample (kNeedleEvents of them).
 inline constexpr std::string_view kSuccessFractionOutput = "success_fraction";  // continuous, in [0, 1]
 inline constexpr std::string_view kAllSucceedOutput = "all_succeed";            // indicator

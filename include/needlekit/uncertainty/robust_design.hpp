@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
 #include "needlekit/analysis/design_optimizer.hpp"
 #include "needlekit/uncertainty/design_uncertainty.hpp"
 
@@ -35,6 +36,10 @@ enum class RobustStatus {
   Found,     // a design meets the level
   NotFound,  // none of the checked candidates (or no feasible design) meets it
 };
+inline constexpr EnumTable<RobustStatus, 2> kRobustStatusNames{{
+    {RobustStatus::Found, "found", "a design meets the level"},
+    {RobustStatus::NotFound, "not_found", "none of the checked candidates (or no feasible design) meets it"},
+}};
 std::string_view to_string(RobustStatus status);
 
 struct CandidateCheck {

@@ -14,16 +14,17 @@
 #include <string_view>
 #include <vector>
 
+#include "needlekit/core/enum_table.hpp"
+
 namespace needlekit::uncertainty {
 
 enum class SamplingMethod { MonteCarlo, Sobol };
 
-struct SamplingMethodInfo {
-  SamplingMethod method;
-  std::string_view name;
-  std::string_view meaning;
-};
-const std::vector<SamplingMethodInfo>& sampling_methods();
+inline constexpr EnumTable<SamplingMethod, 2> kSamplingMethodNames{{
+    {SamplingMethod::MonteCarlo, "monte-carlo", "pseudo-random points; error ~ 1/sqrt(N)"},
+    {SamplingMethod::Sobol, "sobol",
+     "Owen-scrambled Sobol' points (randomised quasi-Monte Carlo); error down to ~1/N for smooth outputs, use N = 2^m"},
+}};
 std::string_view to_string(SamplingMethod method);
 // Throws InvalidInput naming `what` and listing the names for an unknown name.
 SamplingMethod sampling_method_from_string(std::string_view name, std::string_view what);
