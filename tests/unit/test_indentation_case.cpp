@@ -343,7 +343,7 @@ TEST(IndentationCase, AveragedPressureCriterion) {
   EXPECT_THAT(error_of(replaced(averaged, "material_length = \"40 um\"", "material_length = 40")),
               HasSubstr("case.toml:37: key 'puncture.material_length': 40 is a bare number"));
   EXPECT_THAT(error_of(replaced(averaged, "material_length = \"40 um\"", "material_length = \"-40 um\"")),
-              HasSubstr("case.toml:37: key 'puncture.material_length': '-40 um' is out of range, expected a length > 0"));
+              HasSubstr("case.toml:37: key 'puncture.material_length': '-40 um' is not positive, expected a positive length"));
   EXPECT_THAT(error_of(replaced(averaged, "averaged-pressure", "energy")),
               HasSubstr("case.toml:36: key 'puncture.criterion': unknown value 'energy', expected one of: "
                         "\"dissertation\" | \"averaged-pressure\""));
