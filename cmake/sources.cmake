@@ -63,6 +63,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/geometry/triangle_mesh.cpp
   src/geometry/triangle_mesh_reader.cpp
   src/geometry/vertex_clustering.cpp
+  src/geometry/vertex_pick.cpp
   src/insertion/array_model.cpp
   src/insertion/averaged_contact_pressure.cpp
   src/insertion/complete_insertion.cpp
@@ -254,6 +255,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_uniform_refinement.cpp
   tests/unit/test_units.cpp
   tests/unit/test_vertex_clustering.cpp
+  tests/unit/test_vertex_pick.cpp
   tests/unit/test_vtu_writer.cpp
   tests/unit/test_work_limits.cpp
 )
@@ -319,6 +321,10 @@ set(NEEDLEKIT_EXAMPLE_TEST_SOURCES
 set(NEEDLEKIT_MPI_TEST_SOURCES
   tests/mpi/test_petsc_array.cpp
   tests/mpi/test_petsc_backend.cpp
+)
+
+set(NEEDLEKIT_SERVE_TEST_SOURCES
+  tests/serve/test_job_pool.cpp
 )
 
 set(NEEDLEKIT_BENCH_SOURCES

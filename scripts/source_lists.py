@@ -24,6 +24,7 @@ LISTS = {
     "NEEDLEKIT_REGRESSION_TEST_SOURCES": ("tests/regression", True, ()),
     "NEEDLEKIT_EXAMPLE_TEST_SOURCES": ("tests/example", True, ()),
     "NEEDLEKIT_MPI_TEST_SOURCES": ("tests/mpi", True, ()),
+    "NEEDLEKIT_SERVE_TEST_SOURCES": ("tests/serve", True, ()),
     "NEEDLEKIT_BENCH_SOURCES": ("bench", False, ()),
     "NEEDLEKIT_FUZZ_TARGET_SOURCES": ("fuzz", False, ("fuzz/replay_main.cpp",)),
     "NEEDLEKIT_PYTHON_SOURCES": ("python/src", False, ()),

@@ -174,6 +174,9 @@ void add_mesh_routes(httplib::Server& server, const ServeOptions& options, MeshR
   server.Post("/api/body-view", [&meshes, max_body](const httplib::Request& req, httplib::Response& res) {
     answer(req, res, max_body, [&] { send_json(res, 200, body_view_json(req.body, meshes)); });
   });
+  server.Post("/api/body-pick", [&meshes, max_body](const httplib::Request& req, httplib::Response& res) {
+    answer(req, res, max_body, [&] { send_json(res, 200, body_pick_json(req.body, meshes)); });
+  });
 }
 
 // The long runs, on the job pool: submitted, polled, cancelled.

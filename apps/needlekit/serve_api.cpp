@@ -235,10 +235,24 @@ JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_
   };
 }
 
+std::shared_ptr<const geometry::BodySurface> MeshRegistry::body(const io::BodyMeshFile& file) const {
+  const std::lock_guard<std::mutex> guard(body_lock_);
+  if (!last_body_ || last_body_mesh_ != file.mesh || last_body_unit_ != file.mesh_unit) {
+    last_body_ = std::make_shared<const geometry::BodySurface>(geometry::read_body_surface(file.mesh, file.mesh_unit));
+    last_body_mesh_ = file.mesh;
+    last_body_unit_ = file.mesh_unit;
+  }
+  return last_body_;
+}
+
 nlohmann::json body_view_json(std::string_view body, const MeshRegistry& meshes) {
   const io::BodyMeshFile file = io::parse_body_mesh_json(body, "surface.json", meshes.meshes());
-  const geometry::BodySurface surface = geometry::read_body_surface(file.mesh, file.mesh_unit);
-  return io::body_view(file.mesh.filename().string(), surface.surface);
+  return io::body_view(file.mesh.filename().string(), meshes.body(file)->surface);
+}
+
+nlohmann::json body_pick_json(std::string_view body, const MeshRegistry& meshes) {
+  const io::BodyPick pick = io::parse_body_pick_json(body, "pick.json", meshes.meshes());
+  return io::rounded_numbers(io::body_pick(meshes.body(pick.body)->surface, pick.origin, pick.direction));
 }
 
 }  // namespace needlekit::cli

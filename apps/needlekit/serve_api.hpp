@@ -9,12 +9,22 @@
 #include <deque>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "job_pool.hpp"
+
+// Declared only: http_server.cpp includes cpp-httplib, whose <resolv.h> defines the macro `_res` that Eigen's headers
+// use as a parameter name, so this header must not bring Eigen in.
+namespace needlekit::geometry {
+struct BodySurface;
+}
+namespace needlekit::io {
+struct BodyMeshFile;
+}
 
 namespace needlekit::cli {
 
@@ -57,6 +67,9 @@ public:
   // POST /api/uploads?format=obj|stl|ply: writes `bytes` to a new file "upload-N.FORMAT", reads it as a body surface
   // (the reader's InvalidInput / IoError for a file that fails to read, the file then deleted) and returns its entry.
   nlohmann::json add_upload(std::string_view bytes, std::string_view format);
+  // The body surface `file` names, read once: the last one read is kept, so that the clicks on a body's view after
+  // its POST /api/body-view do not each read the mesh again (1.2 s for the 240k-triangle neck).
+  std::shared_ptr<const geometry::BodySurface> body(const io::BodyMeshFile& file) const;
 
 private:
   mutable std::mutex lock_;
@@ -65,6 +78,10 @@ private:
   std::filesystem::path upload_folder_;
   std::deque<std::string> uploads_;  // oldest first
   std::uint64_t next_upload_ = 1;
+  mutable std::mutex body_lock_;  // held while a body is read: requests for the same body wait for that read
+  mutable std::filesystem::path last_body_mesh_;
+  mutable double last_body_unit_ = 0;
+  mutable std::shared_ptr<const geometry::BodySurface> last_body_;
 };
 
 // POST /api/patch[?view=true]: a patch case whose [surface] mesh is a name of `meshes`; the job's result is what
@@ -76,5 +93,10 @@ JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_
 // the body's whole surface as a 3D view to place the patch on (io/body_view.hpp: decimated, with the full mesh's
 // vertex index of every vertex drawn).
 nlohmann::json body_view_json(std::string_view body, const MeshRegistry& meshes);
+
+// POST /api/body-pick: {"surface": as for body-view, "ray": {"origin": ["x m", "y m", "z m"], "direction": [dx, dy,
+// dz]}} (io/json_config.hpp), the camera's ray through a click on the body's view; the answer is io::body_pick's:
+// the vertex of the full mesh the click means, where the ray met it, and its normal.
+nlohmann::json body_pick_json(std::string_view body, const MeshRegistry& meshes);
 
 }  // namespace needlekit::cli

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "needlekit/geometry/vertex_clustering.hpp"
+#include "needlekit/geometry/vertex_pick.hpp"
 #include "needlekit/io/view_arrays.hpp"
 
 namespace needlekit::io {
@@ -41,6 +42,24 @@ nlohmann::json body_view(const std::string& name, const geometry::SurfaceMesh& s
   view["cell_size_m"] = drawn.cell_size;
   view["notes"] = notes;
   return view;
+}
+
+namespace {
+
+nlohmann::json point_json(const Eigen::Vector3d& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}); }
+
+}  // namespace
+
+nlohmann::json body_pick(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& origin,
+                         const Eigen::Vector3d& direction) {
+  const std::optional<geometry::VertexPick> pick = geometry::pick_vertex(surface, origin, direction);
+  if (!pick) return {{"hit", false}};
+  return {{"hit", true},
+          {"vertex", pick->vertex},
+          {"triangle", pick->triangle},
+          {"position_m", point_json(surface.mesh().vertices[static_cast<std::size_t>(pick->vertex)])},
+          {"point_m", point_json(pick->point)},
+          {"normal", point_json(surface.vertex_normal(pick->vertex))}};
 }
 
 }  // namespace needlekit::io

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "needlekit/io/design_config.hpp"
+#include "needlekit/io/json_config.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 
@@ -28,6 +29,8 @@ PatchCase patch_case_of_table(const toml::table& root, const std::string& file,
 // A root table holding only [surface] with mesh and unit; `base_folder` resolves the mesh (the caller checks it).
 BodyMeshFile body_mesh_of_table(const toml::table& root, const std::string& file,
                                 const std::filesystem::path& base_folder);
+// A root table holding [surface] (mesh, unit) and [ray] (origin, direction): a click on the body's view.
+BodyPick body_pick_of_table(const toml::table& root, const std::string& file, const std::filesystem::path& base_folder);
 // An uncertainty file's root table (a design file plus [uncertain], [sampling], [[correlation]]).
 UncertaintyFile uncertainty_of_table(const toml::table& root, const std::string& file);
 

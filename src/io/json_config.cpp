@@ -145,4 +145,11 @@ BodyMeshFile parse_body_mesh_json(std::string_view text, std::string_view source
   return config::body_mesh_of_table(root, file, offered_mesh_folder(root, file, meshes));
 }
 
+BodyPick parse_body_pick_json(std::string_view text, std::string_view source_name,
+                              const std::map<std::string, std::filesystem::path>& meshes) {
+  const std::string file(source_name);
+  const toml::table root = root_of(text, file);
+  return config::body_pick_of_table(root, file, offered_mesh_folder(root, file, meshes));
+}
+
 }  // namespace needlekit::io

@@ -33,6 +33,16 @@ BodyMeshFile read_mesh_and_unit(const Section& t, const std::filesystem::path& b
   return body;
 }
 
+// A point: ["x mm", "y mm", "z mm"].
+Eigen::Vector3d point_of(const Section& t, const toml::node& node, std::string_view key) {
+  if (!node.is_array() || node.as_array()->size() != 3) {
+    t.fail(node, key, fmt::format("{} is not a point, expected [\"x mm\", \"y mm\", \"z mm\"]", describe(node)));
+  }
+  Eigen::Vector3d point;
+  for (int i = 0; i < 3; ++i) point[i] = quantity_of(t, *node.as_array()->get(i), key, Dimension::Length);
+  return point;
+}
+
 void read_surface(const Section& t, const std::filesystem::path& base, PatchCase& c) {
   const BodyMeshFile body = read_mesh_and_unit(t, base);
   c.mesh = body.mesh;
@@ -47,10 +57,7 @@ void read_surface(const Section& t, const std::filesystem::path& base, PatchCase
   if (vertex) {
     c.placement.center_vertex = integer_at_least(t, *vertex, "center_vertex", 0);
   } else {
-    if (!center->is_array() || center->as_array()->size() != 3) {
-      t.fail(*center, "center", fmt::format("{} is not a point, expected [\"x mm\", \"y mm\", \"z mm\"]", describe(*center)));
-    }
-    for (int i = 0; i < 3; ++i) c.placement.center[i] = quantity_of(t, *center->as_array()->get(i), "center", Dimension::Length);
+    c.placement.center = point_of(t, *center, "center");
   }
   if (const toml::node* node = t.optional("rotation")) {
     c.placement.rotation = quantity_of(t, *node, "rotation", Dimension::Angle);
@@ -147,6 +154,31 @@ BodyMeshFile config::body_mesh_of_table(const toml::table& root, const std::stri
                                        const std::filesystem::path& base_folder) {
   const Section top(root, "", file, {"surface"});
   return read_mesh_and_unit(top.required_subsection("surface", {"mesh", "unit"}), base_folder);
+}
+
+BodyPick config::body_pick_of_table(const toml::table& root, const std::string& file,
+                                   const std::filesystem::path& base_folder) {
+  const Section top(root, "", file, {"surface", "ray"});
+  BodyPick pick;
+  pick.body = read_mesh_and_unit(top.required_subsection("surface", {"mesh", "unit"}), base_folder);
+  const Section ray = top.required_subsection("ray", {"origin", "direction"});
+  pick.origin = point_of(ray, ray.required("origin", "a point [\"x m\", \"y m\", \"z m\"]"), "origin");
+  const std::string direction_expected = "a non-zero vector of three numbers [dx, dy, dz]";
+  const toml::node& direction = ray.required("direction", direction_expected);
+  const toml::array* components = direction.as_array();
+  if (!components || components->size() != 3) {
+    ray.fail(direction, "direction", fmt::format("{} is not a vector, expected {}", describe(direction), direction_expected));
+  }
+  for (int i = 0; i < 3; ++i) {
+    const std::optional<double> value = components->get(static_cast<std::size_t>(i))->value<double>();
+    if (!value || !std::isfinite(*value)) {
+      ray.fail(direction, "direction", fmt::format("component {} is not a finite number, expected {}", i + 1,
+                                                   direction_expected));
+    }
+    pick.direction[i] = *value;
+  }
+  if (!(pick.direction.norm() > 0)) ray.fail(direction, "direction", "is zero, expected " + direction_expected);
+  return pick;
 }
 
 PatchCase read_patch_case(const std::filesystem::path& path) {

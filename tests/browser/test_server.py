@@ -399,6 +399,40 @@ def test_a_body_view_of_bad_input_is_400_naming_the_key(server, surface, key):
     assert server.alive()
 
 
+def test_a_body_pick_is_the_full_meshs_vertex_where_the_ray_meets_it(server):
+    """A ray straight down onto the top of the skull (unit mm) meets the full mesh's topmost triangle there; the
+    vertex named is that triangle's corner nearest the hit, and a ray that points away misses."""
+    path = EXAMPLES.parent / "data" / "meshes" / "skull_yahoojapan_10k.obj"
+    vertices = [[1e-3 * x for x in v] for v in obj_vertices(path)]
+    top = max(range(len(vertices)), key=lambda k: vertices[k][2])
+    above = [f"{vertices[top][0]} m", f"{vertices[top][1]} m", f"{vertices[top][2] + 0.05} m"]
+    surface = {"mesh": path.name, "unit": "mm"}
+    status, answer = server.json("POST", "/api/body-pick", {"surface": surface,
+                                                            "ray": {"origin": above, "direction": [0, 0, -2]}})
+    assert status == 200 and answer["hit"], answer
+    assert answer["point_m"][2] == pytest.approx(vertices[top][2], abs=2e-3)
+    assert answer["position_m"] == pytest.approx(vertices[answer["vertex"]], abs=1e-9)
+    assert answer["normal"][2] > 0.5, answer
+    status, answer = server.json("POST", "/api/body-pick", {"surface": surface,
+                                                            "ray": {"origin": above, "direction": [0, 0, 1]}})
+    assert status == 200 and answer == {"hit": False}
+
+
+@pytest.mark.parametrize("ray, key", [({"origin": ["0 m", "0 m", "1 m"], "direction": [0, 0, 0]}, "ray.direction"),
+                                      ({"origin": [0, 0, 1], "direction": [0, 0, -1]}, "ray.origin"),
+                                      ({"origin": ["0 m", "0 m"], "direction": [0, 0, -1]}, "ray.origin"),
+                                      ({"origin": ["0 m", "0 m", "1 m"], "direction": ["down", 0, 0]},
+                                       "ray.direction"),
+                                      ({"origin": ["0 m", "0 m", "1 m"]}, "ray.direction"),
+                                      ({"origin": ["0 m", "0 m", "1 m"], "direction": [0, 0, -1], "up": 1},
+                                       "ray.up")])
+def test_a_body_pick_of_bad_input_is_400_naming_the_key(server, ray, key):
+    status, answer = server.json("POST", "/api/body-pick",
+                                 {"surface": {"mesh": "skull_yahoojapan_10k.obj", "unit": "mm"}, "ray": ray})
+    assert status == 400 and answer["key"] == key, answer
+    assert server.alive()
+
+
 def test_a_patch_job_reports_the_fits_progress_node_by_node(server):
     """A flexible fit reports each node it maps (Alg 5.1), an equilibrium fit each Newton iteration: many progress
     reports, fractions that never decrease, ending at 1, the result the CLI's."""

@@ -13,6 +13,8 @@
   let view = null;
   let patchView = null;  // the last fit's 3D view (web/viewer/needlekit_viewer.js)
   let bodyView = null;   // the chosen body mesh's view, where a click places the patch (POST /api/body-view)
+  let pickSequence = 0;  // the clicks on the body's view; only the last one's answer is used
+  let lastBodyPick = null;  // the last answer of POST /api/body-pick
   let bodySequence = 0;
   const jobFractions = {};  // per job kind: the fractions its progress bar showed, in order (for the tests)
 
@@ -401,11 +403,31 @@
     document.body.dataset.bodyView = "ready";
   }
 
-  function placePatch(pick) {
-    $("p-center").value = String(pick.vertex);
+  // A click on the body's view: the view picked a vertex of what it draws (decimated when the mesh is large); the
+  // server casts the same ray on the full mesh (POST /api/body-pick) and names the vertex the fit will use.
+  async function placePatch(pick) {
+    const sequence = ++pickSequence, out = $("body-view-result");
+    document.body.dataset.bodyPick = "resolving";
+    const format = (p) => p.map((x) => `${x} m`);
+    const answer = await postJson("/api/body-pick", {
+      surface: { mesh: $("p-mesh").value, unit: $("p-unit").value.trim() },
+      ray: { origin: format(pick.ray.origin), direction: pick.ray.direction } });
+    if (sequence !== pickSequence) return;  // a later click is being resolved
+    lastBodyPick = answer.json;
+    if (answer.status !== 200 || !answer.json.hit) {
+      out.textContent = answer.status !== 200 ? answer.json.error : "the click missed the body";
+      out.className = "error";
+      document.body.dataset.bodyPick = "failed";
+      return;
+    }
+    const vertex = answer.json.vertex;
+    $("p-center").value = String(vertex);
     $("p-approach").value = "normal";
-    const mm = pick.position.map((x) => (1e3 * x).toPrecision(4)).join(", ");
-    $("body-view-result").textContent = `centre: vertex ${pick.vertex} at (${mm}) mm, approach against the normal`;
+    if (bodyView) bodyView.markAt(answer.json.position_m, answer.json.normal);
+    const mm = answer.json.position_m.map((x) => (1e3 * x).toPrecision(4)).join(", ");
+    out.className = "";
+    out.textContent = `centre: vertex ${vertex} at (${mm}) mm, approach against the normal`;
+    document.body.dataset.bodyPick = "done";
   }
 
   // The typed centre vertex, marked when the view draws it.
@@ -501,6 +523,7 @@
   // For scripts and the browser tests: the design as the page would send it, and as the TOML it downloads.
   window.needlekitDesign = { designJson, patchJson, spaceJson, tomlText: () => tomlText(designJson()), evaluate,
                               patchView: () => patchView, bodyView: () => bodyView,
+                              lastBodyPick: () => lastBodyPick,
                               jobFractions: (name) => jobFractions[name] || [] };
   window.addEventListener("DOMContentLoaded", start);
 })();

@@ -74,7 +74,8 @@
 
   // `options.onPick(pick)`: a click on the surface of a body view (kind "body") picks the nearest corner of the
   // triangle hit and calls it with {vertex (its index in the full mesh), position [m], point [m] (where the ray hit),
-  // normal (unit, outward)}; the view marks the spot.
+  // normal (unit, outward), ray: {origin [m], direction} (the camera's ray in the mesh's coordinates, to resolve the
+  // click on the full mesh when the view is decimated)}; the view marks the spot.
   function View(data, host, options) {
     this.data = data;
     this.options = options || {};
@@ -353,20 +354,29 @@
     return states.map(function (s) { return STATUS_COLOURS[s] || NEEDLE_GREY; });
   };
 
-  // The objects under a mouse event, nearest first.
-  View.prototype.hitsAt = function (event, objects) {
+  // The camera's ray through the pixel of a mouse event.
+  View.prototype.rayAt = function (event) {
     var rect = this.canvas.getBoundingClientRect();
     var mouse = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1,
                                   -((event.clientY - rect.top) / rect.height) * 2 + 1);
     var raycaster = new THREE.Raycaster();
     raycaster.setFromCamera(mouse, this.camera);
-    return raycaster.intersectObjects(objects);
+    return raycaster;
+  };
+
+  // The objects under a mouse event, nearest first.
+  View.prototype.hitsAt = function (event, objects) {
+    return this.rayAt(event).intersectObjects(objects);
   };
 
   // A click on a body's surface: the nearest corner of the triangle hit, marked, and given to options.onPick.
   View.prototype.pickSurface = function (event) {
-    var hits = this.hitsAt(event, [this.surfaceMesh]);
+    var raycaster = this.rayAt(event), hits = raycaster.intersectObjects([this.surfaceMesh]);
     if (hits.length === 0 || !this.vertexIds) return;
+    // The ray in the mesh's coordinates, for resolving the click on the full mesh (POST /api/body-pick).
+    var origin = this.world.worldToLocal(raycaster.ray.origin.clone());
+    var ahead = this.world.worldToLocal(raycaster.ray.origin.clone().add(raycaster.ray.direction));
+    var direction = ahead.sub(origin);
     var point = this.world.worldToLocal(hits[0].point.clone()), face = hits[0].face, p = this.surfacePositions;
     var nearest = -1, best = Infinity;
     [face.a, face.b, face.c].forEach(function (k) {
@@ -376,7 +386,8 @@
     this.markVertex(nearest);
     var n = this.surfaceGeometry.getAttribute("normal");
     var pick = {vertex: this.vertexIds[nearest], position: [p[3 * nearest], p[3 * nearest + 1], p[3 * nearest + 2]],
-                point: [point.x, point.y, point.z], normal: [n.getX(nearest), n.getY(nearest), n.getZ(nearest)]};
+                point: [point.x, point.y, point.z], normal: [n.getX(nearest), n.getY(nearest), n.getZ(nearest)],
+                ray: {origin: [origin.x, origin.y, origin.z], direction: [direction.x, direction.y, direction.z]}};
     this.lastPick = pick;
     if (this.options.onPick) this.options.onPick(pick);
   };
@@ -384,12 +395,20 @@
   // Marks the drawn vertex k: a dot and an arrow along the approach (against the outward normal, the sign of
   // approach = "normal" in examples/patch_*.toml); k < 0 removes the mark.
   View.prototype.markVertex = function (k) {
+    if (k < 0) return this.markAt(null, null);
+    var p = this.surfacePositions, n = this.surfaceGeometry.getAttribute("normal");
+    this.markAt([p[3 * k], p[3 * k + 1], p[3 * k + 2]], [n.getX(k), n.getY(k), n.getZ(k)]);
+  };
+
+  // Marks the point `position` [m] with its outward `normal` (a vertex of the full mesh that the view may not draw);
+  // null removes the mark.
+  View.prototype.markAt = function (position, normalVector) {
     if (this.marker) this.world.remove(this.marker);
     this.marker = null;
-    if (k >= 0) {
-      var p = this.surfacePositions, size = this.extent().size, n = this.surfaceGeometry.getAttribute("normal");
-      var at = new THREE.Vector3(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
-      var normal = new THREE.Vector3(n.getX(k), n.getY(k), n.getZ(k)).normalize();
+    if (position) {
+      var size = this.extent().size;
+      var at = new THREE.Vector3(position[0], position[1], position[2]);
+      var normal = new THREE.Vector3(normalVector[0], normalVector[1], normalVector[2]).normalize();
       this.marker = new THREE.Group();
       var dot = new THREE.Mesh(new THREE.SphereBufferGeometry(0.012 * size, 16, 12),
                                new THREE.MeshBasicMaterial({color: 0xd62728}));

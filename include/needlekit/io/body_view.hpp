@@ -4,6 +4,7 @@
 // in the full mesh of every vertex drawn ("vertex_ids"), so that a picked point names a vertex of the mesh the fit
 // reads.
 #pragma once
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -21,5 +22,11 @@ struct BodyViewOptions {
 // max_triangles < 1.
 nlohmann::json body_view(const std::string& name, const geometry::SurfaceMesh& surface,
                          const BodyViewOptions& options = {});
+
+// What a click on the body's view means on the full mesh (geometry/vertex_pick.hpp): {"hit": false} when the ray
+// misses, else {"hit": true, "vertex" (its index in the mesh the fit reads), "triangle" (the one the ray met first),
+// "position_m" (the vertex), "point_m" (where the ray met the surface), "normal" (the vertex's outward unit normal)}.
+nlohmann::json body_pick(const geometry::SurfaceMesh& surface, const Eigen::Vector3d& origin,
+                         const Eigen::Vector3d& direction);
 
 }  // namespace needlekit::io

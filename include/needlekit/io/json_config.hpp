@@ -7,6 +7,7 @@
 // Messages are the TOML reader's, with `source_name` for the file and line 1 (a JSON value has no line of its own):
 //   design.json:1: key 'needle.tip_diameter': '-30 um' is not positive, expected a positive length
 #pragma once
+#include <Eigen/Core>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -33,5 +34,16 @@ PatchCase parse_patch_case_json(std::string_view text, std::string_view source_n
 // checks and messages as its [surface] table), for the body's view before the patch is placed.
 BodyMeshFile parse_body_mesh_json(std::string_view text, std::string_view source_name,
                                   const std::map<std::string, std::filesystem::path>& meshes);
+
+// {"surface": {"mesh": a key of `meshes`, "unit": "1 mm"}, "ray": {"origin": ["x m", "y m", "z m"], "direction":
+// [dx, dy, dz]}}: a click on the body's view, as the camera's ray through the clicked pixel in the mesh's
+// coordinates (metres once scaled by the unit); the direction's length does not matter.
+struct BodyPick {
+  BodyMeshFile body;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();     // m
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  // non-zero
+};
+BodyPick parse_body_pick_json(std::string_view text, std::string_view source_name,
+                              const std::map<std::string, std::filesystem::path>& meshes);
 
 }  // namespace needlekit::io
