@@ -257,7 +257,9 @@ void bind_post_puncture(py::module_& m) {
           "force", [](py::object self) { return values_view(self.cast<const InsertionCurve&>().force, self); }, "N")
       .def_readonly("phase", &InsertionCurve::phase)
       .def_readonly("punctured_needles", &InsertionCurve::punctured_needles)
-      .def_readonly("punctures", &InsertionCurve::punctures);
+      .def_readonly("punctures", &InsertionCurve::punctures)
+      .def_readonly("needle_force", &InsertionCurve::needle_force,
+                    "N, per needle, per sample: its indentation force until it punctures, its cutting force after");
   m.def(
       "insertion_curve",
       [](const std::vector<PrePunctureCurve>& pre, const PostPunctureLoads& loads, py::handle stiffness, double scale,

@@ -11,8 +11,10 @@ namespace needlekit::insertion {
 namespace {
 
 // The pre-puncture curve of needle i of an FE run: its own reaction force against its own depth (the FE depth is
-// measured from the first needle's contact; needle i touches `offset` later), from (0, 0). Every needle of an array
-// is taken to puncture at the run's puncture point (the runner reports one).
+// measured from the first needle's contact; needle i touches `offset` later), from (0, 0), and its own puncture
+// point (NeedleOutcome: the criteria on its own force, area and energy; an array's run goes on until every needle
+// has punctured), or none if it did not puncture within the run. A run that records no needles gives every needle
+// the run's puncture point.
 PrePunctureCurve needle_pre_puncture_curve(const IndentationResult& result, std::size_t i, double offset) {
   PrePunctureCurve pre;
   pre.curve.depth.push_back(0);
@@ -23,7 +25,13 @@ PrePunctureCurve needle_pre_puncture_curve(const IndentationResult& result, std:
     pre.curve.depth.push_back(x);
     pre.curve.force.push_back(i < step.needle_force.size() ? step.needle_force[i] : step.force);
   }
-  if (result.puncture && result.puncture->depth - offset > 0 && pre.curve.depth.size() > 1) {
+  if (pre.curve.depth.size() < 2) return pre;
+  if (i < result.needles.size()) {
+    if (const std::optional<PuncturePoint>& own = result.needles[i].puncture) {
+      pre.puncture = *own;  // its depth is the needle's own
+      pre.puncture->depth = std::min(own->depth, pre.curve.depth.back());
+    }
+  } else if (result.puncture && result.puncture->depth - offset > 0) {
     pre.puncture = *result.puncture;
     pre.puncture->depth = std::min(result.puncture->depth - offset, pre.curve.depth.back());
   }

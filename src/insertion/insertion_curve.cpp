@@ -93,10 +93,12 @@ std::vector<Sample> curve_samples(const std::vector<NeedleInsertion>& needles,
   return samples;
 }
 
-// Needle i's force at every sample (pre-puncture curve before its puncture, Eq 3.20's cutting force after it) added
-// to result.force, and its puncture event.
+// Needle i's force at every sample (pre-puncture curve before its puncture, Eq 3.20's cutting force after it), kept as
+// result.needle_force[i] and added to result.force, and its puncture event.
 void add_needle(const NeedleInsertion& needle, std::size_t i, double puncture_displacement, double end,
                 const std::vector<Sample>& samples, InsertionCurve& result) {
+  std::vector<double>& own = result.needle_force[i];
+  own.assign(samples.size(), 0.0);
   std::vector<std::size_t> cutting;
   std::vector<double> cutting_depth;
   for (std::size_t s = 0; s < samples.size(); ++s) {
@@ -108,11 +110,12 @@ void add_needle(const NeedleInsertion& needle, std::size_t i, double puncture_di
       cutting_depth.push_back(x);
       ++result.punctured_needles[s];
     } else {
-      result.force[s] += pre_puncture_force_at(needle.pre_puncture.curve, x);
+      own[s] = pre_puncture_force_at(needle.pre_puncture.curve, x);
     }
   }
   const std::vector<double> cut = post_puncture_forces(*needle.loads, cutting_depth, needle.stiffness, needle.scale);
-  for (std::size_t k = 0; k < cutting.size(); ++k) result.force[cutting[k]] += cut[k];
+  for (std::size_t k = 0; k < cutting.size(); ++k) own[cutting[k]] = cut[k];
+  for (std::size_t s = 0; s < samples.size(); ++s) result.force[s] += own[s];
   if (puncture_displacement <= end) {
     PunctureEvent event;
     event.needle = static_cast<int>(i);
@@ -161,6 +164,7 @@ InsertionCurve insertion_curve(const std::vector<NeedleInsertion>& needles, cons
   result.force.assign(m, 0.0);
   result.punctured_needles.assign(m, 0);
   result.phase.assign(m, InsertionPhase::Indentation);
+  result.needle_force.resize(count);
   for (std::size_t s = 0; s < m; ++s) result.depth[s] = samples[s].displacement;
   for (std::size_t i = 0; i < count; ++i) add_needle(needles[i], i, puncture_displacement[i], end, samples, result);
   for (std::size_t s = 0; s < m; ++s)

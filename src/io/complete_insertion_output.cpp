@@ -15,6 +15,19 @@ nlohmann::json complete_insertion_json(const InsertionCase& insertion_case,
   json["reason"] = result.reason;
   json["name"] = indentation_case.name;
   json["needles"] = indentation_case.needles.size();
+  // Each needle's own curve (an array's per-needle post-puncture force): where it stands, its force at every sample
+  // of depth_um, and the array's displacement when it punctured.
+  nlohmann::json needle_curves = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.curve.needle_force.size() && i < indentation_case.needles.size(); ++i) {
+    const Eigen::Vector2d& at = indentation_case.needles[i].position;
+    nlohmann::json curve = {{"needle", i + 1}, {"x_um", at.x() * 1e6}, {"y_um", at.y() * 1e6},
+                            {"force_N", result.curve.needle_force[i]}, {"puncture_displacement_um", nullptr}};
+    for (const insertion::PunctureEvent& event : result.curve.punctures) {
+      if (event.needle == static_cast<int>(i)) curve["puncture_displacement_um"] = event.displacement * 1e6;
+    }
+    needle_curves.push_back(std::move(curve));
+  }
+  json["needle_curves"] = needle_curves;
   json["stiffness_N_per_mm2"] = result.stiffness * 1e-6;
   json["scale"] = result.scale;
   json["scale_source"] = result.fit ? "fitted" : "case";

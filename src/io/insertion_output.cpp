@@ -20,10 +20,17 @@ std::vector<std::string> markers(const insertion::InsertionCurve& curve) {
 
 std::string insertion_curve_csv(const insertion::InsertionCurve& curve) {
   const auto marker = markers(curve);
-  std::string csv = "depth_um,force_N,phase,punctured_needles,marker\n";
-  for (std::size_t s = 0; s < curve.depth.size(); ++s)
-    csv += fmt::format("{:.9g},{:.9g},{},{},{}\n", curve.depth[s] * 1e6, curve.force[s], to_string(curve.phase[s]),
+  // An array's (more than one needle's) curve adds each needle's force as a column.
+  const std::size_t columns = curve.needle_force.size() > 1 ? curve.needle_force.size() : 0;
+  std::string csv = "depth_um,force_N,phase,punctured_needles,marker";
+  for (std::size_t i = 0; i < columns; ++i) csv += fmt::format(",needle_{}_force_N", i + 1);
+  csv += '\n';
+  for (std::size_t s = 0; s < curve.depth.size(); ++s) {
+    csv += fmt::format("{:.9g},{:.9g},{},{},{}", curve.depth[s] * 1e6, curve.force[s], to_string(curve.phase[s]),
                        curve.punctured_needles[s], marker[s]);
+    for (std::size_t i = 0; i < columns; ++i) csv += fmt::format(",{:.9g}", curve.needle_force[i][s]);
+    csv += '\n';
+  }
   return csv;
 }
 

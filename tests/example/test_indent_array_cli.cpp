@@ -65,6 +65,46 @@ TEST_F(IndentArrayCli, ArrayExampleReportsEveryNeedle) {
   EXPECT_GT(std::filesystem::file_size(dir_ / "results/array_3x3_needle_map.png"), 10000u);
 }
 
+// `needlekit insert` on the same array: each needle's own curve, its FE indentation force until it punctures and its
+// post-puncture (cutting) force of Alg 3.1 after, in the JSON and as CSV columns, summing to the array's force.
+TEST_F(IndentArrayCli, InsertGivesEveryNeedleItsCuttingForceAfterItsPuncture) {
+  std::string text = file_text(kExamples + "indent_array_3x3.toml");
+  text = std::regex_replace(text, std::regex("continue_after_puncture = true"), "continue_after_puncture = false");
+  text += "[post_puncture]\nstiffness = \"0.1 N/mm2\"\nscale = 0.168\nfinal_depth = \"400 um\"\nsamples = 40\n";
+  std::ofstream(dir_ / "array.toml") << text;
+  const CliRun r = run("insert array.toml --json --out results --no-plot");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  const nlohmann::json& curves = json["needle_curves"];
+  ASSERT_EQ(curves.size(), 9u);
+  ASSERT_EQ(json["punctures"].size(), 9u) << "every needle punctures within 150 um";
+  const std::vector<double> depth = json["depth_um"], total = json["force_N"];
+  const double last_puncture = json["punctures"].back()["displacement_um"];
+  for (std::size_t s = 0; s < depth.size(); ++s) {
+    double sum = 0;
+    for (const nlohmann::json& curve : curves) sum += curve["force_N"][s].get<double>();
+    EXPECT_NEAR(sum, total[s], 1e-10 * std::abs(total[s]) + 1e-15) << s;  // the JSON's 12 significant digits
+    // Past the last puncture every needle cuts at the same depth (one needle shape, tips at one height): the same
+    // cutting force, the array's ninth.
+    if (depth[s] > last_puncture) {
+      for (const nlohmann::json& curve : curves) {
+        EXPECT_NEAR(curve["force_N"][s].get<double>(), total[s] / 9, 1e-10 * total[s]);
+      }
+    }
+  }
+  EXPECT_DOUBLE_EQ(curves[1]["x_um"].get<double>() - curves[0]["x_um"].get<double>(), 600.0);
+  EXPECT_DOUBLE_EQ(curves[3]["y_um"].get<double>() - curves[0]["y_um"].get<double>(), 600.0);
+  // The centre needle punctures last (docs/arrays.md), and each needle's puncture is one of the events.
+  for (int k : {0, 1, 2, 3, 5, 6, 7, 8}) {
+    EXPECT_GT(curves[4]["puncture_displacement_um"].get<double>(), curves[k]["puncture_displacement_um"].get<double>());
+  }
+  const std::string csv = file_text((dir_ / "results/array_3x3_insertion.csv").string());
+  EXPECT_THAT(csv.substr(0, csv.find('\n')),
+              testing::EndsWith("marker,needle_1_force_N,needle_2_force_N,needle_3_force_N,needle_4_force_N,"
+                                "needle_5_force_N,needle_6_force_N,needle_7_force_N,needle_8_force_N,"
+                                "needle_9_force_N"));
+}
+
 TEST_F(IndentArrayCli, BadArrayInputExitsWithCode2AndWritesNothing) {
   const std::string example = file_text(kExamples + "indent_array_3x3.toml");
   std::ofstream(dir_ / "pitch.toml") << std::regex_replace(example, std::regex("pitch = \"600 um\""), "pitch = \"200 um\"");

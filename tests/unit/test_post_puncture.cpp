@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -252,6 +253,21 @@ TEST(InsertionCurve, ArrayForceIsTheSumOverNeedlesInTheirPhases) {
       EXPECT_NEAR(curve.force[s], post_puncture_force(loads, u, 0.2e6, 0.2) + 0.03 * x * x, 2e-3);
       EXPECT_EQ(curve.punctured_needles[s], 1);
       EXPECT_EQ(curve.phase[s], InsertionPhase::Cutting);
+    }
+  }
+  // Each needle's own curve: its indentation force until its puncture, its cutting force after (Alg 3.1 at its own
+  // inserted depth), summing to the array's.
+  ASSERT_EQ(curve.needle_force.size(), 2u);
+  for (std::size_t s = 0; s < curve.depth.size(); ++s) {
+    const double u = curve.depth[s];
+    EXPECT_NEAR(curve.needle_force[0][s] + curve.needle_force[1][s], curve.force[s], 1e-15);
+    if (u > 200 * um) EXPECT_NEAR(curve.needle_force[0][s], post_puncture_force(loads, u, 0.2e6, 0.2), 1e-15);
+    if (u > 350 * um) {
+      EXPECT_NEAR(curve.needle_force[1][s], post_puncture_force(loads, u - 50 * um, 0.2e6, 0.2), 1e-15);
+    }
+    if (u < 340 * um) {
+      const double x = std::max(0.0, u - 50 * um) / (300 * um);
+      EXPECT_NEAR(curve.needle_force[1][s], 0.03 * x * x, 2e-3) << u;
     }
   }
 }

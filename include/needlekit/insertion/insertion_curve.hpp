@@ -70,6 +70,9 @@ struct InsertionCurve {
   std::vector<InsertionPhase> phase;      // Cutting once at least one needle has punctured
   std::vector<int> punctured_needles;     // how many needles have punctured at each sample
   std::vector<PunctureEvent> punctures;   // in the order they happen
+  // N, per needle (in the order given), per sample: its indentation force until it punctures, its cutting force
+  // (Alg 3.1, Eq 3.20) after; their sum over the needles is `force`.
+  std::vector<std::vector<double>> needle_force;
 };
 
 // Throws InvalidInput naming the field: no needle, missing loads, a pre-puncture curve that does not start at depth
