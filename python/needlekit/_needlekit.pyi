@@ -1898,6 +1898,9 @@ class InsertionCurve:
     def force(self) -> numpy.ndarray:
         """N"""
     @property
+    def needle_force(self) -> List[List[float]]:
+        """N, per needle, per sample: its indentation force until it punctures, its cutting force after"""
+    @property
     def phase(self) -> List[InsertionPhase]:
         ...
     @property
