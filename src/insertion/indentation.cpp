@@ -263,11 +263,12 @@ MeshedTissue tissue_of(const IndentationCase& c, const IndentationCase& m, const
   mesh::LayeredBlockOptions block = block_to_mesh(m);
   block.coarse_level = meshes_coarse_level(m);
   const Clock::time_point mesh_start = Clock::now();
-  // A square array's block (or its reduced model's) from copies of one needle's cell where they fit
-  // (mesh/cell_replication.hpp; a fallback to the whole block is reported by io::indentation_scale_warnings).
-  const bool square_array = c.array && c.array->layout == ArrayLayout::Square && m.needles.size() > 1;
-  mesh::LayeredBlockResult block_mesh = square_array ? mesh::array_block_mesh(block, c.array->pitch).block
-                                                     : mesh::layered_block_mesh(block);
+  // An array's block (or its reduced model's) from copies of one cell where they fit: a needle's square, or a
+  // hexagonal array's pair of rows (mesh/cell_replication.hpp; a fallback to the whole block is reported by
+  // io::indentation_scale_warnings).
+  mesh::LayeredBlockResult block_mesh =
+      c.array && m.needles.size() > 1 ? mesh::array_block_mesh(block, cell_lattice(*c.array)).block
+                                      : mesh::layered_block_mesh(block);
   meshed.tissue = std::move(block_mesh.mesh);
   meshed.coarse = std::move(block_mesh.coarse);
   result.quality = std::move(block_mesh.quality);

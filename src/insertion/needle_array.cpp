@@ -18,6 +18,10 @@ double row_spacing(const NeedleArray& a) {
 
 }  // namespace
 
+mesh::CellLattice cell_lattice(const NeedleArray& a) {
+  return a.layout == ArrayLayout::Square ? mesh::square_lattice(a.pitch) : mesh::hexagonal_lattice(a.pitch);
+}
+
 std::vector<Eigen::Vector2d> array_positions(const NeedleArray& a) {
   // Odd rows of a hexagonal array are shifted by half a pitch; the bounding box stays centred.
   const double shift = hexagonal_shift(a) ? a.pitch / 2 : 0.0;

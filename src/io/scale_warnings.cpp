@@ -91,16 +91,15 @@ std::vector<std::string> indentation_scale_warnings(const insertion::Indentation
                                    c.angle * 180 / M_PI));
   }
   if (c.array && !c.tissue_mesh && c.needles.size() > 1) {
-    // An array's block is assembled from copies of one needle's cell where it can be (mesh/cell_replication.hpp);
-    // otherwise it is one Delaunay of the whole block, slow for a large array.
+    // An array's block is assembled from copies of one cell where it can be (mesh/cell_replication.hpp); otherwise
+    // it is one Delaunay of the whole block, slow for a large array.
     const insertion::IndentationCase solved = insertion::modelled_case(c);
     mesh::LayeredBlockOptions block = solved.block;
     block.insertion_sites.clear();
     for (const insertion::NeedleSite& site : solved.needles) block.insertion_sites.push_back(site.position);
-    const double pitch = c.array->layout == insertion::ArrayLayout::Square ? c.array->pitch : 0.0;
     if (solved.needles.size() > 1) {
-      if (const mesh::SiteGridCheck cells = mesh::site_grid(block, pitch); !cells.grid) {
-        warnings.push_back(fmt::format("the array's block is meshed whole, not from copies of one needle's cell: {}",
+      if (const mesh::SiteGridCheck cells = mesh::site_grid(block, insertion::cell_lattice(*c.array)); !cells.grid) {
+        warnings.push_back(fmt::format("the array's block is meshed whole, not from copies of one cell: {}",
                                        cells.reason));
       }
     }

@@ -70,16 +70,16 @@ struct Representative {
   int dx = 0, dy = 0;
 };
 
-std::vector<Representative> representatives(const TetMesh& cell, double pitch) {
-  const NodeLookup lookup(cell.nodes, pitch);
+std::vector<Representative> representatives(const TetMesh& cell, const Eigen::Vector2d& pitch) {
+  const NodeLookup lookup(cell.nodes, pitch.minCoeff());
   std::vector<Representative> result(cell.nodes.size());
   for (std::size_t n = 0; n < cell.nodes.size(); ++n) {
     Representative r{static_cast<int>(n), 0, 0};
     for (int axis = 0; axis < 2; ++axis) {
       const Eigen::Vector3d& p = cell.nodes[static_cast<std::size_t>(r.node)];
-      if (slot_of(p[axis], pitch) != Slot::HighFace) continue;
+      if (slot_of(p[axis], pitch[axis]) != Slot::HighFace) continue;
       Eigen::Vector3d image = p;
-      image[axis] -= pitch;
+      image[axis] -= pitch[axis];
       r.node = lookup.find(image);
       if (r.node < 0) {
         throw std::logic_error(fmt::format("array cell: the node at ({}, {}, {}) um on the cell's +{} face has no "
@@ -110,31 +110,56 @@ std::pair<int, int> piece_copies(int piece_axis_index, int cells) {
 
 }  // namespace
 
-SiteGridCheck site_grid(const LayeredBlockOptions& o, double p) {
-  if (!(p > 0)) return {std::nullopt, "not a square array (a hexagonal layout)"};
+CellLattice square_lattice(double pitch) { return {pitch, pitch, {Eigen::Vector2d::Zero()}}; }
+
+CellLattice hexagonal_lattice(double pitch) {
+  const double row_pair = pitch * std::sqrt(3.0);
+  return {pitch, row_pair, {{-0.25 * pitch, -0.25 * row_pair}, {0.25 * pitch, 0.25 * row_pair}}};
+}
+
+SiteGridCheck site_grid(const LayeredBlockOptions& o, const CellLattice& lattice) {
+  if (!(lattice.pitch_x > 0 && lattice.pitch_y > 0) || lattice.sites.empty()) return {std::nullopt, "no lattice"};
   if (o.insertion_sites.size() < 2) return {std::nullopt, "a single site"};
+  const Eigen::Vector2d pitch(lattice.pitch_x, lattice.pitch_y);
   Eigen::Vector2d low = o.insertion_sites.front(), high = low;
   for (const Eigen::Vector2d& s : o.insertion_sites) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  Eigen::Vector2d lowest = lattice.sites.front(), highest = lowest;  // the sites' extent within a cell
+  for (const Eigen::Vector2d& s : lattice.sites) lowest = lowest.cwiseMin(s), highest = highest.cwiseMax(s);
   SiteGrid g;
-  g.first = low, g.pitch = p;
-  g.columns = static_cast<int>(std::lround((high.x() - low.x()) / p)) + 1;
-  g.rows = static_cast<int>(std::lround((high.y() - low.y()) / p)) + 1;
-  std::vector<char> seen(static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows), 0);
+  g.first = low - lowest, g.pitch_x = pitch.x(), g.pitch_y = pitch.y(), g.sites = lattice.sites;
+  const Eigen::Vector2d cells = ((high - low) - (highest - lowest)).cwiseQuotient(pitch);
+  g.columns = static_cast<int>(std::lround(cells.x())) + 1;
+  g.rows = static_cast<int>(std::lround(cells.y())) + 1;
+  if (g.columns < 1 || g.rows < 1) return {std::nullopt, "sites that do not fill a cell of the lattice"};
+  const std::size_t per_cell = lattice.sites.size();
+  std::vector<char> seen(static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows) * per_cell, 0);
   for (const Eigen::Vector2d& s : o.insertion_sites) {
-    const Eigen::Vector2d k = (s - low) / p;
-    const Eigen::Vector2d r = k.array().round();
-    if ((k - r).lpNorm<Eigen::Infinity>() > kGridTolerance) return {std::nullopt, "sites off a square grid of the pitch (a hexagonal layout)"};
-    seen[static_cast<std::size_t>(r.y()) * static_cast<std::size_t>(g.columns) + static_cast<std::size_t>(r.x())] = 1;
+    bool placed = false;
+    for (std::size_t k = 0; k < per_cell && !placed; ++k) {
+      const Eigen::Vector2d c = (s - g.first - lattice.sites[k]).cwiseQuotient(pitch);
+      const Eigen::Vector2d r = c.array().round();
+      if ((c - r).lpNorm<Eigen::Infinity>() > kGridTolerance || r.x() < 0 || r.y() < 0 || r.x() >= g.columns ||
+          r.y() >= g.rows) {
+        continue;
+      }
+      seen[(static_cast<std::size_t>(r.y()) * static_cast<std::size_t>(g.columns) + static_cast<std::size_t>(r.x())) *
+               per_cell + k] = 1;
+      placed = true;
+    }
+    if (!placed) return {std::nullopt, "sites off the lattice's grid of cells"};
   }
   if (std::count(seen.begin(), seen.end(), 1) != static_cast<long>(o.insertion_sites.size()) ||
       o.insertion_sites.size() != seen.size()) {
-    return {std::nullopt, "sites that are not every point of a square grid"};
+    return {std::nullopt, per_cell > 1 ? "sites that are not every site of whole cells (a hexagonal array of an odd "
+                                         "number of rows)"
+                                       : "sites that are not every point of a square grid"};
   }
-  const auto margin = [&](double value) { return std::abs(value) <= kGridTolerance * p ? 0.0 : value; };
-  g.margin_left = margin(low.x() - 0.5 * p + 0.5 * o.width);
-  g.margin_right = margin(0.5 * o.width - high.x() - 0.5 * p);
-  g.margin_bottom = margin(low.y() - 0.5 * p + 0.5 * o.length);
-  g.margin_top = margin(0.5 * o.length - high.y() - 0.5 * p);
+  const auto margin = [&](double value) { return std::abs(value) <= kGridTolerance * pitch.minCoeff() ? 0.0 : value; };
+  const Eigen::Vector2d last = g.first + Eigen::Vector2d((g.columns - 1) * pitch.x(), (g.rows - 1) * pitch.y());
+  g.margin_left = margin(g.first.x() - 0.5 * pitch.x() + 0.5 * o.width);
+  g.margin_right = margin(0.5 * o.width - last.x() - 0.5 * pitch.x());
+  g.margin_bottom = margin(g.first.y() - 0.5 * pitch.y() + 0.5 * o.length);
+  g.margin_top = margin(0.5 * o.length - last.y() - 0.5 * pitch.y());
   for (double m : {g.margin_left, g.margin_right, g.margin_bottom, g.margin_top}) {
     if (m < 0) return {std::nullopt, "cells that leave the block (a needle less than half a pitch from its edge)"};
     if (m > 0 && m < 0.5 * o.size_at_site) {
@@ -146,15 +171,15 @@ SiteGridCheck site_grid(const LayeredBlockOptions& o, double p) {
 }
 
 TetMesh replicated_cells(const TetMesh& cell, const std::vector<int>& piece, const SiteGrid& grid) {
-  const double p = grid.pitch;
-  const std::vector<Representative> rep = representatives(cell, p);
+  const Eigen::Vector2d pitch(grid.pitch_x, grid.pitch_y);
+  const std::vector<Representative> rep = representatives(cell, pitch);
   const AxisCopies along_x{grid.columns}, along_y{grid.rows};
   // Each representative's block of dense keys: count_x * count_y copies.
   std::vector<std::int64_t> first_key(cell.nodes.size() + 1, 0);
   for (std::size_t n = 0; n < cell.nodes.size(); ++n) {
     const std::int64_t copies = rep[n].node == static_cast<int>(n)
-                                    ? std::int64_t{along_x.count(slot_of(cell.nodes[n].x(), p))} *
-                                          along_y.count(slot_of(cell.nodes[n].y(), p))
+                                    ? std::int64_t{along_x.count(slot_of(cell.nodes[n].x(), pitch.x()))} *
+                                          along_y.count(slot_of(cell.nodes[n].y(), pitch.y()))
                                     : 0;
     first_key[n + 1] = first_key[n] + copies;
   }
@@ -167,14 +192,14 @@ TetMesh replicated_cells(const TetMesh& cell, const std::vector<int>& piece, con
   const auto node_id = [&](int n, int kx, int ky) {
     const Representative& r = rep[static_cast<std::size_t>(n)];
     const Eigen::Vector3d& q = cell.nodes[static_cast<std::size_t>(r.node)];
-    const Slot sx = slot_of(q.x(), p), sy = slot_of(q.y(), p);
+    const Slot sx = slot_of(q.x(), pitch.x()), sy = slot_of(q.y(), pitch.y());
     const int ix = kx + r.dx, iy = ky + r.dy;
     const std::int64_t key = first_key[static_cast<std::size_t>(r.node)] + along_x.index(sx, ix) +
                              std::int64_t{along_x.count(sx)} * along_y.index(sy, iy);
     int& id = id_of_key[static_cast<std::size_t>(key)];
     if (id < 0) {
       id = static_cast<int>(block.nodes.size());
-      block.nodes.push_back(q + Eigen::Vector3d(grid.first.x() + ix * p, grid.first.y() + iy * p, 0));
+      block.nodes.push_back(q + Eigen::Vector3d(grid.first.x() + ix * pitch.x(), grid.first.y() + iy * pitch.y(), 0));
     }
     return id;
   };

@@ -32,10 +32,11 @@ struct MshContents {
   std::vector<double> coords;                           // its x, y, z in file units
 };
 
-// An array block's repeating cell (cell_replication.hpp): a pitch x pitch square centred on the origin with its
-// needle's site at the centre, and the block's margins beyond the outermost cells (m, >= 0; 0 = none).
+// An array block's repeating cell (cell_replication.hpp): a pitch_x x pitch_y rectangle centred on the origin with
+// its needles' sites, and the block's margins beyond the outermost cells (m, >= 0; 0 = none).
 struct CellLayout {
-  double pitch = 0;
+  double pitch_x = 0, pitch_y = 0;
+  std::vector<Eigen::Vector2d> sites;  // m, from the cell's centre
   double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;  // -x, +x, -y, +y
 };
 

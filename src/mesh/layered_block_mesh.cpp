@@ -116,7 +116,8 @@ TetMesh replicated_block(const LayeredBlockOptions& options, const std::vector<T
                          const SiteGrid& grid) {
   detail::GmshError error;
   detail::CellBlockMesh cell;
-  const detail::CellLayout layout{grid.pitch, grid.margin_left, grid.margin_right, grid.margin_bottom, grid.margin_top};
+  const detail::CellLayout layout{grid.pitch_x,     grid.pitch_y,      grid.sites,     grid.margin_left,
+                                  grid.margin_right, grid.margin_bottom, grid.margin_top};
   {
     const std::lock_guard<std::mutex> lock(detail::gmsh_call_mutex());
     cell = detail::gmsh_module().cell_block(options, layers, layout, error);
@@ -172,8 +173,8 @@ LayeredBlockResult block_mesh(const LayeredBlockOptions& options, const std::opt
 
 LayeredBlockResult layered_block_mesh(const LayeredBlockOptions& options) { return block_mesh(options, std::nullopt); }
 
-ArrayBlockMesh array_block_mesh(const LayeredBlockOptions& options, double pitch) {
-  SiteGridCheck check = site_grid(options, pitch);
+ArrayBlockMesh array_block_mesh(const LayeredBlockOptions& options, const CellLattice& lattice) {
+  SiteGridCheck check = site_grid(options, lattice);
   ArrayBlockMesh result;
   result.block = block_mesh(options, check.grid);
   result.meshing = check.grid ? BlockMeshing::ReplicatedCell : BlockMeshing::WholeBlock;

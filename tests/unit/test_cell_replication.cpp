@@ -1,5 +1,5 @@
-// A square array's block assembled from copies of one meshed cell (mesh/cell_replication.hpp, issue 36 item 5): it is
-// conforming (every interior face shared by two tetrahedra, the boundary only on the block's six faces), has no
+// An array's block assembled from copies of one meshed cell (mesh/cell_replication.hpp, issue 36 item 5), square
+// (a needle's cell) and hexagonal (a pair of rows): it is conforming (every interior face shared by two tetrahedra, the boundary only on the block's six faces), has no
 // duplicate nodes, fills the block's volume layer by layer, gives every needle the same nodes under its tip, is the
 // same on one and two threads, and falls back to the whole block, saying why, where cells do not fit.
 #include <gmock/gmock.h>
@@ -21,6 +21,7 @@ using testing::HasSubstr;
 namespace {
 
 constexpr double kPitch = 300e-6;
+const mesh::CellLattice kSquare = mesh::square_lattice(kPitch);
 
 // A two-layer block (100 um over 200 um) holding a columns x rows square array of `kPitch` with `margin` of tissue
 // beyond the outermost cells, meshed coarsely enough to take about a second.
@@ -39,6 +40,23 @@ mesh::LayeredBlockOptions array_block(int columns, int rows, double margin) {
       o.insertion_sites.emplace_back((i - 0.5 * (columns - 1)) * kPitch, (j - 0.5 * (rows - 1)) * kPitch);
     }
   }
+  return o;
+}
+
+// A two-layer block holding a columns x rows hexagonal array of `kPitch` (rows kPitch*sqrt(3)/2 apart, odd rows
+// shifted by +kPitch/2, as insertion::array_positions places them) with `margin` beyond the needles' extent.
+mesh::LayeredBlockOptions hexagonal_block(int columns, int rows, double margin) {
+  mesh::LayeredBlockOptions o = array_block(1, 1, 0.0);
+  const double row = kPitch * std::sqrt(3.0) / 2;
+  o.insertion_sites.clear();
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      o.insertion_sites.emplace_back((i - 0.5 * (columns - 1)) * kPitch + (j % 2 == 1 ? 0.25 : -0.25) * kPitch,
+                                     (j - 0.5 * (rows - 1)) * row);
+    }
+  }
+  o.width = columns * kPitch + 2 * margin;  // the cells' extent (columns pitches) plus the margin
+  o.length = rows * row + 2 * margin;
   return o;
 }
 
@@ -124,7 +142,7 @@ std::uint64_t coordinate_hash(const mesh::TetMesh& m) {
 
 TEST(CellReplication, ThreeByThreeArrayIsConformingAndFillsTheBlock) {
   const mesh::LayeredBlockOptions o = array_block(3, 3, 150e-6);
-  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kPitch);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kSquare);
   ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
   expect_conforming_block(r.block.mesh, o);
   // Every needle sees the same nodes under its tip, to rounding: a node on the site and the same set around it.
@@ -150,7 +168,7 @@ TEST(CellReplication, ArrayWithoutMarginOnTwoSidesAsAQuarterModelHasIt) {
   const double margin = 120e-6;
   o.width += margin, o.length += margin;
   for (Eigen::Vector2d& s : o.insertion_sites) s -= Eigen::Vector2d(0.5 * margin, 0.5 * margin);
-  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kPitch);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kSquare);
   ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
   expect_conforming_block(r.block.mesh, o);
 }
@@ -158,9 +176,9 @@ TEST(CellReplication, ArrayWithoutMarginOnTwoSidesAsAQuarterModelHasIt) {
 TEST(CellReplication, SameMeshOnOneAndTwoThreads) {
   mesh::LayeredBlockOptions o = array_block(2, 3, 100e-6);
   o.threads = 1;
-  const mesh::ArrayBlockMesh one = mesh::array_block_mesh(o, kPitch);
+  const mesh::ArrayBlockMesh one = mesh::array_block_mesh(o, kSquare);
   o.threads = 2;
-  const mesh::ArrayBlockMesh two = mesh::array_block_mesh(o, kPitch);
+  const mesh::ArrayBlockMesh two = mesh::array_block_mesh(o, kSquare);
   ASSERT_EQ(one.meshing, mesh::BlockMeshing::ReplicatedCell);
   EXPECT_EQ(one.block.mesh.nodes.size(), two.block.mesh.nodes.size());
   EXPECT_EQ(one.block.mesh.tets.size(), two.block.mesh.tets.size());
@@ -171,8 +189,8 @@ TEST(CellReplication, TheCellIsMeshedOnceWhateverTheArraysSize) {
   // Without margins the block is only copies of the cell, meshed the same for 2 x 2 and 3 x 2 cells: 4 and 6 times
   // its tetrahedra; the nodes shared by neighbouring copies are merged (fewer than 6 cells' worth).
   const mesh::LayeredBlockOptions three_by_two = array_block(3, 2, 0.0), two_by_two = array_block(2, 2, 0.0);
-  const mesh::ArrayBlockMesh r32 = mesh::array_block_mesh(three_by_two, kPitch);
-  const mesh::ArrayBlockMesh r22 = mesh::array_block_mesh(two_by_two, kPitch);
+  const mesh::ArrayBlockMesh r32 = mesh::array_block_mesh(three_by_two, kSquare);
+  const mesh::ArrayBlockMesh r22 = mesh::array_block_mesh(two_by_two, kSquare);
   ASSERT_EQ(r32.meshing, mesh::BlockMeshing::ReplicatedCell);
   ASSERT_EQ(r22.meshing, mesh::BlockMeshing::ReplicatedCell);
   EXPECT_EQ(r32.block.mesh.tets.size() * 4, r22.block.mesh.tets.size() * 6);
@@ -185,23 +203,65 @@ TEST(CellReplication, FallsBackToTheWholeBlockAndSaysWhy) {
   hexagonal.insertion_sites[2].x() += 0.5 * kPitch;  // the second row shifted by half a pitch
   hexagonal.insertion_sites[3].x() += 0.5 * kPitch;
   hexagonal.width += kPitch;
-  mesh::SiteGridCheck check = mesh::site_grid(hexagonal, kPitch);
+  mesh::SiteGridCheck check = mesh::site_grid(hexagonal, kSquare);
   EXPECT_FALSE(check.grid);
-  EXPECT_THAT(check.reason, HasSubstr("off a square grid"));
+  EXPECT_THAT(check.reason, HasSubstr("off the lattice's grid"));
 
   mesh::LayeredBlockOptions on_edge = array_block(3, 3, 0.0);  // a needle on a symmetry plane: a quarter of 3 x 3
   on_edge.site_circle_radius = 0;  // a circle cannot be embedded across the block's edge
   on_edge.width -= 0.5 * kPitch;
   for (Eigen::Vector2d& s : on_edge.insertion_sites) s.x() -= 0.25 * kPitch;
-  check = mesh::site_grid(on_edge, kPitch);
+  check = mesh::site_grid(on_edge, kSquare);
   EXPECT_FALSE(check.grid);
   EXPECT_THAT(check.reason, HasSubstr("leave the block"));
-  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(on_edge, kPitch);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(on_edge, kSquare);
   EXPECT_EQ(r.meshing, mesh::BlockMeshing::WholeBlock);
   EXPECT_THAT(r.reason, HasSubstr("leave the block"));
 
   mesh::LayeredBlockOptions thin = array_block(2, 2, 5e-6);
-  EXPECT_THAT(mesh::site_grid(thin, kPitch).reason, HasSubstr("thinner than half the tip size"));
+  EXPECT_THAT(mesh::site_grid(thin, kSquare).reason, HasSubstr("thinner than half the tip size"));
   mesh::LayeredBlockOptions single = array_block(1, 1, 150e-6);
-  EXPECT_THAT(mesh::site_grid(single, kPitch).reason, HasSubstr("single site"));
+  EXPECT_THAT(mesh::site_grid(single, kSquare).reason, HasSubstr("single site"));
+}
+
+TEST(CellReplication, HexagonalArrayIsConformingAndEveryNeedleSeesItsRowsMesh) {
+  // 3 columns x 4 rows: 3 x 2 cells of two needles each (a pitch by pitch*sqrt(3)).
+  const mesh::LayeredBlockOptions o = hexagonal_block(3, 4, 120e-6);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, mesh::hexagonal_lattice(kPitch));
+  ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
+  expect_conforming_block(r.block.mesh, o);
+  // Every needle of an even row sees the first needle's nodes around its tip, every needle of an odd row the
+  // second's: the same place in the cell. Each has a node on its site.
+  for (int parity = 0; parity < 2; ++parity) {
+    const std::vector<Eigen::Vector3d> first = nodes_near(r.block.mesh, o.insertion_sites[3 * parity], 60e-6);
+    ASSERT_GT(first.size(), 10u);
+    for (std::size_t k = 0; k < o.insertion_sites.size(); ++k) {
+      if (static_cast<int>(k / 3) % 2 != parity) continue;
+      const Eigen::Vector2d& site = o.insertion_sites[k];
+      const std::vector<Eigen::Vector3d> near = nodes_near(r.block.mesh, site, 60e-6);
+      ASSERT_EQ(near.size(), first.size()) << k;
+      double farthest = 0;
+      for (const Eigen::Vector3d& p : near) {
+        double nearest = 1.0;
+        for (const Eigen::Vector3d& q : first) nearest = std::min(nearest, (p - q).norm());
+        farthest = std::max(farthest, nearest);
+      }
+      EXPECT_LT(farthest, 1e-12) << "needle " << k;
+      EXPECT_EQ(nodes_near(r.block.mesh, site, 1e-9).size(), 1u) << "no node on needle " << k;
+    }
+  }
+}
+
+TEST(CellReplication, HexagonalArrayIsTheSameOnOneAndTwoThreadsAndOddRowsFallBack) {
+  mesh::LayeredBlockOptions o = hexagonal_block(2, 2, 100e-6);
+  o.threads = 1;
+  const mesh::ArrayBlockMesh one = mesh::array_block_mesh(o, mesh::hexagonal_lattice(kPitch));
+  o.threads = 2;
+  const mesh::ArrayBlockMesh two = mesh::array_block_mesh(o, mesh::hexagonal_lattice(kPitch));
+  ASSERT_EQ(one.meshing, mesh::BlockMeshing::ReplicatedCell) << one.reason;
+  EXPECT_EQ(coordinate_hash(one.block.mesh), coordinate_hash(two.block.mesh));
+  // Three rows: the third is half a cell.
+  const mesh::SiteGridCheck odd = mesh::site_grid(hexagonal_block(2, 3, 100e-6), mesh::hexagonal_lattice(kPitch));
+  EXPECT_FALSE(odd.grid);
+  EXPECT_THAT(odd.reason, HasSubstr("odd number of rows"));
 }

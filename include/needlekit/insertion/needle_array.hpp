@@ -15,6 +15,7 @@
 
 #include "needlekit/core/enum_table.hpp"
 #include "needlekit/core/parameter.hpp"
+#include "needlekit/mesh/cell_replication.hpp"
 
 namespace needlekit::insertion {
 
@@ -57,6 +58,10 @@ inline constexpr Parameter<NeedleArray, double> kArrayLengths[] = {
 
 // m: the (x, y) of every needle's tip centre, needle k = row * columns + column.
 std::vector<Eigen::Vector2d> array_positions(const NeedleArray& array);
+
+// The cell the array's block repeats (mesh/cell_replication.hpp): a needle's square, or a hexagonal array's pair of
+// rows.
+mesh::CellLattice cell_lattice(const NeedleArray& array);
 
 // m: the footprint's extent in x and y, the bounding box of the needles' bases: (columns - 1) * pitch + base diameter
 // by (rows - 1) * pitch + base diameter for a square array.

@@ -1,11 +1,15 @@
 // An array block's repeating cell with the Gmsh C++ API: one OpenCASCADE box per piece (the -x margin, the cell, the
 // +x margin, times the same in y) and layer, fragmented so that every piece and layer interface is conforming; the
-// site (and its circle) embedded at the cell's centre; the cell's +x side faces set as periodic copies of its -x
-// faces (gmsh::model::mesh::setPeriodic with a translation by the pitch), and +y of -y, in every row of pieces and
-// every layer, so that translated copies of the cell match node for node (cell_replication.hpp assembles them).
-// The size field is the whole block's with one site: inside the cell and its margins the nearest needle of a square
-// array is always the cell's own (the cell is its Voronoi cell; a margin piece lies beyond its row or column), so the
-// field of the assembled array equals the field the whole-block mesher would use there.
+// sites (and their circles) embedded in the cell's top face; the cell's +x side faces set as periodic copies of its
+// -x faces (gmsh::model::mesh::setPeriodic with a translation by pitch_x), and +y of -y (by pitch_y), in every row of
+// pieces and every layer, so that translated copies of the cell match node for node (cell_replication.hpp assembles
+// them).
+// The size field is the whole block's with the cell's sites. A square cell is its site's Voronoi cell and a margin
+// piece lies beyond its row or column, so the nearest needle is always the cell's own and the field of the assembled
+// array equals the whole-block mesher's there. A hexagonal cell (two sites) is not: near its sides the nearest needle
+// can be a neighbouring cell's, so the field also takes the sites' copies in the eight neighbouring cells (points
+// that are not part of the model's volumes). Beyond the array's edge those copies stand for needles that do not
+// exist, and the margins are refined around them too: finer than needed, never coarser.
 // Part of the Gmsh module; the layout is checked by layered_block_mesh (src/mesh/layered_block_mesh.cpp).
 #include <fmt/format.h>
 
@@ -28,7 +32,7 @@ struct Segment {
   int index = 0;
 };
 
-std::vector<Segment> segments(double pitch, double margin_low, double margin_high) {
+std::vector<Segment> segments(double pitch, double margin_low, double margin_high) {  // pitch: along this axis
   std::vector<Segment> result;
   if (margin_low > 0) result.push_back({-0.5 * pitch - margin_low, -0.5 * pitch, 0});
   result.push_back({-0.5 * pitch, 0.5 * pitch, 1});
@@ -93,17 +97,34 @@ void set_periodic_faces(int axis, double pitch, const std::vector<Segment>& acro
   }
 }
 
-// The site at the cell's centre (and its circle) embedded in the cell's top face; returns the site's point tag.
-int embed_cell_site(const LayeredBlockOptions& options, double pitch, double u, double eps) {
-  const int site = gmsh::model::occ::addPoint(0, 0, 0);
-  int circle = -1;
-  if (options.site_circle_radius > 0) circle = gmsh::model::occ::addCircle(0, 0, 0, options.site_circle_radius * u);
+// The sites (and their circles) embedded in the cell's top face, and, for a cell of several sites, their copies in
+// the neighbouring cells as free points for the size field; returns the point tags for the field.
+std::vector<int> cell_site_points(const LayeredBlockOptions& options, const CellLayout& layout, double u, double eps) {
+  std::vector<int> sites, circles, field_points;
+  for (const Eigen::Vector2d& s : layout.sites) {
+    sites.push_back(gmsh::model::occ::addPoint(s.x() * u, s.y() * u, 0));
+    if (options.site_circle_radius > 0) {
+      circles.push_back(gmsh::model::occ::addCircle(s.x() * u, s.y() * u, 0, options.site_circle_radius * u));
+    }
+  }
+  field_points = sites;
+  if (layout.sites.size() > 1) {
+    for (int i = -1; i <= 1; ++i) {
+      for (int j = -1; j <= 1; ++j) {
+        if (i == 0 && j == 0) continue;
+        for (const Eigen::Vector2d& s : layout.sites) {
+          field_points.push_back(gmsh::model::occ::addPoint((s.x() + i * layout.pitch_x) * u,
+                                                            (s.y() + j * layout.pitch_y) * u, 0));
+        }
+      }
+    }
+  }
   gmsh::model::occ::synchronize();
-  const double h = 0.5 * pitch;
-  const int top = face_in_box({-h - eps, -h - eps, -eps}, {h + eps, h + eps, eps});
-  gmsh::model::mesh::embed(0, {site}, 2, top);
-  if (circle >= 0) gmsh::model::mesh::embed(1, {circle}, 2, top);
-  return site;
+  const double hx = 0.5 * layout.pitch_x * u, hy = 0.5 * layout.pitch_y * u;
+  const int top = face_in_box({-hx - eps, -hy - eps, -eps}, {hx + eps, hy + eps, eps});
+  gmsh::model::mesh::embed(0, sites, 2, top);
+  if (!circles.empty()) gmsh::model::mesh::embed(1, circles, 2, top);
+  return field_points;
 }
 
 // The tetrahedra of the pieces as a CellBlockMesh (the piece of each tetrahedron in the order gmsh_tet_mesh takes
@@ -127,9 +148,9 @@ CellBlockMesh cell_tet_mesh(const std::vector<TissueLayer>& layers, const std::v
 CellBlockMesh gmsh_cell_block(const LayeredBlockOptions& options, const std::vector<TissueLayer>& layers,
                               const CellLayout& layout) {
   const double u = 1 / kModelUnit;  // m -> model units
-  const double p = layout.pitch * u;
-  const std::vector<Segment> xs = segments(p, layout.margin_left * u, layout.margin_right * u);
-  const std::vector<Segment> ys = segments(p, layout.margin_bottom * u, layout.margin_top * u);
+  const double px = layout.pitch_x * u, py = layout.pitch_y * u;
+  const std::vector<Segment> xs = segments(px, layout.margin_left * u, layout.margin_right * u);
+  const std::vector<Segment> ys = segments(py, layout.margin_bottom * u, layout.margin_top * u);
   // The extent that holds every piece, centred on the cell (for the searches and the thin-layer boxes).
   const double w = 2 * std::max(-xs.front().low, xs.back().high), l = 2 * std::max(-ys.front().low, ys.back().high);
   CellBlockMesh result;
@@ -142,16 +163,16 @@ CellBlockMesh gmsh_cell_block(const LayeredBlockOptions& options, const std::vec
       volumes.height += layer.thickness * u;
     }
     const std::vector<PieceVolume> pieces = piece_volumes(xs, ys, volumes);
-    double smallest = std::min(p, layers.front().thickness * u);
+    double smallest = std::min({px, py, layers.front().thickness * u});
     for (const std::vector<Segment>* axis : {&xs, &ys}) {
       for (const Segment& s : *axis) smallest = std::min(smallest, s.high - s.low);
     }
     const double eps = 1e-3 * smallest;
-    const int site = embed_cell_site(options, p, u, eps);
-    set_periodic_faces(0, p, ys, volumes, eps);
-    set_periodic_faces(1, p, xs, volumes, eps);
+    const std::vector<int> field_points = cell_site_points(options, layout, u, eps);
+    set_periodic_faces(0, px, ys, volumes, eps);
+    set_periodic_faces(1, py, xs, volumes, eps);
     alternate_interface_algorithms(volumes, w, l, eps);
-    set_size_fields(options, layers, volumes, {site}, w, l, u);
+    set_size_fields(options, layers, volumes, field_points, w, l, u);
     set_mesh_options(0);  // one thread: the cell, and so the array, is the same in every run
     gmsh::model::mesh::generate(3);
     result = cell_tet_mesh(layers, pieces);
