@@ -230,6 +230,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_line_search.cpp
   tests/unit/test_needle_array.cpp
   tests/unit/test_optimizer_progress.cpp
+  tests/unit/test_parameter_json.cpp
   tests/unit/test_parameter_tables.cpp
   tests/unit/test_patch.cpp
   tests/unit/test_patch_progress.cpp

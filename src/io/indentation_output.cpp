@@ -10,7 +10,12 @@
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/array_output.hpp"
+#include "needlekit/fem/solver_parameters.hpp"
+#include "needlekit/insertion/loading_parameters.hpp"
+#include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/json_text.hpp"
+#include "needlekit/io/parameter_json.hpp"
+#include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/io/result_writers.hpp"
 #include "needlekit/io/scale_warnings.hpp"
 
@@ -165,6 +170,16 @@ nlohmann::json bending_json(const insertion::IndentationResult& result) {
           {"critical_bending_load_N", b.critical_load},
           {"margin", std::isfinite(b.margin) ? nlohmann::json(b.margin) : nlohmann::json(nullptr)}};
 }
+
+// The inputs as the parameter tables declare them, under the case file's tables (io/parameter_json.hpp).
+nlohmann::json inputs_json(const insertion::IndentationCase& c) {
+  nlohmann::json inputs = nlohmann::json::object();
+  add_parameters_json(insertion::kLoadingParameters, static_cast<const insertion::Loading&>(c), inputs);
+  add_parameters_json(fem::kSolverParameters, c.solver, inputs);
+  add_parameters_json(mesh::kLayeredBlockParameters, c.block, inputs);
+  add_parameters_json(insertion::kPunctureParameters, c.puncture, inputs);
+  return inputs;
+}
 }  // namespace
 
 nlohmann::json indentation_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
@@ -231,6 +246,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   }
   json["mesh_quality"] = quality;
   json["notes"] = indentation_scale_warnings(c);
+  json["inputs"] = inputs_json(c);
   json["mesh_seconds"] = result.mesh_seconds;
   json["setup_seconds"] = result.setup_seconds;
   json["total_seconds"] = result.total_seconds;
