@@ -151,6 +151,31 @@ TEST_F(IndentCli, BluntBevelUnderFrictionalContactConvergesWithTheMesh) {
   EXPECT_NEAR(force[0] / force[1], 1.0, 0.10);
 }
 
+// The averaged-pressure puncture law (issue 35 item 2) on the same frictional contact: the blunt bevel punctures at
+// one depth on the 40 and 28 um tip meshes (docs/indentation.md, "Averaged pressure under friction": 160.9, 162.6 and
+// 168.3 um on 40, 28 and 20 um; frictionless the 40 um mesh punctured at 132 um, 20 % before the 28 um one). The runs
+// stop at puncture, in the step to 175 um (p̄_l there: 0.75 and 0.70 MPa).
+TEST_F(IndentCli, AveragedPressureUnderFrictionPuncturesTheBluntBevelAtOneDepthOnTwoMeshes) {
+  std::ofstream(dir_ / "averaged.toml") << file_text(kExamples + "indent_6_2_blunt_bevel_friction.toml")
+                                        << "\n[puncture]\ncriterion = \"averaged-pressure\"\n"
+                                           "critical_pressure = \"0.663 MPa\"\nmaterial_length = \"50 um\"\n";
+  double depth[2] = {};
+  const char* sizes[2] = {"40 um", "28 um"};
+  for (int i = 0; i < 2; ++i) {
+    SCOPED_TRACE(sizes[i]);
+    const CliRun r = run(std::string("indent averaged.toml --json --size-at-tip '") + sizes[i] + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["status"], "punctured");
+    EXPECT_EQ(json["criterion"], "averaged-pressure");
+    ASSERT_TRUE(json["puncture_depth_um"].is_number()) << json["reason"];
+    depth[i] = json["puncture_depth_um"].get<double>();
+    EXPECT_GT(depth[i], 100.0);  // p̄_l at 100 um: 0.34 and 0.43 MPa, about half of p_c
+    EXPECT_LT(depth[i], 200.0);
+  }
+  EXPECT_NEAR(depth[0] / depth[1], 1.0, 0.10);
+}
+
 }  // namespace
 
 namespace {
