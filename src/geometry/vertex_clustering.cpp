@@ -1,11 +1,13 @@
 #include "needlekit/geometry/vertex_clustering.hpp"
 
+#include <Eigen/Geometry>
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <set>
+#include <map>
 #include <unordered_map>
 
 #include "needlekit/core/errors.hpp"
@@ -68,15 +70,31 @@ std::vector<std::array<int, 3>> clustered_triangles(const TriangleMesh& mesh, co
     const auto [it, added] = representative.try_emplace(cell, k, d);
     if (!added && d < it->second.second) it->second = {k, d};
   }
+  const auto normal = [&](const std::array<int, 3>& c) {  // area-weighted
+    const auto& v = mesh.vertices;
+    const Eigen::Vector3d& a = v[static_cast<std::size_t>(c[0])];
+    return Eigen::Vector3d((v[static_cast<std::size_t>(c[1])] - a).cross(v[static_cast<std::size_t>(c[2])] - a));
+  };
   std::vector<std::array<int, 3>> kept;
-  std::set<std::array<int, 3>> seen;  // sorted corners of the kept triangles
+  std::vector<Eigen::Vector3d> facing;         // per kept triangle: the summed normals of the triangles it stands for
+  std::map<std::array<int, 3>, std::size_t> index_of;  // sorted corners of a kept triangle -> its index
   for (const auto& t : mesh.triangles) {
     const std::array<int, 3> r{representative.at(cell_of(t[0])).first, representative.at(cell_of(t[1])).first,
                                representative.at(cell_of(t[2])).first};
     if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2]) continue;
     std::array<int, 3> key = r;
     std::sort(key.begin(), key.end());
-    if (seen.insert(key).second) kept.push_back(r);
+    const auto [it, added] = index_of.try_emplace(key, kept.size());
+    if (added) {
+      kept.push_back(r);
+      facing.push_back(Eigen::Vector3d::Zero());
+    }
+    facing[it->second] += normal(t);
+  }
+  // Moving the corners to their cells' representatives can fold a thin triangle over: each kept triangle faces the
+  // way the surface it stands for faces (a viewer lights a triangle seen from behind as the surface's dark back).
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    if (normal(kept[k]).dot(facing[k]) < 0) std::swap(kept[k][1], kept[k][2]);
   }
   return kept;
 }

@@ -15,9 +15,15 @@ nlohmann::json body_view(const std::string& name, const geometry::SurfaceMesh& s
                          const BodyViewOptions& options) {
   const geometry::TriangleMesh& full = surface.mesh();
   const geometry::ClusteredMesh drawn = geometry::clustered_mesh(full, options.max_triangles);
-  std::vector<float> positions;
-  for (const Eigen::Vector3d& p : drawn.mesh.vertices) {
-    positions.insert(positions.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+  // Positions, and the full mesh's normals at the vertices drawn: lit by these, the slivers that clustering folds
+  // over shade as the surface they stand for, not as dark specks.
+  std::vector<float> positions, normals;
+  const auto append = [](std::vector<float>& to, const Eigen::Vector3d& v) {
+    to.insert(to.end(), {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
+  };
+  for (std::size_t k = 0; k < drawn.mesh.vertices.size(); ++k) {
+    append(positions, drawn.mesh.vertices[k]);
+    append(normals, surface.vertex_normal(drawn.source_vertex[k]));
   }
   std::vector<std::uint32_t> indices, vertex_ids(drawn.source_vertex.begin(), drawn.source_vertex.end());
   for (const auto& t : drawn.mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
@@ -36,6 +42,7 @@ nlohmann::json body_view(const std::string& name, const geometry::SurfaceMesh& s
                      {"triangles", drawn.mesh.triangles.size()},
                      {"indices", uint32_array(indices)},
                      {"positions", float32_array(positions)},
+                     {"normals", float32_array(normals)},
                      {"vertex_ids", uint32_array(vertex_ids)},
                      {"fields", nlohmann::json::array()}};
   view["full_mesh"] = {{"vertices", full.vertices.size()}, {"triangles", full.triangles.size()}};

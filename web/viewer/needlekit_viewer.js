@@ -157,6 +157,7 @@
 
     var surface = data.surface;
     this.surfacePositions = decode(surface.positions);
+    this.surfaceNormals = surface.normals ? decode(surface.normals) : null;  // a body view's: the full mesh's
     this.vertexCount = surface.vertices;
     this.fields = (surface.fields || []).map(function (f) { return decode(f.values); });
     var geometry = new THREE.BufferGeometry();
@@ -279,7 +280,11 @@
     var offset = p.length > 3 * v ? 3 * v * step : 0;
     position.array.set(p.subarray(offset, offset + 3 * v));
     position.needsUpdate = true;
-    this.surfaceGeometry.computeVertexNormals();
+    if (this.surfaceNormals) {
+      this.surfaceGeometry.setAttribute("normal", new THREE.BufferAttribute(this.surfaceNormals, 3));
+    } else {
+      this.surfaceGeometry.computeVertexNormals();
+    }
     this.surfaceGeometry.computeBoundingSphere();
     var needles = this.data.needles;
     if (needles && needles.instances) {

@@ -17,7 +17,8 @@ struct BodyViewOptions {
 };
 
 // {"format": "needlekit-view/1", "kind": "body", "name", "title", "steps": [one], "steps_total": 1, "surface":
-// {"region": "whole body", "vertices", "triangles", "indices", "positions" (Float32, m), "vertex_ids" (Uint32),
+// {"region": "whole body", "vertices", "triangles", "indices", "positions" (Float32, m), "normals" (Float32, the full
+// mesh's unit vertex normals at the vertices drawn), "vertex_ids" (Uint32),
 // "fields": []}, "full_mesh": {"vertices", "triangles"}, "cell_size_m", "notes"}. Throws InvalidInput for
 // max_triangles < 1.
 nlohmann::json body_view(const std::string& name, const geometry::SurfaceMesh& surface,
