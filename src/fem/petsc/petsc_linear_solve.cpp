@@ -273,6 +273,7 @@ bool PetscLinearSolve::krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd&
   check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
   check(KSPGetConvergedReason(ksp_, &last_reason_), "KSPGetConvergedReason");
   rec.linear_iterations += static_cast<int>(iterations);
+  last_iterations_ = static_cast<int>(iterations);
   if (last_reason_ <= 0) return false;
   check(VecScatterBegin(gather_, solution_, gathered_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
   check(VecScatterEnd(gather_, solution_, gathered_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
@@ -309,12 +310,7 @@ bool PetscLinearSolve::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, It
     ok = krylov_solve(rhs, du, rec, tolerance);
   }
   have_preconditioner_ = ok;
-  if (ok) {
-    PetscInt iterations = 0;
-    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
-    last_iterations_ = static_cast<int>(iterations);
-    return true;
-  }
+  if (ok) return true;
   rec.factorized = true;
   keep_preconditioner(false);
   return shifted_solve(rhs, du, rec, tolerance);

@@ -85,7 +85,7 @@ private:
   bool rtol_from_options_ = false;  // -ksp_rtol given: it replaces the Newton forcing term
   bool reuse_from_options_ = false;  // -ksp_reuse_preconditioner given: it replaces the refresh rule below
   bool have_preconditioner_ = false;  // the preconditioner was set up for an unshifted K and may be kept
-  int last_iterations_ = 0;           // Krylov iterations of the last successful solve
+  int last_iterations_ = 0;           // Krylov iterations of the last solve (what keeping the hierarchy looks at)
   KSPConvergedReason last_reason_ = KSP_CONVERGED_ITERATING;
 };
 
