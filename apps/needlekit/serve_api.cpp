@@ -217,18 +217,20 @@ nlohmann::json MeshRegistry::add_upload(std::string_view bytes, std::string_view
 
 JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_view) {
   auto c = std::make_shared<const io::PatchCase>(io::parse_patch_case_json(body, "patch.json", meshes.meshes()));
-  return [c, with_view](JobProgress& progress) {
-    // The job's fraction: the mesh read, then the library's fit (its frame, each node or Newton iteration, the
-    // evaluation, the springs along the surface), then the view.
+  // The registry outlives the job pool (http_server.cpp declares it first).
+  return [c, with_view, &meshes](JobProgress& progress) {
+    // The job's fraction: the mesh read (none when the page's body view read it already), then the library's fit
+    // (its frame, each node or Newton iteration, the evaluation, the springs along the surface), then the view.
     constexpr double kRead = 0.2, kFitted = 0.95;
-    const io::PatchSurface surface = io::read_patch_surface(*c);
+    const std::shared_ptr<const geometry::BodySurface> body = meshes.body({c->mesh, c->mesh_unit});
+    const std::vector<std::string> warnings = io::patch_surface_warnings(*c, *body);
     if (!progress.report(kRead)) throw Interrupted();
     patch::FitAndEvaluateOptions options{c->placement, c->fit, c->evaluation, true, nullptr};
     options.progress = [&progress](double fraction) { return progress.report(kRead + fraction * (kFitted - kRead)); };
-    const patch::FitAndEvaluateResult result = patch::fit_and_evaluate(surface.surface, c->design, options);
-    nlohmann::json summary = io::rounded_numbers(io::patch_case_summary(*c, result, surface.warnings));
+    const patch::FitAndEvaluateResult result = patch::fit_and_evaluate(body->surface, c->design, options);
+    nlohmann::json summary = io::rounded_numbers(io::patch_case_summary(*c, result, warnings));
     if (with_view) {
-      summary["view"] = io::patch_view(c->mesh.stem().string(), surface.surface, result.design, result.fit,
+      summary["view"] = io::patch_view(c->mesh.stem().string(), body->surface, result.design, result.fit,
                                        result.evaluation);
     }
     return summary;

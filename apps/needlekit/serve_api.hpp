@@ -68,7 +68,8 @@ public:
   // (the reader's InvalidInput / IoError for a file that fails to read, the file then deleted) and returns its entry.
   nlohmann::json add_upload(std::string_view bytes, std::string_view format);
   // The body surface `file` names, read once: the last one read is kept, so that the clicks on a body's view after
-  // its POST /api/body-view do not each read the mesh again (1.2 s for the 240k-triangle neck).
+  // its POST /api/body-view, and the patch jobs on that body, do not each read the mesh again (1.2 s for the
+  // 240k-triangle neck).
   std::shared_ptr<const geometry::BodySurface> body(const io::BodyMeshFile& file) const;
 
 private:
@@ -86,7 +87,8 @@ private:
 
 // POST /api/patch[?view=true]: a patch case whose [surface] mesh is a name of `meshes`; the job's result is what
 // `needlekit patch CASE.toml --json` prints, and with `with_view` also "view": the fit's 3D view (io/patch_view.hpp,
-// the data of `needlekit patch --out`'s patch_view.js) for the page's viewer.
+// the data of `needlekit patch --out`'s patch_view.js) for the page's viewer. The job reads the body through
+// `meshes` (MeshRegistry::body), which must outlive it.
 JobWork patch_work(std::string_view body, const MeshRegistry& meshes, bool with_view = false);
 
 // POST /api/body-view: {"surface": {"mesh": a name of `meshes`, "unit": "1 m"}} (a patch case's [surface] keys);

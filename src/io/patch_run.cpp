@@ -6,13 +6,17 @@
 
 namespace needlekit::io {
 
+std::vector<std::string> patch_surface_warnings(const PatchCase& c, const geometry::BodySurface& body) {
+  std::vector<std::string> warnings = patch_scale_warnings(body.surface.mesh(), patch::patch_design(c.design));
+  if (body.flipped) warnings.insert(warnings.begin(), body.note);
+  if (!mesh_attribution(c.mesh)) warnings.push_back(missing_attribution_warning(c.mesh));
+  return warnings;
+}
+
 PatchSurface read_patch_surface(const PatchCase& c) {
   geometry::BodySurface body = geometry::read_body_surface(c.mesh, c.mesh_unit);
-  PatchSurface result{std::move(body.surface), {}, mesh_attribution(c.mesh)};
-  result.warnings = patch_scale_warnings(result.surface.mesh(), patch::patch_design(c.design));
-  if (body.flipped) result.warnings.insert(result.warnings.begin(), body.note);
-  if (!result.attribution) result.warnings.push_back(missing_attribution_warning(c.mesh));
-  return result;
+  std::vector<std::string> warnings = patch_surface_warnings(c, body);
+  return {std::move(body.surface), std::move(warnings), mesh_attribution(c.mesh)};
 }
 
 nlohmann::json patch_case_summary(const PatchCase& c, const patch::FitAndEvaluateResult& r,

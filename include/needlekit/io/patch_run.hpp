@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
 #include "needlekit/io/mesh_attribution.hpp"
 #include "needlekit/io/patch_config.hpp"
@@ -21,6 +22,8 @@ struct PatchSurface {
 
 // Reads the case's mesh at its unit (geometry::read_body_surface) with its warnings. Throws IoError / InvalidInput.
 PatchSurface read_patch_surface(const PatchCase& c);
+// The same warnings for the case's body surface read already (`needlekit serve` keeps the body it last read).
+std::vector<std::string> patch_surface_warnings(const PatchCase& c, const geometry::BodySurface& body);
 
 // patch_summary_json() of the fit, with the springs measured along the surface when the fit measured them
 // ("spring_geodesic_strain", "spring_geodesics_not_converged") and `warnings` as "notes".
