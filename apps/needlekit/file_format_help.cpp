@@ -40,21 +40,6 @@ std::string solver_settings_help() {
   return text;
 }
 
-// The rows of `group` one per line, "key = default   range: meaning" ("key (required)" for a required row), the
-// first line headed by `label` (e.g. "  [loading]"), the others indented as far.
-std::string settings_help(const std::vector<ParameterText>& texts, std::string_view group, std::string_view label) {
-  std::string text;
-  for (const ParameterText& parameter : texts) {
-    if (!parameter.key.starts_with(fmt::format("{}.", group))) continue;
-    const std::string_view key = std::string_view(parameter.key).substr(group.size() + 1);
-    const std::string assignment = parameter.required ? fmt::format("{} (required)", key)
-                                                      : fmt::format("{} = {}", key, parameter.default_text);
-    text += fmt::format("{:<15}{:<30} {}: {}\n", text.empty() ? label : "", assignment, parameter.range,
-                        parameter.meaning);
-  }
-  return text;
-}
-
 // [array]'s counts and lengths (insertion::kArrayCounts, kArrayLengths), with their defaults.
 std::string array_settings_help() {
   std::string text;
@@ -71,6 +56,20 @@ std::string array_settings_help() {
 }
 
 }  // namespace
+
+std::string settings_help(const std::vector<ParameterText>& texts, std::string_view group, std::string_view label) {
+  const std::size_t width = std::max<std::size_t>(15, label.size() + 2);
+  std::string text;
+  for (const ParameterText& parameter : texts) {
+    if (!parameter.key.starts_with(fmt::format("{}.", group))) continue;
+    const std::string_view key = std::string_view(parameter.key).substr(group.size() + 1);
+    const std::string assignment = parameter.required ? fmt::format("{} (required)", key)
+                                                      : fmt::format("{} = {}", key, parameter.default_text);
+    text += fmt::format("{:<{}}{:<30} {}: {}\n", text.empty() ? label : "", width, assignment, parameter.range,
+                        parameter.meaning);
+  }
+  return text;
+}
 
 std::string design_file_help() {
   return fmt::format(

@@ -3166,9 +3166,48 @@ class PostPunctureLoads:
         """Every field as a dict (SI)."""
 
 class PostPunctureOptions:
-    ...
-    def __init__(self) -> None:
-        ...
+    """The beta load of the post-puncture force (§3.6.2, Algorithm 3.1).
+
+Keywords (every field):
+  reference_radius: m, >= 0 m: R of the beta load p = K*S*delta/R (0: the needle's largest distance from the channel axis). Default: "0 m".
+  max_edge_fraction: in [0, 1]: loaded triangles with an edge longer than this fraction of the needle's length are bisected before Algorithm 3.1 (0: the mesh as it is). Default: 0.025.
+  cap_at_cutting_pressure: true | false: cap the beta load at the cutting pressure K*S (delta/R <= 1). Default: true.
+  axial_component: true | false: sum the loads' components along the insertion direction (false: the load volumes, Eq 3.20). Default: false.
+  tip_tolerance: in [0, 0.01]: vertices this close to the foremost point, relative to the needle's length, are on the tip and carry no beta load (Algorithm 3.1). Default: 1e-06."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def axial_component(self) -> bool:
+        """true | false: sum the loads' components along the insertion direction (false: the load volumes, Eq 3.20). Default: false."""
+    @axial_component.setter
+    def axial_component(self, value: Any) -> None: ...
+    @property
+    def axis_point(self) -> numpy.ndarray:
+        """m, a point on the channel axis (NaN: the centroid of the tip vertices)"""
+    @axis_point.setter
+    def axis_point(self, value: Any) -> None: ...
+    @property
+    def cap_at_cutting_pressure(self) -> bool:
+        """true | false: cap the beta load at the cutting pressure K*S (delta/R <= 1). Default: true."""
+    @cap_at_cutting_pressure.setter
+    def cap_at_cutting_pressure(self, value: Any) -> None: ...
+    @property
+    def max_edge_fraction(self) -> float:
+        """in [0, 1]: loaded triangles with an edge longer than this fraction of the needle's length are bisected before Algorithm 3.1 (0: the mesh as it is). Default: 0.025."""
+    @max_edge_fraction.setter
+    def max_edge_fraction(self, value: Any) -> None: ...
+    @property
+    def reference_radius(self) -> float:
+        """m, >= 0 m: R of the beta load p = K*S*delta/R (0: the needle's largest distance from the channel axis). Default: "0 m"."""
+    @reference_radius.setter
+    def reference_radius(self, value: Any) -> None: ...
+    @property
+    def tip_tolerance(self) -> float:
+        """in [0, 0.01]: vertices this close to the foremost point, relative to the needle's length, are on the tip and carry no beta load (Algorithm 3.1). Default: 1e-06."""
+    @tip_tolerance.setter
+    def tip_tolerance(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
 
 class PrePunctureCurve:
     ...

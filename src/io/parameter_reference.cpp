@@ -6,6 +6,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/insertion/loading_parameters.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
@@ -45,6 +46,9 @@ std::vector<ParameterGroup> parameter_reference() {
        parameter_texts<insertion::Loading>(insertion::kLoadingParameters)},
       {"indentation cases, [puncture] (besides critical_pressure, toughness, toughness_from)", "PunctureOptions",
        parameter_texts(insertion::kPunctureParameters, insertion::PunctureOptions{})},
+      {"insertion cases (`needlekit insert`), [post_puncture] (besides stiffness, scale, final_depth, samples, "
+       "side_tolerance, alpha_tolerance, occlusion_test, measured)",
+       "PostPunctureOptions", parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters)},
       {"tissue blocks (`needlekit tissue-mesh`; indent, insert), [tissue] and [mesh]", "LayeredBlockOptions",
        parameter_texts<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters)},
   };

@@ -14,10 +14,12 @@
 #include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/insertion/loading_parameters.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/tissue_config.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/parameter_reference.hpp"
 
 namespace {
@@ -55,6 +57,11 @@ TEST(ParameterTables, EveryFieldOfLoadingHasOneRow) {
 
 TEST(ParameterTables, EveryFieldOfLayeredBlockOptionsHasOneRow) {
   expect_one_row_per_field<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters, mesh::kLayeredBlockListFields);
+}
+
+TEST(ParameterTables, EveryFieldOfPostPunctureOptionsHasOneRowButTheAxisPoint) {
+  expect_one_row_per_field<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters,
+                                                           insertion::kPostPuncturePointFields);
 }
 
 // field_count on aggregates like the option structs (a callback, a string, nested aggregates: one field each).
@@ -187,6 +194,35 @@ TEST(ParameterTables, TheTissueReaderRefusesABlockValueOutsideItsRange) {
       io::parse_tissue_case_toml(group == "tissue" ? "[tissue]\n" + line : "[tissue]\n[mesh]\n" + line, "case.toml");
     });
   }
+}
+
+const std::string kPostPuncture = "[post_puncture]\nstiffness = \"0.2 N/mm2\"\nscale = 0.168\nfinal_depth = \"1 mm\"\n";
+
+// Every [post_puncture] key of the table at its default reads back as the default; tip_tolerance (no group) is not a
+// key of the file.
+TEST(ParameterTables, TheInsertionReaderReadsEveryKeyOfThePostPunctureTableAtItsDefault) {
+  const auto& table = insertion::kPostPunctureParameters;
+  const std::string rows = table_at_defaults<insertion::PostPunctureOptions>(table, "post_puncture");
+  const io::InsertionSettings read =
+      io::parse_insertion_settings(kPostPuncture + rows.substr(rows.find('\n') + 1), "case.toml");
+  EXPECT_EQ(default_texts(table, read.post_puncture), default_texts(table, insertion::PostPunctureOptions{}));
+  EXPECT_THAT([] { io::parse_insertion_settings(kPostPuncture + "tip_tolerance = 0.001\n", "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'post_puncture.tip_tolerance'")));
+}
+
+TEST(ParameterTables, TheInsertionReaderAndValidationRefuseAPostPunctureValueOutsideItsRange) {
+  expect_the_reader_refuses_values_below_range(
+      insertion::kPostPunctureParameters, "post_puncture",
+      [](const std::string& line) { io::parse_insertion_settings(kPostPuncture + line, "case.toml"); });
+  for_each_parameter(insertion::kPostPunctureParameters, [](const auto& row) {
+    if constexpr (requires { row.accepts(0.0); }) {
+      insertion::PostPunctureOptions options;
+      options.*row.field = -1;
+      EXPECT_THAT([&] { insertion::post_puncture_loads(geometry::TriangleMesh{}, {}, options); },
+                  testing::ThrowsMessage<InvalidInput>(
+                      HasSubstr(fmt::format("post_puncture {} = -1: expected {}", row.attribute(), row.range()))));
+    }
+  });
 }
 
 TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {
