@@ -215,7 +215,7 @@ void add_insert_command(CLI::App& app) {
   command->footer(fmt::format(
       kInsertHelp, kPostPunctureLabel,
       settings_help(parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters),
-                    "post_puncture", std::string(std::string_view(kPostPunctureLabel).size(), ' '))));
+                    "post_puncture", "", std::string_view(kPostPunctureLabel).size() + 2)));
   command->callback([arguments] { run_insert(*arguments); });
 }
 

@@ -9,6 +9,7 @@
 #include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 
 namespace needlekit::io {
@@ -51,6 +52,12 @@ std::vector<ParameterGroup> parameter_reference() {
        "PostPunctureOptions", parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters)},
       {"tissue blocks (`needlekit tissue-mesh`; indent, insert), [tissue] and [mesh]", "LayeredBlockOptions",
        parameter_texts<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters)},
+      {"patch cases (`needlekit patch`), [patch] (besides size, needles_per_row, spring_constant)", "FitOptions",
+       parameter_texts<patch::FitOptions>(patch::kFitParameters)},
+      {"patch cases (`needlekit patch`), [patch], kind = \"flexible\"", "FlexibleFitOptions",
+       parameter_texts<patch::FlexibleFitOptions>(patch::kFlexibleFitParameters)},
+      {"patch cases (`needlekit patch`), [patch], kind = \"equilibrium\"", "EquilibriumFitOptions",
+       parameter_texts<patch::EquilibriumFitOptions>(patch::kEquilibriumFitParameters)},
   };
 }
 
