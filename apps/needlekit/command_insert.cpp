@@ -14,10 +14,12 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
+#include "file_format_help.hpp"
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/io/complete_insertion_output.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
@@ -36,12 +38,13 @@
 namespace needlekit::cli {
 namespace {
 
+// [post_puncture]'s first line, then the rows of insertion::kPostPunctureParameters (settings_help), then the rest.
+constexpr const char* kPostPunctureLabel = "  [post_puncture]";
 constexpr const char* kInsertHelp = R"(CASE file (TOML): an indentation case (see `needlekit indent --help`: [needle], [[needles]], [tissue],
 [mesh], [loading] (the FE's depth limit for finding the puncture), [model], [puncture]) plus
-  [post_puncture]  stiffness = "0.2 N/mm2" (K, a pressure), scale = 0.168 (S), final_depth = "1000 um" (required);
-                   samples = 200, reference_radius, max_edge_fraction = 0.025, cap_at_cutting_pressure = true,
-                   axial_component = false, side_tolerance = "1 deg", alpha_tolerance = "1 deg",
-                   occlusion_test = false, measured = "curve.csv" (fit S to a measured post-puncture curve)
+{}  stiffness = "0.2 N/mm2" (K, a pressure), scale = 0.168 (S), final_depth = "1000 um" (required);
+{}                   samples = 200, side_tolerance = "1 deg", alpha_tolerance = "1 deg", occlusion_test = false,
+                   measured = "curve.csv" (fit S to a measured post-puncture curve)
   [pre_puncture]   curve = "pre.csv" (depth_<unit>, force_<unit>), punctured = true: use this curve (its last
                    sample is the puncture point) instead of running the FE
 Outputs (in --out DIR, default .): NAME_insertion.csv (depth_um, force_N, phase, punctured_needles, marker),
@@ -209,7 +212,10 @@ void add_insert_command(CLI::App& app) {
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--steps", arguments->steps, "override [loading] steps")->check(CLI::Range(1, 100000));
-  command->footer(kInsertHelp);
+  command->footer(fmt::format(
+      kInsertHelp, kPostPunctureLabel,
+      settings_help(parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters),
+                    "post_puncture", "", std::string_view(kPostPunctureLabel).size() + 2)));
   command->callback([arguments] { run_insert(*arguments); });
 }
 

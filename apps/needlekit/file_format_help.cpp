@@ -14,6 +14,7 @@
 #include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/needle/needle_geometry.hpp"
 #include "needlekit/needle/rounded_edges.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/patch_placement.hpp"
 
@@ -40,21 +41,6 @@ std::string solver_settings_help() {
   return text;
 }
 
-// The rows of `group` one per line, "key = default   range: meaning" ("key (required)" for a required row), the
-// first line headed by `label` (e.g. "  [loading]"), the others indented as far.
-std::string settings_help(const std::vector<ParameterText>& texts, std::string_view group, std::string_view label) {
-  std::string text;
-  for (const ParameterText& parameter : texts) {
-    if (!parameter.key.starts_with(fmt::format("{}.", group))) continue;
-    const std::string_view key = std::string_view(parameter.key).substr(group.size() + 1);
-    const std::string assignment = parameter.required ? fmt::format("{} (required)", key)
-                                                      : fmt::format("{} = {}", key, parameter.default_text);
-    text += fmt::format("{:<15}{:<30} {}: {}\n", text.empty() ? label : "", assignment, parameter.range,
-                        parameter.meaning);
-  }
-  return text;
-}
-
 // [array]'s counts and lengths (insertion::kArrayCounts, kArrayLengths), with their defaults.
 std::string array_settings_help() {
   std::string text;
@@ -71,6 +57,21 @@ std::string array_settings_help() {
 }
 
 }  // namespace
+
+std::string settings_help(const std::vector<ParameterText>& texts, std::string_view group, std::string_view label,
+                          std::size_t indent) {
+  const std::size_t width = std::max(indent, label.size() + 2);
+  std::string text;
+  for (const ParameterText& parameter : texts) {
+    if (!parameter.key.starts_with(fmt::format("{}.", group))) continue;
+    const std::string_view key = std::string_view(parameter.key).substr(group.size() + 1);
+    const std::string assignment = parameter.required ? fmt::format("{} (required)", key)
+                                                      : fmt::format("{} = {}", key, parameter.default_text);
+    text += fmt::format("{:<{}}{:<30} {}: {}\n", text.empty() ? label : "", width, assignment, parameter.range,
+                        parameter.meaning);
+  }
+  return text;
+}
 
 std::string design_file_help() {
   return fmt::format(
@@ -187,6 +188,21 @@ Choices:
       solver_settings_help());
 }
 
+namespace {
+
+// [patch]'s quantities, one per line with default, range and meaning: the rows of patch::kFlexibleFitParameters and
+// kEquilibriumFitParameters that are not choices (the choices are listed with their names).
+std::string patch_quantities_help() {
+  std::vector<ParameterText> texts = parameter_texts<patch::FlexibleFitOptions>(patch::kFlexibleFitParameters);
+  for (ParameterText& text : parameter_texts<patch::EquilibriumFitOptions>(patch::kEquilibriumFitParameters)) {
+    texts.push_back(std::move(text));
+  }
+  std::erase_if(texts, [](const ParameterText& text) { return text.kind == "choice"; });
+  return settings_help(texts, "patch", "", 13);
+}
+
+}  // namespace
+
 std::string patch_case_help() {
   return fmt::format(
       "Case file (quantities are strings with units):\n"
@@ -194,14 +210,14 @@ std::string patch_case_help() {
       "\"15.8 mm\";\n"
       "             center_vertex = 2243 or center = [\"x mm\", \"y mm\", \"z mm\"]; rotation = \"0 deg\";\n"
       "             approach = {} (default \"-z\")\n"
-      "  [patch]    kind = {}; size = \"10 mm\"; needles_per_row = 10;\n"
-      "             spring_constant = \"1 N/mm\" or {{ u = , v = , diagonal = }}; max_spring_energy = \"0.05 mJ\";\n"
-      "             first_node = {}; walk = {};\n"
-      "             load = \"0.0712 N\" (equilibrium: force per node)\n"
+      "  [patch]    kind = {} (required); size = \"10 mm\"; needles_per_row = 10;\n"
+      "             spring_constant = \"1 N/mm\" or {{ u = , v = , diagonal = }};\n"
+      "             first_node = {}; walk = {} (flexible)\n"
+      "{}"
       "  [needle], [tissue], [insertion]  as in design files (see needlekit evaluate --help)\n"
       "Choices:\n{}{}{}{}",
       choices_of(patch::kApproachNames), choices_of(patch::kPatchKindNames), choices_of(patch::kFirstNodeNames),
-      choices_of(patch::kWalkMethodNames), meanings_of(patch::kApproachNames, "approach"), meanings_of(patch::kPatchKindNames, "kind"),
+      choices_of(patch::kWalkMethodNames), patch_quantities_help(), meanings_of(patch::kApproachNames, "approach"), meanings_of(patch::kPatchKindNames, "kind"),
       meanings_of(patch::kFirstNodeNames, "first_node"), meanings_of(patch::kWalkMethodNames, "walk"));
 }
 

@@ -4,6 +4,9 @@
 #pragma once
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "needlekit/core/parameter_text.hpp"
 
 namespace needlekit::cli {
 
@@ -11,6 +14,11 @@ std::string design_file_help();      // evaluate, sweep, mesh
 std::string space_file_help();       // optimize
 std::string indentation_case_help(); // indent (and, by reference, insert)
 std::string patch_case_help();       // patch
+// The rows of `group` ("loading") of a parameter table's texts one per line, "key = default   range: meaning" ("key
+// (required)" for a required row), the first headed by `label` ("  [loading]"), each key at column `indent` or past
+// the label.
+std::string settings_help(const std::vector<ParameterText>& texts, std::string_view group, std::string_view label,
+                          std::size_t indent = 15);
 // The rows of group "tissue" or "mesh" of mesh::kLayeredBlockParameters, one per line with default, range and
 // meaning, the first headed by `label` ("  [mesh]"): tissue-mesh and indent.
 std::string block_settings_help(std::string_view group, std::string_view label);

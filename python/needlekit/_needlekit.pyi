@@ -972,34 +972,41 @@ Members:
     def value(self) -> int: ...
 
 class EquilibriumFitOptions:
-    ...
+    """The static equilibrium of the springs under a load per node.
+
+Keywords (every field):
+  node_load: N, > 0 N: force pressing each node along the approach (files: default F(A) of the case's needle, Eq 4.2). Default: "0.0712 N".
+  contact_ratio: > 0: contact penalty = contact_ratio times the largest spring constant. Default: 1000.
+  anchor_ratio: >= 0: tangential anchor stiffness per node = anchor_ratio times the largest spring constant (0: the patch may slide). Default: 1.
+  tolerance: in (0, 1): stop when the gradient's largest entry is below tolerance times node_load. Default: 1e-05.
+  max_iterations: in [1, 100000]: Newton iterations (each moves a node by at most a quarter pitch). Default: 500."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def anchor_ratio(self) -> float:
-        ...
+        """>= 0: tangential anchor stiffness per node = anchor_ratio times the largest spring constant (0: the patch may slide). Default: 1."""
     @anchor_ratio.setter
     def anchor_ratio(self, value: Any) -> None: ...
     @property
     def contact_ratio(self) -> float:
-        ...
+        """> 0: contact penalty = contact_ratio times the largest spring constant. Default: 1000."""
     @contact_ratio.setter
     def contact_ratio(self, value: Any) -> None: ...
     @property
     def max_iterations(self) -> int:
-        ...
+        """in [1, 100000]: Newton iterations (each moves a node by at most a quarter pitch). Default: 500."""
     @max_iterations.setter
     def max_iterations(self, value: Any) -> None: ...
     @property
     def node_load(self) -> float:
-        """N per node"""
+        """N, > 0 N: force pressing each node along the approach (files: default F(A) of the case's needle, Eq 4.2). Default: "0.0712 N"."""
     @node_load.setter
     def node_load(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
     def tolerance(self) -> float:
-        ...
+        """in (0, 1): stop when the gradient's largest entry is below tolerance times node_load. Default: 1e-05."""
     @tolerance.setter
     def tolerance(self, value: Any) -> None: ...
 
@@ -1344,22 +1351,25 @@ class FitAndEvaluateResult:
         """Every field as a dict (SI)."""
 
 class FitOptions:
-    ...
+    """How a patch is fitted: the kind and the options of each kind.
+
+Keywords (every field):
+  kind: "rigid" | "flexible" | "equilibrium": how the patch is fitted to the surface. Default: "flexible" (required in files)."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def equilibrium(self) -> EquilibriumFitOptions:
-        ...
+        """EquilibriumFitOptions, used when kind is Equilibrium"""
     @equilibrium.setter
     def equilibrium(self, value: Any) -> None: ...
     @property
     def flexible(self) -> FlexibleFitOptions:
-        ...
+        """FlexibleFitOptions, used when kind is Flexible"""
     @flexible.setter
     def flexible(self, value: Any) -> None: ...
     @property
     def kind(self) -> PatchKind:
-        ...
+        """"rigid" | "flexible" | "equilibrium": how the patch is fitted to the surface. Default: "flexible" (required in files)."""
     @kind.setter
     def kind(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
@@ -1453,29 +1463,35 @@ class FittedPatch:
         """Every field as a dict (SI)."""
 
 class FlexibleFitOptions:
-    ...
+    """A flexible fit by node sweeping (Alg 5.1-5.3).
+
+Keywords (every field):
+  max_spring_energy: J, in (0, inf] J: E_cri: the largest energy a spring may store (inf: the patch conforms completely; files of kind = "flexible" must give it). Default: "5e-05 J".
+  first_node: "first-contact" | "corner": the node the flexible fit starts from (Alg 5.1). Default: "first-contact".
+  walk: "cutting-plane" | "unfolding": how the traverse between nodes crosses triangle edges. Default: "cutting-plane".
+  cap_samples: in [2, 10000]: samples of lambda before bisection in the energy cap. Default: 32."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def cap_samples(self) -> int:
-        ...
+        """in [2, 10000]: samples of lambda before bisection in the energy cap. Default: 32."""
     @cap_samples.setter
     def cap_samples(self, value: Any) -> None: ...
     @property
     def first_node(self) -> FirstNode:
-        ...
+        """"first-contact" | "corner": the node the flexible fit starts from (Alg 5.1). Default: "first-contact"."""
     @first_node.setter
     def first_node(self, value: Any) -> None: ...
     @property
     def max_spring_energy(self) -> float:
-        """J per spring, E_cri ("0.05 mJ")"""
+        """J, in (0, inf] J: E_cri: the largest energy a spring may store (inf: the patch conforms completely; files of kind = "flexible" must give it). Default: "5e-05 J"."""
     @max_spring_energy.setter
     def max_spring_energy(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
     def walk(self) -> WalkMethod:
-        ...
+        """"cutting-plane" | "unfolding": how the traverse between nodes crosses triangle edges. Default: "cutting-plane"."""
     @walk.setter
     def walk(self, value: Any) -> None: ...
 
@@ -3169,9 +3185,48 @@ class PostPunctureLoads:
         """Every field as a dict (SI)."""
 
 class PostPunctureOptions:
-    ...
-    def __init__(self) -> None:
-        ...
+    """The beta load of the post-puncture force (§3.6.2, Algorithm 3.1).
+
+Keywords (every field):
+  reference_radius: m, >= 0 m: R of the beta load p = K*S*delta/R (0: the needle's largest distance from the channel axis). Default: "0 m".
+  max_edge_fraction: in [0, 1]: loaded triangles with an edge longer than this fraction of the needle's length are bisected before Algorithm 3.1 (0: the mesh as it is). Default: 0.025.
+  cap_at_cutting_pressure: true | false: cap the beta load at the cutting pressure K*S (delta/R <= 1). Default: true.
+  axial_component: true | false: sum the loads' components along the insertion direction (false: the load volumes, Eq 3.20). Default: false.
+  tip_tolerance: in [0, 0.01]: vertices this close to the foremost point, relative to the needle's length, are on the tip and carry no beta load (Algorithm 3.1). Default: 1e-06."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
+    @property
+    def axial_component(self) -> bool:
+        """true | false: sum the loads' components along the insertion direction (false: the load volumes, Eq 3.20). Default: false."""
+    @axial_component.setter
+    def axial_component(self, value: Any) -> None: ...
+    @property
+    def axis_point(self) -> numpy.ndarray:
+        """m, a point on the channel axis (NaN: the centroid of the tip vertices)"""
+    @axis_point.setter
+    def axis_point(self, value: Any) -> None: ...
+    @property
+    def cap_at_cutting_pressure(self) -> bool:
+        """true | false: cap the beta load at the cutting pressure K*S (delta/R <= 1). Default: true."""
+    @cap_at_cutting_pressure.setter
+    def cap_at_cutting_pressure(self, value: Any) -> None: ...
+    @property
+    def max_edge_fraction(self) -> float:
+        """in [0, 1]: loaded triangles with an edge longer than this fraction of the needle's length are bisected before Algorithm 3.1 (0: the mesh as it is). Default: 0.025."""
+    @max_edge_fraction.setter
+    def max_edge_fraction(self, value: Any) -> None: ...
+    @property
+    def reference_radius(self) -> float:
+        """m, >= 0 m: R of the beta load p = K*S*delta/R (0: the needle's largest distance from the channel axis). Default: "0 m"."""
+    @reference_radius.setter
+    def reference_radius(self, value: Any) -> None: ...
+    @property
+    def tip_tolerance(self) -> float:
+        """in [0, 0.01]: vertices this close to the foremost point, relative to the needle's length, are on the tip and carry no beta load (Algorithm 3.1). Default: 1e-06."""
+    @tip_tolerance.setter
+    def tip_tolerance(self, value: Any) -> None: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
 
 class PrePunctureCurve:
     ...

@@ -10,6 +10,7 @@
 #include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/insertion_curve.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/indentation_output.hpp"
@@ -218,7 +219,11 @@ void bind_post_puncture(py::module_& m) {
   def_quantity(classification, "alpha_tolerance", &TriangleClassificationOptions::alpha_tolerance, Dimension::Angle,
                "rad");
   def_quantity(classification, "bore_radius", &TriangleClassificationOptions::bore_radius, Dimension::Length, "m");
-  py::class_<PostPunctureOptions>(m, "PostPunctureOptions").def(py::init<>());
+  py::class_<PostPunctureOptions> post_puncture(m, "PostPunctureOptions",
+                                                "The beta load of the post-puncture force (§3.6.2, Algorithm 3.1).");
+  post_puncture.def_readwrite("axis_point", &PostPunctureOptions::axis_point,
+                              "m, a point on the channel axis (NaN: the centroid of the tip vertices)");
+  def_parameters<PostPunctureOptions>(post_puncture, kPostPunctureParameters);  // every other field; keyword init
   py::class_<PostPunctureLoads>(m, "PostPunctureLoads", "The loaded triangles of a needle (§3.6).")
       .def_readonly("reference_radius", &PostPunctureLoads::reference_radius, "m")
       .def_readonly("needle_length", &PostPunctureLoads::needle_length, "m")

@@ -2,10 +2,12 @@
 // (numpy arrays of per-needle quantities), patch case files and their CSV/JSON as the CLI writes them.
 #include "common.hpp"
 #include "enum_binding.hpp"
+#include "parameters.hpp"
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/io/patch_writers.hpp"
 #include "needlekit/patch/fit_and_evaluate.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/needle_evaluation.hpp"
 #include "needlekit/patch/patch_design.hpp"
@@ -91,25 +93,16 @@ void bind_design_and_fit(py::module_& m) {
   bind_enum<kPatchKindNames>(m, "PatchKind", "How a patch is fitted to a surface (ch. 5).");
   bind_enum<kFirstNodeNames>(m, "FirstNode", "The node a flexible fit starts from (Alg 5.1).");
   bind_enum<kWalkMethodNames>(m, "WalkMethod", "How a flexible fit walks the surface between nodes.");
-  py::class_<FlexibleFitOptions> flexible(m, "FlexibleFitOptions");
-  def_keyword_init<FlexibleFitOptions>(flexible);
-  def_quantity(flexible, "max_spring_energy", &FlexibleFitOptions::max_spring_energy, Dimension::Energy,
-               "J per spring, E_cri (\"0.05 mJ\")");
-  flexible.def_readwrite("first_node", &FlexibleFitOptions::first_node)
-      .def_readwrite("cap_samples", &FlexibleFitOptions::cap_samples)
-      .def_readwrite("walk", &FlexibleFitOptions::walk);
-  py::class_<EquilibriumFitOptions> equilibrium(m, "EquilibriumFitOptions");
-  def_keyword_init<EquilibriumFitOptions>(equilibrium);
-  def_quantity(equilibrium, "node_load", &EquilibriumFitOptions::node_load, Dimension::Force, "N per node");
-  equilibrium.def_readwrite("contact_ratio", &EquilibriumFitOptions::contact_ratio)
-      .def_readwrite("anchor_ratio", &EquilibriumFitOptions::anchor_ratio)
-      .def_readwrite("tolerance", &EquilibriumFitOptions::tolerance)
-      .def_readwrite("max_iterations", &EquilibriumFitOptions::max_iterations);
-  py::class_<FitOptions> fit(m, "FitOptions");
-  def_keyword_init<FitOptions>(fit);
-  fit.def_readwrite("kind", &FitOptions::kind)
-      .def_readwrite("flexible", &FitOptions::flexible)
-      .def_readwrite("equilibrium", &FitOptions::equilibrium);
+  // The rows of patch/fit_parameters.hpp: every field but the progress callbacks.
+  py::class_<FlexibleFitOptions> flexible(m, "FlexibleFitOptions", "A flexible fit by node sweeping (Alg 5.1-5.3).");
+  def_parameters<FlexibleFitOptions>(flexible, kFlexibleFitParameters);
+  py::class_<EquilibriumFitOptions> equilibrium(m, "EquilibriumFitOptions",
+                                                "The static equilibrium of the springs under a load per node.");
+  def_parameters<EquilibriumFitOptions>(equilibrium, kEquilibriumFitParameters);
+  py::class_<FitOptions> fit(m, "FitOptions", "How a patch is fitted: the kind and the options of each kind.");
+  fit.def_readwrite("flexible", &FitOptions::flexible, "FlexibleFitOptions, used when kind is Flexible")
+      .def_readwrite("equilibrium", &FitOptions::equilibrium, "EquilibriumFitOptions, used when kind is Equilibrium");
+  def_parameters<FitOptions>(fit, kFitParameters);
   bind_enum<kFitStatusNames>(m, "FitStatus", "The outcome of a patch fit.");
   py::class_<FittedPatch>(m, "FittedPatch",
                           "A patch after fitting: node positions and normals as (N, 3) numpy views (m).")

@@ -86,3 +86,19 @@ def test_loading_reads_like_the_case_file():
     assert case.depth == pytest.approx(150e-6) and case.angle == pytest.approx(0.174532925199)
     assert case.steps == 5 and not case.stop_at_puncture
     assert "negation of the case file's loading.continue_after_puncture" in needlekit.IndentationCase.stop_at_puncture.__doc__
+
+
+def test_post_puncture_options_read_like_the_case_file():
+    options = needlekit.PostPunctureOptions(reference_radius="100 um", max_edge_fraction=0.1, axial_component=True)
+    assert options.reference_radius == pytest.approx(100e-6) and options.max_edge_fraction == 0.1
+    assert options.axial_component and options.cap_at_cutting_pressure and options.tip_tolerance == 1e-6
+    assert "axis_point" in properties(needlekit.PostPunctureOptions)
+
+
+def test_the_fit_options_read_like_the_patch_case_file():
+    flexible = needlekit.FlexibleFitOptions(max_spring_energy="0.05 mJ", walk=needlekit.WalkMethod.Unfolding)
+    assert flexible.max_spring_energy == pytest.approx(5e-5) and flexible.walk == needlekit.WalkMethod.Unfolding
+    assert needlekit.EquilibriumFitOptions(node_load="70 mN").node_load == pytest.approx(0.07)
+    fit = needlekit.FitOptions(kind=needlekit.PatchKind.Equilibrium, equilibrium=needlekit.EquilibriumFitOptions(tolerance=1e-4))
+    assert fit.kind == needlekit.PatchKind.Equilibrium and fit.equilibrium.tolerance == 1e-4
+    assert "in (0, inf]" in needlekit.FlexibleFitOptions.max_spring_energy.__doc__

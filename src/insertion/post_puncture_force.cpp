@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 
 namespace needlekit::insertion {
 namespace {
@@ -130,15 +131,7 @@ double load_prism_volume(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, c
 namespace {
 
 void validate(const PostPunctureOptions& options) {
-  if (!(options.tip_tolerance >= 0 && options.tip_tolerance <= 1e-2))
-    throw InvalidInput(fmt::format("tip_tolerance: {}, expected a relative tolerance in [0, 0.01]",
-                                   options.tip_tolerance));
-  if (!(options.max_edge_fraction >= 0 && options.max_edge_fraction <= 1))
-    throw InvalidInput(fmt::format("max_edge_fraction: {}, expected a fraction of the needle length in [0, 1]",
-                                   options.max_edge_fraction));
-  if (!(options.reference_radius >= 0) || !std::isfinite(options.reference_radius))
-    throw InvalidInput(fmt::format("reference_radius: {} m, expected a finite length >= 0 (0: automatic)",
-                                   options.reference_radius));
+  check_ranges(kPostPunctureParameters, options, "post_puncture");
 }
 
 using Corners = std::array<Eigen::Vector3d, 3>;

@@ -4,9 +4,11 @@
 #include <sstream>
 
 #include "needlekit/geometry/surface_mesh.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/toml_config.hpp"
+#include "toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -51,6 +53,16 @@ double angle_of(const Section& section, std::string_view key, double fallback) {
   return value;
 }
 
+// [post_puncture]'s keys: the curve's and the fit's, the rows of insertion::kPostPunctureParameters, the
+// classification's and the measured curve, in the order the messages have always listed them.
+std::vector<std::string_view> post_puncture_keys() {
+  std::vector<std::string_view> keys{"stiffness", "scale", "final_depth", "samples"};
+  const std::vector<std::string_view> rows = config::keys_of_group(insertion::kPostPunctureParameters, "post_puncture");
+  keys.insert(keys.end(), rows.begin(), rows.end());
+  keys.insert(keys.end(), {"side_tolerance", "alpha_tolerance", "occlusion_test", "measured"});
+  return keys;
+}
+
 }  // namespace
 
 InsertionSettings parse_insertion_settings(std::string_view text, std::string_view source_name,
@@ -64,10 +76,7 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
   if (!post_node->is_table())
     throw InvalidInput(fmt::format("{} key 'post_puncture': expected a table [post_puncture]",
                                    config::location(source_name, post_node->source())));
-  const Section post(*post_node->as_table(), "post_puncture", source_name,
-                     {"stiffness", "scale", "final_depth", "samples", "reference_radius", "max_edge_fraction",
-                      "cap_at_cutting_pressure", "axial_component", "side_tolerance", "alpha_tolerance",
-                      "occlusion_test", "measured"});
+  const Section post(*post_node->as_table(), "post_puncture", source_name, post_puncture_keys());
   InsertionSettings settings;
   settings.stiffness = config::positive_quantity(post, "stiffness", units::Dimension::Pressure);
   {
@@ -78,17 +87,7 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
   settings.final_depth = config::positive_quantity(post, "final_depth", units::Dimension::Length);
   if (const toml::node* node = post.optional("samples"))
     settings.cutting_samples = config::integer_in(post, *node, "samples", 1, limits::kMaxCurveSamples);
-  if (auto radius = config::optional_positive_quantity(post, "reference_radius", units::Dimension::Length))
-    settings.post_puncture.reference_radius = *radius;
-  if (const toml::node* node = post.optional("max_edge_fraction")) {
-    const double value = config::number_at_least(post, *node, "max_edge_fraction", 0);
-    if (value > 1) post.fail(*node, "max_edge_fraction", fmt::format("{} is out of range, expected [0, 1]", value));
-    settings.post_puncture.max_edge_fraction = value;
-  }
-  if (const toml::node* node = post.optional("cap_at_cutting_pressure"))
-    settings.post_puncture.cap_at_cutting_pressure = config::boolean_of(post, *node, "cap_at_cutting_pressure");
-  if (const toml::node* node = post.optional("axial_component"))
-    settings.post_puncture.axial_component = config::boolean_of(post, *node, "axial_component");
+  config::read_parameters(post, insertion::kPostPunctureParameters, "post_puncture", settings.post_puncture);
   settings.classification.side_tolerance = angle_of(post, "side_tolerance", settings.classification.side_tolerance);
   settings.classification.alpha_tolerance = angle_of(post, "alpha_tolerance", settings.classification.alpha_tolerance);
   if (const toml::node* node = post.optional("occlusion_test"))

@@ -6,8 +6,10 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/insertion/loading_parameters.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 
 namespace needlekit::io {
@@ -45,8 +47,17 @@ std::vector<ParameterGroup> parameter_reference() {
        parameter_texts<insertion::Loading>(insertion::kLoadingParameters)},
       {"indentation cases, [puncture] (besides critical_pressure, toughness, toughness_from)", "PunctureOptions",
        parameter_texts(insertion::kPunctureParameters, insertion::PunctureOptions{})},
+      {"insertion cases (`needlekit insert`), [post_puncture] (besides stiffness, scale, final_depth, samples, "
+       "side_tolerance, alpha_tolerance, occlusion_test, measured)",
+       "PostPunctureOptions", parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters)},
       {"tissue blocks (`needlekit tissue-mesh`; indent, insert), [tissue] and [mesh]", "LayeredBlockOptions",
        parameter_texts<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters)},
+      {"patch cases (`needlekit patch`), [patch] (besides size, needles_per_row, spring_constant)", "FitOptions",
+       parameter_texts<patch::FitOptions>(patch::kFitParameters)},
+      {"patch cases (`needlekit patch`), [patch], kind = \"flexible\"", "FlexibleFitOptions",
+       parameter_texts<patch::FlexibleFitOptions>(patch::kFlexibleFitParameters)},
+      {"patch cases (`needlekit patch`), [patch], kind = \"equilibrium\"", "EquilibriumFitOptions",
+       parameter_texts<patch::EquilibriumFitOptions>(patch::kEquilibriumFitParameters)},
   };
 }
 

@@ -6,6 +6,8 @@
 #include "needlekit/io/design_config.hpp"
 #include "config_tables.hpp"
 #include "needlekit/io/toml_config.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
+#include "toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -67,9 +69,10 @@ void read_surface(const Section& t, const std::filesystem::path& base, PatchCase
   }
 }
 
+// [patch]: kind and the rows of the fit's tables (patch/fit_parameters.hpp), and the design's size, needle count and
+// springs, which set PatchDesignOptions' fields in pairs and threes.
 void read_patch(const Section& t, PatchCase& c) {
-  c.fit.kind = choice_of(t, t.required("kind", "one of: " + choices_of(patch::kPatchKindNames)), "kind",
-                         patch::kPatchKindNames);
+  read_parameters(t, patch::kFitParameters, "patch", c.fit);  // kind (required)
   c.design.width_u = c.design.width_v = positive_quantity(t, "size", Dimension::Length);
   const toml::node& count = t.required("needles_per_row", "an integer >= 2");
   c.design.needles_u = c.design.needles_v = integer_at_least(t, count, "needles_per_row", 2);
@@ -83,24 +86,15 @@ void read_patch(const Section& t, PatchCase& c) {
     c.design.stiffness_u = c.design.stiffness_v = c.design.stiffness_diagonal =
         positive_quantity_of(t, spring, "spring_constant", Dimension::Stiffness);
   }
-  if (const auto energy = optional_positive_quantity(t, "max_spring_energy", Dimension::Energy)) {
-    c.fit.flexible.max_spring_energy = *energy;
-  } else if (c.fit.kind == patch::PatchKind::Flexible) {
+  if (c.fit.kind == patch::PatchKind::Flexible && !t.optional("max_spring_energy")) {
     t.fail(t.table(), "max_spring_energy",
            fmt::format("missing for a flexible patch, expected {}", expected_quantity(Dimension::Energy)));
   }
-  if (const toml::node* node = t.optional("first_node")) {
-    c.fit.flexible.first_node = choice_of(t, *node, "first_node", patch::kFirstNodeNames);
-  }
-  if (const toml::node* node = t.optional("walk")) {
-    c.fit.flexible.walk = choice_of(t, *node, "walk", patch::kWalkMethodNames);
-  }
-  if (const auto load = optional_positive_quantity(t, "load", Dimension::Force)) {
-    c.fit.equilibrium.node_load = *load;
-    c.load_given = true;
-  }
+  read_parameters(t, patch::kFlexibleFitParameters, "patch", c.fit.flexible);
+  read_parameters(t, patch::kEquilibriumFitParameters, "patch", c.fit.equilibrium);
+  c.load_given = t.optional("load") != nullptr;
   // Keys of one kind of patch given for another: an error rather than silently ignored.
-  const auto only_for = [&](patch::PatchKind kind, std::initializer_list<std::string_view> keys) {
+  const auto only_for = [&](patch::PatchKind kind, const std::vector<std::string_view>& keys) {
     if (c.fit.kind == kind) return;
     for (std::string_view key : keys) {
       if (const toml::node* node = t.optional(key)) {
@@ -110,8 +104,19 @@ void read_patch(const Section& t, PatchCase& c) {
       }
     }
   };
-  only_for(patch::PatchKind::Flexible, {"max_spring_energy", "first_node", "walk"});
-  only_for(patch::PatchKind::Equilibrium, {"load"});
+  only_for(patch::PatchKind::Flexible, keys_of_group(patch::kFlexibleFitParameters, "patch"));
+  only_for(patch::PatchKind::Equilibrium, keys_of_group(patch::kEquilibriumFitParameters, "patch"));
+}
+
+// [patch]'s keys in the order the messages have always listed them.
+std::vector<std::string_view> patch_keys() {
+  std::vector<std::string_view> keys = keys_of_group(patch::kFitParameters, "patch");
+  keys.insert(keys.end(), {"size", "needles_per_row", "spring_constant"});
+  for (const std::vector<std::string_view>& rows : {keys_of_group(patch::kFlexibleFitParameters, "patch"),
+                                                    keys_of_group(patch::kEquilibriumFitParameters, "patch")}) {
+    keys.insert(keys.end(), rows.begin(), rows.end());
+  }
+  return keys;
 }
 
 }  // namespace
@@ -135,9 +140,7 @@ PatchCase config::patch_case_of_table(const toml::table& root, const std::string
   PatchCase c;
   read_surface(top.required_subsection("surface", {"mesh", "unit", "center_vertex", "center", "rotation", "approach"}),
                base_folder, c);
-  read_patch(top.required_subsection("patch", {"kind", "size", "needles_per_row", "spring_constant",
-                                               "max_spring_energy", "first_node", "walk", "load"}),
-             c);
+  read_patch(top.subsection(top.required("patch", "a table [patch]"), "patch", patch_keys()), c);
   c.design.needle = needle.design.needle;
   c.design.material = needle.design.material;
   c.evaluation.conditions = needle.conditions;

@@ -78,6 +78,16 @@ Value value_of_row(const Section& section, const toml::node& node, const Choice<
   return choice_of(section, node, row.key, *row.names);
 }
 
+// What a required row's missing key expects: a quantity with its unit, or one of a choice's names.
+template <class Row>
+std::string expected_of_row(const Row& row) {
+  if constexpr (requires { row.names; }) {
+    return "one of: " + choices_of(*row.names);
+  } else {
+    return expected_quantity(row.dimension);
+  }
+}
+
 // The keys of the rows written in the file's table `group`.
 template <class Table>
 std::vector<std::string_view> keys_of_group(const Table& table, std::string_view group) {
@@ -95,7 +105,7 @@ void read_parameters(const Section& section, const Table& table, std::string_vie
   for_each_parameter(table, [&](const auto& row) {
     if (row.group != group) return;
     if constexpr (requires { row.required; }) {
-      if (row.required) section.required(row.key, expected_quantity(row.dimension));
+      if (row.required) section.required(row.key, expected_of_row(row));
     }
     if (const toml::node* node = section.optional(row.key)) options.*row.field = value_of_row(section, *node, row);
   });

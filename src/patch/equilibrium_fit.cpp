@@ -7,6 +7,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/patch/rigid_fit.hpp"
 
 namespace needlekit::patch {
@@ -141,14 +142,7 @@ double equilibrium_potential(const geometry::SurfaceMesh& surface, const PatchDe
 
 FittedPatch equilibrium_fit(const geometry::SurfaceMesh& surface, const PatchDesign& design, const PatchFrame& frame,
                             const EquilibriumFitOptions& options) {
-  if (!(options.node_load > 0) || !std::isfinite(options.node_load)) {
-    throw InvalidInput(fmt::format("node_load: {:.6g} N is not positive, expected a force > 0", options.node_load));
-  }
-  if (!(options.contact_ratio > 0) || !(options.anchor_ratio >= 0) || !(options.tolerance > 0 && options.tolerance < 1) ||
-      options.max_iterations < 1 || options.max_iterations > 100000) {
-    throw InvalidInput("equilibrium options: expected contact_ratio > 0, anchor_ratio >= 0, tolerance in (0, 1), "
-                       "max_iterations in [1, 100000]");
-  }
+  check_ranges(kEquilibriumFitParameters, options, "patch");
   FittedPatch fit = rigid_fit(surface, design, frame);
   if (fit.status == FitStatus::MissesSurface) return fit;
   const std::vector<Eigen::Vector3d> anchor = fit.positions;

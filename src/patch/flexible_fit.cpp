@@ -12,6 +12,7 @@
 #include "needlekit/core/interrupt.hpp"
 #include "needlekit/geometry/cutting_plane_trace.hpp"
 #include "needlekit/geometry/geodesic_trace.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/patch/rigid_fit.hpp"
 
 namespace needlekit::patch {
@@ -33,15 +34,7 @@ geometry::SurfacePath walk_on(const geometry::SurfaceMesh& surface, const geomet
   }
 }
 
-void validate(const FlexibleFitOptions& options) {
-  if (!(options.max_spring_energy > 0)) {
-    throw InvalidInput(fmt::format("patch.max_spring_energy: {:.6g} mJ is not positive, expected an energy > 0",
-                                   options.max_spring_energy * 1e3));
-  }
-  if (options.cap_samples < 2 || options.cap_samples > 10000) {
-    throw InvalidInput(fmt::format("cap_samples: {} is out of range, expected [2, 10000]", options.cap_samples));
-  }
-}
+void validate(const FlexibleFitOptions& options) { check_ranges(kFlexibleFitParameters, options, "patch"); }
 
 // The energy cap (Eqs 5.13, 5.14): the largest λ in [0, 1] with worst_energy(λ) <= E_cri, by sampling from λ = 1 down
 // and bisecting the last step; when no sample is feasible, the sample of least energy and `capped` set.

@@ -14,10 +14,14 @@
 #include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/insertion/loading_parameters.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/tissue_config.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
+#include "needlekit/io/patch_config.hpp"
+#include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/insertion_case.hpp"
 #include "needlekit/io/parameter_reference.hpp"
 
 namespace {
@@ -55,6 +59,19 @@ TEST(ParameterTables, EveryFieldOfLoadingHasOneRow) {
 
 TEST(ParameterTables, EveryFieldOfLayeredBlockOptionsHasOneRow) {
   expect_one_row_per_field<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters, mesh::kLayeredBlockListFields);
+}
+
+TEST(ParameterTables, EveryFieldOfPostPunctureOptionsHasOneRowButTheAxisPoint) {
+  expect_one_row_per_field<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters,
+                                                           insertion::kPostPuncturePointFields);
+}
+
+TEST(ParameterTables, EveryFieldOfTheFitOptionsHasOneRowButCallbacksAndNestedOptions) {
+  expect_one_row_per_field<patch::FlexibleFitOptions>(patch::kFlexibleFitParameters,
+                                                      patch::kFlexibleFitCallbackFields);
+  expect_one_row_per_field<patch::EquilibriumFitOptions>(patch::kEquilibriumFitParameters,
+                                                         patch::kEquilibriumFitCallbackFields);
+  expect_one_row_per_field<patch::FitOptions>(patch::kFitParameters, patch::kFitNestedFields);
 }
 
 // field_count on aggregates like the option structs (a callback, a string, nested aggregates: one field each).
@@ -128,7 +145,7 @@ std::vector<std::string> default_texts(const Table& table, const Options& option
   return texts;
 }
 
-// For each number of `group` whose range excludes -1: `read` of "[group]\nkey = -1 (in um or deg)" throws naming the
+// For each number of `group` whose range excludes -1: `read` of "[group]\nkey = -1 (in um, deg or SI)" throws naming the
 // key and the range (a positive quantity: "is not positive", as the reader's positive_quantity_of says).
 template <class Table, class Read>
 void expect_the_reader_refuses_values_below_range(const Table& table, std::string_view group, Read&& read) {
@@ -138,7 +155,8 @@ void expect_the_reader_refuses_values_below_range(const Table& table, std::strin
       SCOPED_TRACE(std::string(row.key));
       const std::string unit = row.dimension == units::Dimension::Dimensionless ? ""
                                : row.dimension == units::Dimension::Angle   ? " deg"
-                                                                              : " um";
+                               : row.dimension == units::Dimension::Length  ? " um"
+                                                                            : " " + std::string(units::si_symbol(row.dimension));
       const std::string value = unit.empty() ? "-1" : fmt::format("\"-1{}\"", unit);
       const bool positive = !unit.empty() && row.min == 0 && row.min_bound == Bound::Open && !std::isfinite(row.max);
       EXPECT_THAT([&] { read(fmt::format("{} = {}\n", row.key, value)); },
@@ -187,6 +205,78 @@ TEST(ParameterTables, TheTissueReaderRefusesABlockValueOutsideItsRange) {
       io::parse_tissue_case_toml(group == "tissue" ? "[tissue]\n" + line : "[tissue]\n[mesh]\n" + line, "case.toml");
     });
   }
+}
+
+const std::string kPostPuncture = "[post_puncture]\nstiffness = \"0.2 N/mm2\"\nscale = 0.168\nfinal_depth = \"1 mm\"\n";
+
+// Every [post_puncture] key of the table at its default reads back as the default; tip_tolerance (no group) is not a
+// key of the file.
+TEST(ParameterTables, TheInsertionReaderReadsEveryKeyOfThePostPunctureTableAtItsDefault) {
+  const auto& table = insertion::kPostPunctureParameters;
+  const std::string rows = table_at_defaults<insertion::PostPunctureOptions>(table, "post_puncture");
+  const io::InsertionSettings read =
+      io::parse_insertion_settings(kPostPuncture + rows.substr(rows.find('\n') + 1), "case.toml");
+  EXPECT_EQ(default_texts(table, read.post_puncture), default_texts(table, insertion::PostPunctureOptions{}));
+  EXPECT_THAT([] { io::parse_insertion_settings(kPostPuncture + "tip_tolerance = 0.001\n", "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'post_puncture.tip_tolerance'")));
+}
+
+TEST(ParameterTables, TheInsertionReaderAndValidationRefuseAPostPunctureValueOutsideItsRange) {
+  expect_the_reader_refuses_values_below_range(
+      insertion::kPostPunctureParameters, "post_puncture",
+      [](const std::string& line) { io::parse_insertion_settings(kPostPuncture + line, "case.toml"); });
+  for_each_parameter(insertion::kPostPunctureParameters, [](const auto& row) {
+    if constexpr (requires { row.accepts(0.0); }) {
+      insertion::PostPunctureOptions options;
+      options.*row.field = -1;
+      EXPECT_THAT([&] { insertion::post_puncture_loads(geometry::TriangleMesh{}, {}, options); },
+                  testing::ThrowsMessage<InvalidInput>(
+                      HasSubstr(fmt::format("post_puncture {} = -1: expected {}", row.attribute(), row.range()))));
+    }
+  });
+}
+
+// A patch case of `kind` with `rows` in [patch].
+io::PatchCase patch_case_with(std::string_view kind, const std::string& rows) {
+  return io::parse_patch_case_toml(
+      fmt::format("[surface]\nmesh = \"neck.obj\"\nunit = \"m\"\ncenter_vertex = 0\n[patch]\nkind = \"{}\"\n"
+                  "size = \"10 mm\"\nneedles_per_row = 10\nspring_constant = \"1 N/mm\"\n{}[needle]\n"
+                  "shape = \"cylinder\"\ntip_diameter = \"70 um\"\nlength = \"400 um\"\nmaterial = \"su-8\"\n",
+                  kind, rows),
+      "patch.toml", ".");
+}
+
+// The [patch] rows of a table at their defaults, without the table's header.
+template <class Options, class Table>
+std::string patch_rows_at_defaults(const Table& table) {
+  const std::string rows = table_at_defaults<Options>(table, "patch");
+  return rows.substr(rows.find('\n') + 1);
+}
+
+// Every [patch] key of the fit's tables at its default reads back as the default, each for its kind; kind is required.
+TEST(ParameterTables, ThePatchReaderReadsEveryKeyOfTheFitTablesAtItsDefault) {
+  const io::PatchCase flexible = patch_case_with(
+      "flexible", patch_rows_at_defaults<patch::FlexibleFitOptions>(patch::kFlexibleFitParameters));
+  EXPECT_EQ(default_texts(patch::kFlexibleFitParameters, flexible.fit.flexible),
+            default_texts(patch::kFlexibleFitParameters, patch::FlexibleFitOptions{}));
+  const io::PatchCase equilibrium = patch_case_with(
+      "equilibrium", patch_rows_at_defaults<patch::EquilibriumFitOptions>(patch::kEquilibriumFitParameters));
+  EXPECT_EQ(default_texts(patch::kEquilibriumFitParameters, equilibrium.fit.equilibrium),
+            default_texts(patch::kEquilibriumFitParameters, patch::EquilibriumFitOptions{}));
+  EXPECT_TRUE(equilibrium.load_given);
+  EXPECT_THAT([] { patch_case_with("rigid", "contact_ratio = 2\n"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'patch.contact_ratio'")));
+  EXPECT_THAT(io::described("patch.kind"), HasSubstr("default: required in files (\"flexible\" in Python)"));
+  EXPECT_THAT(io::described("patch.max_spring_energy"), HasSubstr("range:   in (0, inf] J"));
+}
+
+TEST(ParameterTables, ThePatchReaderRefusesAFitValueOutsideItsRange) {
+  expect_the_reader_refuses_values_below_range(patch::kFlexibleFitParameters, "patch", [](const std::string& line) {
+    patch_case_with("flexible", line);
+  });
+  expect_the_reader_refuses_values_below_range(patch::kEquilibriumFitParameters, "patch", [](const std::string& line) {
+    patch_case_with("equilibrium", line);
+  });
 }
 
 TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {

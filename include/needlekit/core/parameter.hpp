@@ -5,6 +5,7 @@
 //                                   end of an integer is one of needlekit's work limits (core/limits.hpp)
 //   Flag<Options>                   true or false
 //   Choice<Options, Enum, N>        one of the names of an enum's table (core/enum_table.hpp)
+// A range's infinite end is open unless a double row closes it on purpose: (0, inf] admits inf (a cap switched off).
 // The config readers, their range checks, the validation of the struct, the CLI help, `needlekit describe`,
 // docs/reference.md and the Python keyword arguments all read the table (core/parameter_text.hpp turns rows into
 // text), and a test checks with field_count that every field of the struct has a row.
@@ -22,6 +23,7 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
 
 #include "needlekit/core/enum_table.hpp"
 #include "needlekit/core/units.hpp"
@@ -50,16 +52,23 @@ struct Parameter {
   // The default: the field's initializer in Options.
   Value default_value() const { return Options{}.*field; }
 
+  // An infinite value only at an infinite end that is closed ("(0, inf]": a cap that may be switched off).
   bool accepts(double value) const {
-    if (!std::isfinite(value)) return false;
+    if (std::isnan(value)) return false;
+    if (std::isinf(value)) {
+      return std::is_floating_point_v<Value> && value == (value > 0 ? max : min) &&
+             (value > 0 ? max_bound : min_bound) == Bound::Closed;
+    }
     const bool above = min_bound == Bound::Open ? value > min : value >= min;
     const bool below = max_bound == Bound::Open ? value < max : value <= max;
     return above && below;
   }
 
-  // "in (0, 1)", ">= 1", "> 0".
+  // "in (0, 1)", ">= 1", "> 0", "in (0, inf]".
   std::string range() const {
-    const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+    constexpr bool kMayBeInfinite = std::is_floating_point_v<Value>;  // an int row's closed kNoLimit means "no limit"
+    const bool has_min = std::isfinite(min) || (kMayBeInfinite && min_bound == Bound::Closed);
+    const bool has_max = std::isfinite(max) || (kMayBeInfinite && max_bound == Bound::Closed);
     if (has_min && has_max) {
       return fmt::format("in {}{:g}, {:g}{}", min_bound == Bound::Open ? '(' : '[', min, max,
                          max_bound == Bound::Open ? ')' : ']');
@@ -90,6 +99,7 @@ struct Choice {
   std::string_view meaning;
   std::string_view group = "";
   std::string_view name = "";
+  bool required = false;  // files must give it (the struct's initializer is then Python's default only)
 
   std::string_view attribute() const { return name.empty() ? key : name; }
 };

@@ -53,7 +53,7 @@ template <class Options, class Value, std::size_t N>
 ParameterText text_of_row(const Choice<Options, Value, N>& row, const Options& defaults) {
   return {dotted_key(row.group, row.key), std::string(row.attribute()), "choice", "",
           fmt::format("\"{}\"", name_of(*row.names, defaults.*row.field)), choices_of(*row.names),
-          std::string(row.meaning), meanings_of(*row.names, row.key)};
+          std::string(row.meaning), meanings_of(*row.names, row.key), row.required};
 }
 }  // namespace detail
 

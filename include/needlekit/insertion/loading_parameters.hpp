@@ -24,7 +24,7 @@ inline constexpr std::tuple kLoadingParameters{
     Parameter<Loading, double>{"angle", &Loading::angle, 0, std::numbers::pi / 2, Bound::Closed, Bound::Open,
                                "the needle's axis from the skin's normal (surface contact only)", "loading",
                                units::Dimension::Angle},
-    Parameter<Loading, double>{"azimuth", &Loading::azimuth, -kNoLimit, kNoLimit, Bound::Closed, Bound::Closed,
+    Parameter<Loading, double>{"azimuth", &Loading::azimuth, -kNoLimit, kNoLimit, Bound::Open, Bound::Open,
                                "the tilt's direction in the block's x-y plane from +x (a bevel's face normal turns "
                                "towards it)",
                                "loading", units::Dimension::Angle},
