@@ -6,17 +6,27 @@
 
 namespace needlekit::io {
 
-std::vector<std::string> patch_surface_warnings(const PatchCase& c, const geometry::BodySurface& body) {
+namespace {
+
+// The body's warnings; `attributed`: the mesh has its attribution (mesh_attribution, a file read, done once).
+std::vector<std::string> surface_warnings(const PatchCase& c, const geometry::BodySurface& body, bool attributed) {
   std::vector<std::string> warnings = patch_scale_warnings(body.surface.mesh(), patch::patch_design(c.design));
   if (body.flipped) warnings.insert(warnings.begin(), body.note);
-  if (!mesh_attribution(c.mesh)) warnings.push_back(missing_attribution_warning(c.mesh));
+  if (!attributed) warnings.push_back(missing_attribution_warning(c.mesh));
   return warnings;
+}
+
+}  // namespace
+
+std::vector<std::string> patch_surface_warnings(const PatchCase& c, const geometry::BodySurface& body) {
+  return surface_warnings(c, body, mesh_attribution(c.mesh).has_value());
 }
 
 PatchSurface read_patch_surface(const PatchCase& c) {
   geometry::BodySurface body = geometry::read_body_surface(c.mesh, c.mesh_unit);
-  std::vector<std::string> warnings = patch_surface_warnings(c, body);
-  return {std::move(body.surface), std::move(warnings), mesh_attribution(c.mesh)};
+  std::optional<MeshAttribution> attribution = mesh_attribution(c.mesh);
+  std::vector<std::string> warnings = surface_warnings(c, body, attribution.has_value());
+  return {std::move(body.surface), std::move(warnings), std::move(attribution)};
 }
 
 nlohmann::json patch_case_summary(const PatchCase& c, const patch::FitAndEvaluateResult& r,
