@@ -3442,7 +3442,9 @@ class PunctureOptions:
 
 Keywords (every field):
   criterion: "dissertation" | "averaged-pressure": the law that decides the puncture. Default: "dissertation".
-  material_length: m, > 0 m: averaged-pressure: the radius l of the disc the contact pressure is averaged over (a property of the tissue). Default: "5e-05 m"."""
+  material_length: m, > 0 m: averaged-pressure: the radius l of the disc the contact pressure is averaged over (a property of the tissue). Default: "5e-05 m".
+  critical_pressure: Pa, > 0 Pa: P_c: the contact pressure F/A at which the needle punctures (Eq 3.17), or the averaged contact pressure of the averaged-pressure law (not given: the criterion is not used). Default: None.
+  toughness: N/m, > 0 N/m: J: the fracture energy per crack area of the fracture-energy criterion (J/m2 = N/m; not given: the criterion is not used, or toughness_from). Default: None."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
@@ -3452,7 +3454,7 @@ Keywords (every field):
     def criterion(self, value: Any) -> None: ...
     @property
     def critical_pressure(self) -> Optional[float]:
-        """Pa"""
+        """Pa, > 0 Pa: P_c: the contact pressure F/A at which the needle punctures (Eq 3.17), or the averaged contact pressure of the averaged-pressure law (not given: the criterion is not used). Default: None."""
     @critical_pressure.setter
     def critical_pressure(self, value: Any) -> None: ...
     @property
@@ -3464,7 +3466,7 @@ Keywords (every field):
         """Every field as a dict (SI)."""
     @property
     def toughness(self) -> Optional[float]:
-        """J/m^2 (= N/m)"""
+        """N/m, > 0 N/m: J: the fracture energy per crack area of the fracture-energy criterion (J/m2 = N/m; not given: the criterion is not used, or toughness_from). Default: None."""
     @toughness.setter
     def toughness(self, value: Any) -> None: ...
 

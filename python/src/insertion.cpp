@@ -62,9 +62,7 @@ void bind_indentation(py::module_& m) {
   py::class_<PunctureOptions> puncture(m, "PunctureOptions",
                                         "Puncture criteria: the dissertation's (§3.5) or the averaged contact pressure; "
                                         "critical_pressure, toughness None: not used.");
-  def_optional_quantity(puncture, "critical_pressure", &PunctureOptions::critical_pressure, Dimension::Pressure, "Pa");
-  def_optional_quantity(puncture, "toughness", &PunctureOptions::toughness, Dimension::Stiffness, "J/m^2 (= N/m)");
-  def_parameters<PunctureOptions>(puncture, kPunctureParameters);  // criterion, material_length; keyword init
+  def_parameters<PunctureOptions>(puncture, kPunctureParameters);  // every field; keyword init
 
   using fem::SolverOptions;
   bind_enum<fem::kMaterialLawNames>(m, "MaterialLaw", "The hyperelastic law of a tissue layer.");

@@ -102,3 +102,12 @@ def test_the_fit_options_read_like_the_patch_case_file():
     fit = needlekit.FitOptions(kind=needlekit.PatchKind.Equilibrium, equilibrium=needlekit.EquilibriumFitOptions(tolerance=1e-4))
     assert fit.kind == needlekit.PatchKind.Equilibrium and fit.equilibrium.tolerance == 1e-4
     assert "in (0, inf]" in needlekit.FlexibleFitOptions.max_spring_energy.__doc__
+
+
+def test_an_optional_quantity_is_none_unless_given():
+    assert needlekit.PunctureOptions().critical_pressure is None and needlekit.PunctureOptions().toughness is None
+    assert needlekit.PunctureOptions(toughness="100 J/m2").toughness == pytest.approx(100)
+    assert "Default: None." in needlekit.PunctureOptions.critical_pressure.__doc__
+    assert "optional" in [kind for key, kind in re.findall(r"^\| `(puncture\.[a-z_]+)` \| [^|]+ \| `([^`]+)` \|",
+                                                            (SOURCE_DIR / "docs" / "reference.md").read_text(), re.M)
+                          if key == "puncture.toughness"]

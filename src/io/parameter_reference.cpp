@@ -28,9 +28,11 @@ std::string description_of(const ParameterText& parameter, std::string_view opti
   std::string text = fmt::format("{}\n  {}\n", parameter.key, parameter.meaning);
   text += fmt::format("  kind:    {}\n", parameter.kind);
   text += fmt::format("  unit:    {}\n", parameter.unit.empty() ? "none" : parameter.unit);
-  text += fmt::format("  default: {}\n", parameter.required ? fmt::format("required in files ({} in Python)",
-                                                                           parameter.default_text)
-                                                              : parameter.default_text);
+  text += fmt::format("  default: {}\n", parameter.required   ? fmt::format("required in files ({} in Python)",
+                                                                             parameter.default_text)
+                                           : parameter.optional ? fmt::format("optional: not given ({} in Python)",
+                                                                             parameter.default_text)
+                                                                : parameter.default_text);
   text += fmt::format("  range:   {}\n", parameter.range);
   text += fmt::format("  Python:  {}.{}\n", options, parameter.name);
   if (!parameter.choices.empty()) text += "  choices:\n" + parameter.choices;
@@ -45,7 +47,7 @@ std::vector<ParameterGroup> parameter_reference() {
        parameter_texts(fem::kSolverParameters, case_solver_defaults())},
       {"indentation and insertion cases (`needlekit indent`; insert), [loading]", "IndentationCase",
        parameter_texts<insertion::Loading>(insertion::kLoadingParameters)},
-      {"indentation cases, [puncture] (besides critical_pressure, toughness, toughness_from)", "PunctureOptions",
+      {"indentation cases, [puncture] (besides toughness_from)", "PunctureOptions",
        parameter_texts(insertion::kPunctureParameters, insertion::PunctureOptions{})},
       {"insertion cases (`needlekit insert`), [post_puncture] (besides stiffness, scale, final_depth, samples, "
        "side_tolerance, alpha_tolerance, occlusion_test, measured)",

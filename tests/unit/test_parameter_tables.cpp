@@ -48,9 +48,8 @@ TEST(ParameterTables, EveryFieldOfSolverOptionsHasOneRow) {
   expect_one_row_per_field<fem::SolverOptions>(fem::kSolverParameters, fem::kSolverCallbackFields);
 }
 
-TEST(ParameterTables, EveryFieldOfPunctureOptionsHasOneRowButTheOptionalQuantities) {
-  expect_one_row_per_field<insertion::PunctureOptions>(insertion::kPunctureParameters,
-                                                       insertion::kPunctureOptionalFields);
+TEST(ParameterTables, EveryFieldOfPunctureOptionsHasOneRow) {
+  expect_one_row_per_field<insertion::PunctureOptions>(insertion::kPunctureParameters, 0);
 }
 
 TEST(ParameterTables, EveryFieldOfLoadingHasOneRow) {
@@ -277,6 +276,27 @@ TEST(ParameterTables, ThePatchReaderRefusesAFitValueOutsideItsRange) {
   expect_the_reader_refuses_values_below_range(patch::kEquilibriumFitParameters, "patch", [](const std::string& line) {
     patch_case_with("equilibrium", line);
   });
+}
+
+// The optional quantities of [puncture]: absent, not given; given, read and checked against their range; described
+// as optional with no default.
+TEST(ParameterTables, TheOptionalPunctureQuantitiesAreNotGivenUnlessTheFileGivesThem) {
+  EXPECT_FALSE(io::parse_indentation_case_toml(kCase, "case.toml").puncture.critical_pressure.has_value());
+  const insertion::IndentationCase given = io::parse_indentation_case_toml(
+      kCase + "[puncture]\ncritical_pressure = \"0.663 MPa\"\ntoughness = \"100 J/m2\"\n", "case.toml");
+  EXPECT_DOUBLE_EQ(given.puncture.critical_pressure.value_or(0), 0.663e6);
+  EXPECT_DOUBLE_EQ(given.puncture.toughness.value_or(0), 100);
+  expect_the_reader_refuses_values_below_range(insertion::kPunctureParameters, "puncture", [](const std::string& line) {
+    io::parse_indentation_case_toml(kCase + "[puncture]\n" + line, "case.toml");
+  });
+  insertion::PunctureOptions options;
+  options.toughness = -1;
+  EXPECT_THAT([&] { insertion::validate(options); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("puncture toughness = -1: expected > 0")));
+  const std::string described = io::described("puncture.critical_pressure");
+  EXPECT_THAT(described, HasSubstr("kind:    optional quantity (pressure"));
+  EXPECT_THAT(described, HasSubstr("default: optional: not given (None in Python)"));
+  EXPECT_THAT(described, HasSubstr("range:   > 0 Pa"));
 }
 
 TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {
