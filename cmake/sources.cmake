@@ -92,7 +92,6 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/io/json_config.cpp
   src/io/json_text.cpp
   src/io/mesh_attribution.cpp
-  src/io/parameter_reference.cpp
   src/io/patch_config.cpp
   src/io/patch_run.cpp
   src/io/patch_uncertainty_config.cpp
@@ -141,6 +140,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/patch/placement_scan.cpp
   src/patch/rigid_fit.cpp
   src/patch/spring_geodesics.cpp
+  src/reference/parameter_reference.cpp
   src/uncertainty/confidence_interval.cpp
   src/uncertainty/design_inputs.cpp
   src/uncertainty/design_outcome.cpp

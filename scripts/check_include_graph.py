@@ -21,6 +21,7 @@ LAYERS = [
     ["uncertainty"],
     ["io"],
     ["calibration"],
+    ["reference"],
 ]
 LAYER_OF = {folder: rank for rank, folders in enumerate(LAYERS) for folder in folders}
 PUBLIC = re.compile(r'^\s*#\s*include\s+"needlekit/([a-z_]+)/')

@@ -13,8 +13,10 @@
 
 #include "child_process.hpp"
 #include "commands.hpp"
+#include "file_format_help.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
+#include "needlekit/calibration/calibration_solver_parameters.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
@@ -43,11 +45,7 @@ std::string help_text() {
     kinds += fmt::format("  {:<34}{}\n", kind.pattern, kind.meaning);
   return fmt::format(R"(CALIBRATION file (TOML):
   name = "phantom"                                   optional, names the outputs
-  [solver]  max_iterations = 30, relative_step = 1e-3 (finite differences; default 1e-7 analytic, 1e-3 FE),
-            function_tolerance = 1e-10, parameter_tolerance = 1e-10,
-            mesh_error = true (the 95 % intervals include the FE discretisation error, from one run per FE
-            experiment on a mesh mesh_error_refinement = 0.75 times finer)
-  [[parameters]]
+{}  [[parameters]]
   path = "tissue.layers.0.youngs_modulus"           a key of the experiments' case files (below)
   initial = "0.1 MPa"                                with a unit (a number for dimensionless keys)
   bounds = ["0.01 MPa", "10 MPa"]
@@ -60,6 +58,8 @@ std::string help_text() {
 Calibratable keys (N: a layer or table index):
 {}Outputs (--out DIR): NAME_calibration.json, NAME_calibration_curves.csv, NAME_calibration.png (--no-plot skips it).
 Exit code 3 when the fit does not converge (results written), 2 on bad input (nothing written).)",
+                     settings_help(parameter_texts<calibration::SolverSettings>(calibration::kCalibrationSolverParameters),
+                                   "solver", "  [solver]"),
                      kinds);
 }
 

@@ -1,5 +1,5 @@
 // `needlekit describe KEY | --all [--markdown]`: a parameter's meaning, unit, default and range, from the parameter
-// tables (io/parameter_reference.hpp).
+// tables (reference/parameter_reference.hpp).
 #include <fmt/format.h>
 
 #include <memory>
@@ -7,7 +7,7 @@
 
 #include "command_describe.hpp"
 #include "needlekit/core/errors.hpp"
-#include "needlekit/io/parameter_reference.hpp"
+#include "needlekit/reference/parameter_reference.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -20,13 +20,13 @@ struct DescribeArguments {
 
 void run_describe(const DescribeArguments& arguments) {
   if (arguments.markdown) {
-    fmt::print("{}", io::reference_markdown());
+    fmt::print("{}", reference::reference_markdown());
   } else if (arguments.all) {
-    fmt::print("{}", io::described_all());
+    fmt::print("{}", reference::described_all());
   } else if (arguments.key.empty()) {
     throw InvalidInput("describe: expected a KEY (e.g. solver.friction) or --all");
   } else {
-    fmt::print("{}", io::described(arguments.key));
+    fmt::print("{}", reference::described(arguments.key));
   }
 }
 

@@ -19,7 +19,9 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
+#include "needlekit/insertion/insertion_curve_parameters.hpp"
 #include "needlekit/insertion/post_puncture_parameters.hpp"
+#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/io/complete_insertion_output.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
@@ -38,19 +40,27 @@
 namespace needlekit::cli {
 namespace {
 
-// [post_puncture]'s first line, then the rows of insertion::kPostPunctureParameters (settings_help), then the rest.
-constexpr const char* kPostPunctureLabel = "  [post_puncture]";
+// [post_puncture]'s rows, from the parameter tables of the fit, the curve, the beta load and the classification
+// (post_puncture_help), then the measured curve.
 constexpr const char* kInsertHelp = R"(CASE file (TOML): an indentation case (see `needlekit indent --help`: [needle], [[needles]], [tissue],
 [mesh], [loading] (the FE's depth limit for finding the puncture), [model], [puncture]) plus
-{}  stiffness = "0.2 N/mm2" (K, a pressure), scale = 0.168 (S), final_depth = "1000 um" (required);
-{}                   samples = 200, side_tolerance = "1 deg", alpha_tolerance = "1 deg", occlusion_test = false,
-                   measured = "curve.csv" (fit S to a measured post-puncture curve)
+{}                   measured = "curve.csv" (fit S to a measured post-puncture curve)
   [pre_puncture]   curve = "pre.csv" (depth_<unit>, force_<unit>), punctured = true: use this curve (its last
                    sample is the puncture point) instead of running the FE
 Outputs (in --out DIR, default .): NAME_insertion.csv (depth_um, force_N, phase, punctured_needles, marker),
 NAME_insertion.json, NAME_insertion.png (needs /usr/bin/python3 with matplotlib; --no-plot to skip). With
 measured, the curve, JSON and plot use the fitted S (JSON: scale, scale_source = "fitted", case_scale). A FE run
 that stops converging writes what converged (the JSON alone if no step did) and exits with code 3.)";
+
+std::string post_puncture_help() {
+  std::vector<ParameterText> texts =
+      parameter_texts<insertion::PostPunctureFitOptions>(insertion::kPostPunctureFitParameters);
+  const auto add = [&texts](const std::vector<ParameterText>& more) { texts.insert(texts.end(), more.begin(), more.end()); };
+  add(parameter_texts<insertion::InsertionCurveOptions>(insertion::kInsertionCurveParameters));
+  add(parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters));
+  add(parameter_texts<insertion::TriangleClassificationOptions>(insertion::kTriangleClassificationParameters));
+  return settings_help(texts, "post_puncture", "  [post_puncture]", 19);
+}
 
 struct InsertArguments {
   std::string case_path;
@@ -212,10 +222,7 @@ void add_insert_command(CLI::App& app) {
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--steps", arguments->steps, "override [loading] steps")->check(CLI::Range(1, 100000));
-  command->footer(fmt::format(
-      kInsertHelp, kPostPunctureLabel,
-      settings_help(parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters),
-                    "post_puncture", "", std::string_view(kPostPunctureLabel).size() + 2)));
+  command->footer(fmt::format(kInsertHelp, post_puncture_help()));
   command->callback([arguments] { run_insert(*arguments); });
 }
 

@@ -128,7 +128,7 @@ void add_uncertainty_command(CLI::App& app) {
       ->type_name("N")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->footer(std::string(kUncertaintyFileHelp) + "\n" + tables_help() + patch_inputs_help() + fe_help() + "\n" +
+  command->footer(uncertainty_file_help() + "\n" + tables_help() + patch_inputs_help() + fe_help() + "\n" +
                   design_file_help());
   command->callback([arguments] {
     const io::UncertaintyFileKind kind = io::uncertainty_file_kind(arguments->path);

@@ -3,10 +3,12 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "file_format_help.hpp"
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/io/fe_uncertainty_config.hpp"
 #include "needlekit/io/json_text.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
+#include "needlekit/uncertainty/fe_surrogate_parameters.hpp"
 #include "progress_bar.hpp"
 #include "uncertainty_commands.hpp"
 
@@ -44,9 +46,10 @@ void print_table(const nlohmann::json& json) {
 std::string fe_help() {
   return fmt::format(
       "FE case (the FE surrogate): a UQ file with case = \"indent_....toml\" (an indentation case, relative to the UQ "
-      "file) instead of a design, [uncertain] keys {}, [sampling], and optional [surrogate] design_runs (0: twice the "
-      "terms), validation_runs (4), depth_limit (X of P(puncture before X); default the case's depth)\n",
-      uncertainty::kFeInputKeys);
+      "file) instead of a design, [uncertain] keys {}, [sampling], and optional\n{}",
+      uncertainty::kFeInputKeys,
+      settings_help(parameter_texts<uncertainty::FeSurrogateOptions>(uncertainty::kFeSurrogateParameters),
+                    "surrogate", "  [surrogate]"));
 }
 
 void run_fe_uncertainty(const UncertaintyArguments& arguments) {

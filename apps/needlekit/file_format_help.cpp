@@ -17,6 +17,7 @@
 #include "needlekit/patch/fit_parameters.hpp"
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/patch_placement.hpp"
+#include "needlekit/uncertainty/propagation_parameters.hpp"
 
 namespace needlekit::cli {
 namespace {
@@ -71,6 +72,20 @@ std::string settings_help(const std::vector<ParameterText>& texts, std::string_v
                         parameter.meaning);
   }
   return text;
+}
+
+std::string uncertainty_file_help() {
+  constexpr const char* kLabel = "  [sampling]";
+  return fmt::format(
+      R"(UQ file: a DESIGN file (below) or a patch case (`needlekit patch --help`) plus
+  [uncertain]    one inline table per uncertain input, keyed by its design-file key, values with the input's unit:
+                 "needle.tip_diameter" = {{ distribution = "normal", mean = "30 um", sd = "2 um" }}
+                 "tissue.alpha" = {{ distribution = "lognormal", median = "0.0183 N", sigma_log = 0.2 }}
+                 an omitted mean / median is the design's value. More than 0.1 % of a distribution outside the
+                 input's physical range (e.g. a diameter <= 0) is an error; less is truncated and reported.
+{}  [[correlation]] inputs = ["tissue.alpha", "tissue.tau"], rho = 0.5   (between normal scores, optional))",
+      settings_help(parameter_texts<uncertainty::PropagationOptions>(uncertainty::kPropagationParameters), "sampling",
+                    kLabel));
 }
 
 std::string design_file_help() {

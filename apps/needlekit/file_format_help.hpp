@@ -29,15 +29,9 @@ inline constexpr const char* kRobustSpaceHelp = R"(Robust design (optional): add
                                  base_diameter, bore_diameter, length, width) takes no mean: its spread is centred
                                  on every candidate. The best max 2000 nominal designs are checked, best first.)";
 
-inline constexpr const char* kUncertaintyFileHelp = R"(UQ file: a DESIGN file (below) or a patch case (`needlekit patch --help`) plus
-  [uncertain]    one inline table per uncertain input, keyed by its design-file key, values with the input's unit:
-                 "needle.tip_diameter" = { distribution = "normal", mean = "30 um", sd = "2 um" }
-                 "tissue.alpha" = { distribution = "lognormal", median = "0.0183 N", sigma_log = 0.2 }
-                 an omitted mean / median is the design's value. More than 0.1 % of a distribution outside the
-                 input's physical range (e.g. a diameter <= 0) is an error; less is truncated and reported.
-  [sampling]     samples = 4096 (>= 2), method (below, default "sobol"), seed = 1, sobol_indices = true
-                 (N*(k+2) runs for k inputs)
-  [[correlation]] inputs = ["tissue.alpha", "tissue.tau"], rho = 0.5   (between normal scores, optional))";
+// The uncertainty file's own tables: [uncertain], [sampling] (from uncertainty::kPropagationParameters) and
+// [[correlation]].
+std::string uncertainty_file_help();
 // The puncture-force laws of [tissue] puncture_force, from the law table (analysis::kPunctureForceLawKindNames).
 std::string puncture_force_law_help();
 

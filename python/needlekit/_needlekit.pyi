@@ -328,27 +328,45 @@ class CalibrationResult:
         ...
 
 class CalibrationSolverSettings:
-    """The [solver] table of a calibration file."""
-    def __init__(*args, **kwargs) -> Any:
-        """Initialize self.  See help(type(self)) for accurate signature."""
+    """The [solver] table of a calibration file.
+
+Keywords (every field):
+  max_iterations: >= 1: Levenberg-Marquardt iterations (Ceres). Default: 30.
+  relative_step: in [0, 0.1): finite-difference step relative to each parameter (0: automatic, 1e-7 for analytic experiments only, 1e-3 when an FE run is involved). Default: 0.
+  function_tolerance: in (0, 1): relative decrease of the cost that counts as converged. Default: 1e-10.
+  parameter_tolerance: in (0, 1): relative step size that counts as converged. Default: 1e-10.
+  mesh_error: true | false: widen the 95 % intervals by the estimated FE discretisation error (one finer run per FE experiment; discretisation_error.hpp). Default: true.
+  mesh_error_refinement: in (0, 1): the finer meshes' element sizes relative to the fit's (mesh_error). Default: 0.75."""
+    def __init__(self, **kwargs) -> None:
+        """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def function_tolerance(self) -> float:
-        """(0, 1)"""
+        """in (0, 1): relative decrease of the cost that counts as converged. Default: 1e-10."""
     @function_tolerance.setter
     def function_tolerance(self, value: Any) -> None: ...
     @property
     def max_iterations(self) -> int:
-        """>= 1"""
+        """>= 1: Levenberg-Marquardt iterations (Ceres). Default: 30."""
     @max_iterations.setter
     def max_iterations(self, value: Any) -> None: ...
     @property
+    def mesh_error(self) -> bool:
+        """true | false: widen the 95 % intervals by the estimated FE discretisation error (one finer run per FE experiment; discretisation_error.hpp). Default: true."""
+    @mesh_error.setter
+    def mesh_error(self, value: Any) -> None: ...
+    @property
+    def mesh_error_refinement(self) -> float:
+        """in (0, 1): the finer meshes' element sizes relative to the fit's (mesh_error). Default: 0.75."""
+    @mesh_error_refinement.setter
+    def mesh_error_refinement(self, value: Any) -> None: ...
+    @property
     def parameter_tolerance(self) -> float:
-        """(0, 1)"""
+        """in (0, 1): relative step size that counts as converged. Default: 1e-10."""
     @parameter_tolerance.setter
     def parameter_tolerance(self, value: Any) -> None: ...
     @property
     def relative_step(self) -> float:
-        """(0, 0.1); 0: automatic"""
+        """in [0, 0.1): finite-difference step relative to each parameter (0: automatic, 1e-7 for analytic experiments only, 1e-3 when an FE run is involved). Default: 0."""
     @relative_step.setter
     def relative_step(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
@@ -1114,29 +1132,34 @@ class ExperimentSpec:
         """Every field as a dict (SI)."""
 
 class FeSurrogateOptions:
-    """The FE design, held-out runs and sampling."""
+    """The FE design, held-out runs and sampling.
+
+Keywords (every field):
+  design_runs: >= 0: FE runs of the fit, at least the polynomial's terms (0: twice the terms). Default: 0.
+  validation_runs: >= 1: held-out FE runs that measure the fit's error. Default: 4.
+  depth_limit: m, > 0 m: X of P(puncture before X) (not given: the case's loading depth). Default: None."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def depth_limit(self) -> Optional[float]:
-        """m: X of P(puncture before X); None: the case's loading depth"""
+        """m, > 0 m: X of P(puncture before X) (not given: the case's loading depth). Default: None."""
     @depth_limit.setter
     def depth_limit(self, value: Any) -> None: ...
     @property
     def design_runs(self) -> int:
-        """FE runs of the fit; 0: 2 x the terms"""
+        """>= 0: FE runs of the fit, at least the polynomial's terms (0: twice the terms). Default: 0."""
     @design_runs.setter
     def design_runs(self, value: Any) -> None: ...
     @property
     def sampling(self) -> PropagationOptions:
-        ...
+        """PropagationOptions: the [sampling] table"""
     @sampling.setter
     def sampling(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
     def validation_runs(self) -> int:
-        """held-out FE runs, >= 1"""
+        """>= 1: held-out FE runs that measure the fit's error. Default: 4."""
     @validation_runs.setter
     def validation_runs(self, value: Any) -> None: ...
 
@@ -1935,17 +1958,21 @@ class InsertionCurve:
         """Every field as a dict (SI)."""
 
 class InsertionCurveOptions:
-    ...
+    """The complete curve's end and samples.
+
+Keywords (every field):
+  final_depth: m, > 0 m: displacement of the needles' base at the end of the curve. Default: "0.001 m" (required in files).
+  cutting_samples: in [1, 1e+06]: equally spaced samples of the cutting phase, from the first puncture to final_depth. Default: 200."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def cutting_samples(self) -> int:
-        """>= 1"""
+        """in [1, 1e+06]: equally spaced samples of the cutting phase, from the first puncture to final_depth. Default: 200."""
     @cutting_samples.setter
     def cutting_samples(self, value: Any) -> None: ...
     @property
     def final_depth(self) -> float:
-        """m"""
+        """m, > 0 m: displacement of the needles' base at the end of the curve. Default: "0.001 m" (required in files)."""
     @final_depth.setter
     def final_depth(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
@@ -2697,54 +2724,63 @@ class PatchDesign:
         """m"""
 
 class PatchDesignOptions:
-    """A Flexi-patch of n_h x n_v needles (§5.5)."""
+    """A Flexi-patch of n_h x n_v needles (§5.5).
+
+Keywords (every field):
+  needles_u: in [2, 10000]: n_h, needles (= nodes) along U ([patch] needles_per_row). Default: 10.
+  needles_v: in [2, 10000]: n_v, needles along V ([patch] needles_per_row). Default: 10.
+  width_u: m, > 0 m: patch side w along U; node pitch w/n (Eq 4.25), nodes at the cells' centres ([patch] size). Default: "0.01 m".
+  width_v: m, > 0 m: patch side along V ([patch] size). Default: "0.01 m".
+  stiffness_u: N/m, > 0 N/m: spring constant along U (§6.4: 1 N/mm; [patch] spring_constant). Default: "1000 N/m".
+  stiffness_v: N/m, > 0 N/m: spring constant along V ([patch] spring_constant). Default: "1000 N/m".
+  stiffness_diagonal: N/m, > 0 N/m: spring constant of both diagonals ([patch] spring_constant). Default: "1000 N/m"."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def material(self) -> NeedleMaterial:
-        ...
+        """the needles' material"""
     @material.setter
     def material(self, value: Any) -> None: ...
     @property
     def needle(self) -> NeedleGeometry:
-        ...
+        """the needle at every node"""
     @needle.setter
     def needle(self, value: Any) -> None: ...
     @property
     def needles_u(self) -> int:
-        ...
+        """in [2, 10000]: n_h, needles (= nodes) along U ([patch] needles_per_row). Default: 10."""
     @needles_u.setter
     def needles_u(self, value: Any) -> None: ...
     @property
     def needles_v(self) -> int:
-        ...
+        """in [2, 10000]: n_v, needles along V ([patch] needles_per_row). Default: 10."""
     @needles_v.setter
     def needles_v(self, value: Any) -> None: ...
     @property
     def stiffness_diagonal(self) -> float:
-        """N/m"""
+        """N/m, > 0 N/m: spring constant of both diagonals ([patch] spring_constant). Default: "1000 N/m"."""
     @stiffness_diagonal.setter
     def stiffness_diagonal(self, value: Any) -> None: ...
     @property
     def stiffness_u(self) -> float:
-        """N/m ("1 N/mm")"""
+        """N/m, > 0 N/m: spring constant along U (§6.4: 1 N/mm; [patch] spring_constant). Default: "1000 N/m"."""
     @stiffness_u.setter
     def stiffness_u(self, value: Any) -> None: ...
     @property
     def stiffness_v(self) -> float:
-        """N/m"""
+        """N/m, > 0 N/m: spring constant along V ([patch] spring_constant). Default: "1000 N/m"."""
     @stiffness_v.setter
     def stiffness_v(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
     def width_u(self) -> float:
-        """m, patch side along U"""
+        """m, > 0 m: patch side w along U; node pitch w/n (Eq 4.25), nodes at the cells' centres ([patch] size). Default: "0.01 m"."""
     @width_u.setter
     def width_u(self, value: Any) -> None: ...
     @property
     def width_v(self) -> float:
-        """m, patch side along V"""
+        """m, > 0 m: patch side along V ([patch] size). Default: "0.01 m"."""
     @width_v.setter
     def width_v(self, value: Any) -> None: ...
 
@@ -3147,22 +3183,27 @@ class PostPunctureFit:
         """Every field as a dict (SI)."""
 
 class PostPunctureFitOptions:
-    """K and S of Eq 3.18, and which one to fit."""
+    """K and S of Eq 3.18, and which one to fit.
+
+Keywords (every field):
+  stiffness: Pa, > 0 Pa: K of Eq 3.18, the tissue's cutting stiffness (fixed when fitting S). Default: "200000 Pa" (required in files).
+  scale: > 0: S of Eq 3.18 (fixed when fitting K). Default: 0.168 (required in files).
+  fit_stiffness: true | false: fit K to a measured curve instead of S (only K*S is identifiable). Default: false."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def fit_stiffness(self) -> bool:
-        """fit K (else S) to a measured curve"""
+        """true | false: fit K to a measured curve instead of S (only K*S is identifiable). Default: false."""
     @fit_stiffness.setter
     def fit_stiffness(self, value: Any) -> None: ...
     @property
     def scale(self) -> float:
-        """S, > 0"""
+        """> 0: S of Eq 3.18 (fixed when fitting K). Default: 0.168 (required in files)."""
     @scale.setter
     def scale(self, value: Any) -> None: ...
     @property
     def stiffness(self) -> float:
-        """N/m^2, K ("0.84 N/mm2")"""
+        """Pa, > 0 Pa: K of Eq 3.18, the tissue's cutting stiffness (fixed when fitting S). Default: "200000 Pa" (required in files)."""
     @stiffness.setter
     def stiffness(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
@@ -3242,37 +3283,45 @@ class PrePunctureCurve:
         """Every field as a dict (SI)."""
 
 class PropagationOptions:
-    """The [sampling] table of an uncertainty file."""
+    """The [sampling] table of an uncertainty file.
+
+Keywords (every field):
+  samples: in [2, 1e+08]: N, the rows of the sample matrix A (sobol works best with N = 2^m). Default: 4096.
+  method: "monte-carlo" | "sobol": how the sample points are drawn. Default: "sobol".
+  seed: >= 0: the same seed gives the same numbers on any thread count. Default: 1.
+  sobol_indices: true | false: also run B and AB_i for Sobol' indices: N (k + 2) evaluations for k inputs instead of N. Default: true.
+  threads: >= 0: threads (0: all hardware threads). Default: 0.
+  histogram_bins: >= 1: bins of each continuous output's histogram, over its [min, max]. Default: 20."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def histogram_bins(self) -> int:
-        """>= 1"""
+        """>= 1: bins of each continuous output's histogram, over its [min, max]. Default: 20."""
     @histogram_bins.setter
     def histogram_bins(self, value: Any) -> None: ...
     @property
     def method(self) -> SamplingMethod:
-        ...
+        """"monte-carlo" | "sobol": how the sample points are drawn. Default: "sobol"."""
     @method.setter
     def method(self, value: Any) -> None: ...
     @property
     def samples(self) -> int:
-        """N >= 2"""
+        """in [2, 1e+08]: N, the rows of the sample matrix A (sobol works best with N = 2^m). Default: 4096."""
     @samples.setter
     def samples(self, value: Any) -> None: ...
     @property
     def seed(self) -> int:
-        """the same seed gives the same numbers on any thread count"""
+        """>= 0: the same seed gives the same numbers on any thread count. Default: 1."""
     @seed.setter
     def seed(self, value: Any) -> None: ...
     @property
     def sobol_indices(self) -> bool:
-        """N (k + 2) evaluations instead of N"""
+        """true | false: also run B and AB_i for Sobol' indices: N (k + 2) evaluations for k inputs instead of N. Default: true."""
     @sobol_indices.setter
     def sobol_indices(self, value: Any) -> None: ...
     @property
     def threads(self) -> int:
-        """>= 0; 0: all hardware threads"""
+        """>= 0: threads (0: all hardware threads). Default: 0."""
     @threads.setter
     def threads(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:
@@ -3445,7 +3494,9 @@ class PunctureOptions:
 
 Keywords (every field):
   criterion: "dissertation" | "averaged-pressure": the law that decides the puncture. Default: "dissertation".
-  material_length: m, > 0 m: averaged-pressure: the radius l of the disc the contact pressure is averaged over (a property of the tissue). Default: "5e-05 m"."""
+  material_length: m, > 0 m: averaged-pressure: the radius l of the disc the contact pressure is averaged over (a property of the tissue). Default: "5e-05 m".
+  critical_pressure: Pa, > 0 Pa: P_c: the contact pressure F/A at which the needle punctures (Eq 3.17), or the averaged contact pressure of the averaged-pressure law (not given: the criterion is not used). Default: None.
+  toughness: N/m, > 0 N/m: J: the fracture energy per crack area of the fracture-energy criterion (J/m2 = N/m; not given: the criterion is not used, or toughness_from). Default: None."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
@@ -3455,7 +3506,7 @@ Keywords (every field):
     def criterion(self, value: Any) -> None: ...
     @property
     def critical_pressure(self) -> Optional[float]:
-        """Pa"""
+        """Pa, > 0 Pa: P_c: the contact pressure F/A at which the needle punctures (Eq 3.17), or the averaged contact pressure of the averaged-pressure law (not given: the criterion is not used). Default: None."""
     @critical_pressure.setter
     def critical_pressure(self, value: Any) -> None: ...
     @property
@@ -3467,7 +3518,7 @@ Keywords (every field):
         """Every field as a dict (SI)."""
     @property
     def toughness(self) -> Optional[float]:
-        """J/m^2 (= N/m)"""
+        """N/m, > 0 N/m: J: the fracture energy per crack area of the fracture-energy criterion (J/m2 = N/m; not given: the criterion is not used, or toughness_from). Default: None."""
     @toughness.setter
     def toughness(self, value: Any) -> None: ...
 
@@ -4271,37 +4322,43 @@ class TraceOptions:
     def vertex_tolerance(self, value: Any) -> None: ...
 
 class TriangleClassificationOptions:
-    ...
+    """The triangle classes of §3.6.1 (side, back, channel, alpha, beta).
+
+Keywords (every field):
+  side_tolerance: rad, in [0, 0.785398] rad: a triangle is a side triangle (group 1) when its normal is within this angle of perpendicular to the insertion direction. Default: "0.0174533 rad".
+  alpha_tolerance: rad, in [0, 0.785398] rad: a group-2 triangle is alpha when its normal is within this angle of the insertion direction. Default: "0.0174533 rad".
+  bore_radius: m, >= 0 m: radius of the needle's channel about its axis for the channel test without a surface mesh (0: the visibility test decides). Default: "0 m".
+  occlusion_test: true | false: the occlusion test for jagged needles (§3.6.1). Default: false."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
     def alpha_tolerance(self) -> float:
-        """rad"""
+        """rad, in [0, 0.785398] rad: a group-2 triangle is alpha when its normal is within this angle of the insertion direction. Default: "0.0174533 rad"."""
     @alpha_tolerance.setter
     def alpha_tolerance(self, value: Any) -> None: ...
     @property
     def axis_point(self) -> numpy.ndarray:
-        """m"""
+        """m, a point on the needle's centre axis (parallel to d); default the origin"""
     @axis_point.setter
     def axis_point(self, value: Any) -> None: ...
     @property
     def bore_radius(self) -> float:
-        """m"""
+        """m, >= 0 m: radius of the needle's channel about its axis for the channel test without a surface mesh (0: the visibility test decides). Default: "0 m"."""
     @bore_radius.setter
     def bore_radius(self, value: Any) -> None: ...
     @property
     def insertion_direction(self) -> numpy.ndarray:
-        ...
+        """d, any length > 0 (normalised inside); default +z, the needle frame's tip direction"""
     @insertion_direction.setter
     def insertion_direction(self, value: Any) -> None: ...
     @property
     def occlusion_test(self) -> bool:
-        ...
+        """true | false: the occlusion test for jagged needles (§3.6.1). Default: false."""
     @occlusion_test.setter
     def occlusion_test(self, value: Any) -> None: ...
     @property
     def side_tolerance(self) -> float:
-        """rad"""
+        """rad, in [0, 0.785398] rad: a triangle is a side triangle (group 1) when its normal is within this angle of perpendicular to the insertion direction. Default: "0.0174533 rad"."""
     @side_tolerance.setter
     def side_tolerance(self, value: Any) -> None: ...
     def to_dict(self) -> Dict[str, Any]:

@@ -5,8 +5,10 @@
 
 #include "common.hpp"
 #include "enum_binding.hpp"
+#include "parameters.hpp"
 #include "needlekit/calibration/calibrate.hpp"
 #include "needlekit/calibration/calibration_output.hpp"
+#include "needlekit/calibration/calibration_solver_parameters.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/io/result_writers.hpp"
 
@@ -37,11 +39,8 @@ void bind_problem(py::module_& m) {
       .def_readonly("puncture", &ExperimentSpec::puncture)
       .def_readonly("curve_weight", &ExperimentSpec::curve_weight)
       .def_readonly("puncture_weight", &ExperimentSpec::puncture_weight);
-  py::class_<SolverSettings>(m, "CalibrationSolverSettings", "The [solver] table of a calibration file.")
-      .def_readwrite("max_iterations", &SolverSettings::max_iterations, ">= 1")
-      .def_readwrite("relative_step", &SolverSettings::relative_step, "(0, 0.1); 0: automatic")
-      .def_readwrite("function_tolerance", &SolverSettings::function_tolerance, "(0, 1)")
-      .def_readwrite("parameter_tolerance", &SolverSettings::parameter_tolerance, "(0, 1)");
+  py::class_<SolverSettings> solver(m, "CalibrationSolverSettings", "The [solver] table of a calibration file.");
+  def_parameters<SolverSettings>(solver, kCalibrationSolverParameters);  // every field; keyword init
   py::class_<CalibrationProblem>(m, "CalibrationProblem", "A calibration file as read (read_calibration_file).")
       .def_readonly("name", &CalibrationProblem::name)
       .def_readonly("file", &CalibrationProblem::file)

@@ -10,7 +10,9 @@
 #include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/insertion_curve.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
+#include "needlekit/insertion/insertion_curve_parameters.hpp"
 #include "needlekit/insertion/post_puncture_parameters.hpp"
+#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/indentation_output.hpp"
@@ -62,9 +64,7 @@ void bind_indentation(py::module_& m) {
   py::class_<PunctureOptions> puncture(m, "PunctureOptions",
                                         "Puncture criteria: the dissertation's (§3.5) or the averaged contact pressure; "
                                         "critical_pressure, toughness None: not used.");
-  def_optional_quantity(puncture, "critical_pressure", &PunctureOptions::critical_pressure, Dimension::Pressure, "Pa");
-  def_optional_quantity(puncture, "toughness", &PunctureOptions::toughness, Dimension::Stiffness, "J/m^2 (= N/m)");
-  def_parameters<PunctureOptions>(puncture, kPunctureParameters);  // criterion, material_length; keyword init
+  def_parameters<PunctureOptions>(puncture, kPunctureParameters);  // every field; keyword init
 
   using fem::SolverOptions;
   bind_enum<fem::kMaterialLawNames>(m, "MaterialLaw", "The hyperelastic law of a tissue layer.");
@@ -209,16 +209,14 @@ void bind_indentation(py::module_& m) {
 }
 
 void bind_post_puncture(py::module_& m) {
-  py::class_<TriangleClassificationOptions> classification(m, "TriangleClassificationOptions");
-  def_keyword_init<TriangleClassificationOptions>(classification);
-  classification.def_readwrite("insertion_direction", &TriangleClassificationOptions::insertion_direction)
-      .def_readwrite("axis_point", &TriangleClassificationOptions::axis_point, "m")
-      .def_readwrite("occlusion_test", &TriangleClassificationOptions::occlusion_test);
-  def_quantity(classification, "side_tolerance", &TriangleClassificationOptions::side_tolerance, Dimension::Angle,
-               "rad");
-  def_quantity(classification, "alpha_tolerance", &TriangleClassificationOptions::alpha_tolerance, Dimension::Angle,
-               "rad");
-  def_quantity(classification, "bore_radius", &TriangleClassificationOptions::bore_radius, Dimension::Length, "m");
+  py::class_<TriangleClassificationOptions> classification(
+      m, "TriangleClassificationOptions", "The triangle classes of §3.6.1 (side, back, channel, alpha, beta).");
+  classification
+      .def_readwrite("insertion_direction", &TriangleClassificationOptions::insertion_direction,
+                     "d, any length > 0 (normalised inside); default +z, the needle frame's tip direction")
+      .def_readwrite("axis_point", &TriangleClassificationOptions::axis_point,
+                     "m, a point on the needle's centre axis (parallel to d); default the origin");
+  def_parameters<TriangleClassificationOptions>(classification, kTriangleClassificationParameters);  // keyword init
   py::class_<PostPunctureOptions> post_puncture(m, "PostPunctureOptions",
                                                 "The beta load of the post-puncture force (§3.6.2, Algorithm 3.1).");
   post_puncture.def_readwrite("axis_point", &PostPunctureOptions::axis_point,
@@ -294,19 +292,13 @@ void bind_post_puncture(py::module_& m) {
 
 void bind_complete_insertion(py::module_& m) {
   py::class_<PostPunctureFitOptions> model(m, "PostPunctureFitOptions", "K and S of Eq 3.18, and which one to fit.");
-  def_keyword_init<PostPunctureFitOptions>(model);
-  def_quantity(model, "stiffness", &PostPunctureFitOptions::stiffness, Dimension::Pressure,
-               "N/m^2, K (\"0.84 N/mm2\")");
-  model.def_readwrite("scale", &PostPunctureFitOptions::scale, "S, > 0")
-      .def_readwrite("fit_stiffness", &PostPunctureFitOptions::fit_stiffness, "fit K (else S) to a measured curve");
+  def_parameters<PostPunctureFitOptions>(model, kPostPunctureFitParameters);  // every field; keyword init
   py::class_<PostPunctureFit>(m, "PostPunctureFit")
       .def_readonly("stiffness", &PostPunctureFit::stiffness, "N/m^2")
       .def_readonly("scale", &PostPunctureFit::scale)
       .def_readonly("rms_error", &PostPunctureFit::rms_error, "N");
-  py::class_<InsertionCurveOptions> curve(m, "InsertionCurveOptions");
-  def_keyword_init<InsertionCurveOptions>(curve);
-  def_quantity(curve, "final_depth", &InsertionCurveOptions::final_depth, Dimension::Length, "m");
-  curve.def_readwrite("cutting_samples", &InsertionCurveOptions::cutting_samples, ">= 1");
+  py::class_<InsertionCurveOptions> curve(m, "InsertionCurveOptions", "The complete curve's end and samples.");
+  def_parameters<InsertionCurveOptions>(curve, kInsertionCurveParameters);  // every field; keyword init
   py::class_<CompleteInsertionOptions> options(
       m, "CompleteInsertionOptions",
       "The post-puncture model, an optional measured curve to fit, the curve's "

@@ -2,6 +2,7 @@
 // bound class, named after the field, with its unit, range, meaning and default as its docstring; the class's
 // docstring lists every keyword of its constructor. Quantities accept strings with units ("1e-9 m") as well as SI floats.
 #pragma once
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -35,6 +36,10 @@ std::string def_parameter_properties(Class& cls, const Table& table) {
     const std::string doc = property_docstring<Options>(row, text);
     const char* name = row.attribute().data();  // the views of the table's string literals end in '\0'
     keywords += fmt::format("\n  {}: {}", text.name, doc);
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(row.field)>, std::optional<double> Options::*>) {
+      def_optional_quantity(cls, name, row.field, row.dimension, doc.c_str());  // None: not given
+      return;
+    }
     if constexpr (std::is_same_v<std::remove_cvref_t<decltype(row.field)>, double Options::*>) {
       if (row.dimension != Dimension::Dimensionless) {  // the bound class's member: Options may be its base
         def_quantity(cls, name, static_cast<double Class::type::*>(row.field), row.dimension, doc.c_str());

@@ -11,6 +11,7 @@
 #include "needlekit/patch/fit_patch.hpp"
 #include "needlekit/patch/needle_evaluation.hpp"
 #include "needlekit/patch/patch_design.hpp"
+#include "needlekit/patch/patch_design_parameters.hpp"
 #include "needlekit/patch/patch_placement.hpp"
 #include "needlekit/patch/spring_geodesics.hpp"
 
@@ -45,15 +46,9 @@ py::array_t<double> needle_points(const PatchEvaluation& e, Eigen::Vector3d Need
 
 void bind_design_and_fit(py::module_& m) {
   py::class_<PatchDesignOptions> options(m, "PatchDesignOptions", "A Flexi-patch of n_h x n_v needles (§5.5).");
-  def_keyword_init<PatchDesignOptions>(options);
-  options.def_readwrite("needles_u", &PatchDesignOptions::needles_u)
-      .def_readwrite("needles_v", &PatchDesignOptions::needles_v);
-  def_quantity(options, "width_u", &PatchDesignOptions::width_u, Dimension::Length, "m, patch side along U");
-  def_quantity(options, "width_v", &PatchDesignOptions::width_v, Dimension::Length, "m, patch side along V");
-  def_quantity(options, "stiffness_u", &PatchDesignOptions::stiffness_u, Dimension::Stiffness, "N/m (\"1 N/mm\")");
-  def_quantity(options, "stiffness_v", &PatchDesignOptions::stiffness_v, Dimension::Stiffness, "N/m");
-  def_quantity(options, "stiffness_diagonal", &PatchDesignOptions::stiffness_diagonal, Dimension::Stiffness, "N/m");
-  options.def_readwrite("needle", &PatchDesignOptions::needle).def_readwrite("material", &PatchDesignOptions::material);
+  options.def_readwrite("needle", &PatchDesignOptions::needle, "the needle at every node")
+      .def_readwrite("material", &PatchDesignOptions::material, "the needles' material");
+  def_parameters<PatchDesignOptions>(options, kPatchDesignParameters);  // every number; keyword init
   py::class_<PatchDesign>(m, "PatchDesign", "The grid, springs and needles of a patch (m).")
       .def_readonly("nodes_u", &PatchDesign::nodes_u)
       .def_readonly("nodes_v", &PatchDesign::nodes_v)

@@ -4,10 +4,12 @@
 
 #include "common.hpp"
 #include "enum_binding.hpp"
+#include "parameters.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "needlekit/uncertainty/design_uncertainty.hpp"
+#include "needlekit/uncertainty/propagation_parameters.hpp"
 #include "needlekit/uncertainty/robust_design.hpp"
 
 namespace needlekit::python {
@@ -33,13 +35,7 @@ void bind_distributions(py::module_& m) {
 
   bind_enum<kSamplingMethodNames>(m, "SamplingMethod", "How the samples are drawn.");
   py::class_<PropagationOptions> sampling(m, "PropagationOptions", "The [sampling] table of an uncertainty file.");
-  def_keyword_init<PropagationOptions>(sampling);
-  sampling.def_readwrite("samples", &PropagationOptions::samples, "N >= 2")
-      .def_readwrite("method", &PropagationOptions::method)
-      .def_readwrite("seed", &PropagationOptions::seed, "the same seed gives the same numbers on any thread count")
-      .def_readwrite("sobol_indices", &PropagationOptions::sobol_indices, "N (k + 2) evaluations instead of N")
-      .def_readwrite("threads", &PropagationOptions::threads, ">= 0; 0: all hardware threads")
-      .def_readwrite("histogram_bins", &PropagationOptions::histogram_bins, ">= 1");
+  def_parameters<PropagationOptions>(sampling, kPropagationParameters);  // every field but progress; keyword init
 
   py::class_<DesignUncertainInput> input(m, "DesignUncertainInput", "An uncertain input of a design.");
   def_keyword_init<DesignUncertainInput>(input);

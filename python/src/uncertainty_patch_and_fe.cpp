@@ -4,11 +4,13 @@
 // after every FE run and Ctrl-C stops it there.
 #include "common.hpp"
 #include "enum_binding.hpp"
+#include "parameters.hpp"
 #include "needlekit/geometry/body_surface.hpp"
 #include "needlekit/io/fe_uncertainty_config.hpp"
 #include "needlekit/io/patch_uncertainty_config.hpp"
 #include "needlekit/io/uncertainty_output.hpp"
 #include "needlekit/uncertainty/fe_surrogate.hpp"
+#include "needlekit/uncertainty/fe_surrogate_parameters.hpp"
 #include "needlekit/uncertainty/patch_uncertainty.hpp"
 
 namespace needlekit::python {
@@ -94,12 +96,8 @@ void bind_patch_uncertainty(py::module_& m) {
 
 void bind_fe_surrogate(py::module_& m) {
   py::class_<FeSurrogateOptions> options(m, "FeSurrogateOptions", "The FE design, held-out runs and sampling.");
-  def_keyword_init<FeSurrogateOptions>(options);
-  options.def_readwrite("sampling", &FeSurrogateOptions::sampling)
-      .def_readwrite("design_runs", &FeSurrogateOptions::design_runs, "FE runs of the fit; 0: 2 x the terms")
-      .def_readwrite("validation_runs", &FeSurrogateOptions::validation_runs, "held-out FE runs, >= 1");
-  def_optional_quantity(options, "depth_limit", &FeSurrogateOptions::depth_limit, Dimension::Length,
-                        "m: X of P(puncture before X); None: the case's loading depth");
+  options.def_readwrite("sampling", &FeSurrogateOptions::sampling, "PropagationOptions: the [sampling] table");
+  def_parameters<FeSurrogateOptions>(options, kFeSurrogateParameters);  // keyword init
   py::class_<io::FeUncertaintyFile>(m, "FeUncertaintyFile", "An indent case plus [uncertain], [sampling], [surrogate].")
       .def_readwrite("case_path", &io::FeUncertaintyFile::case_path)
       .def_readwrite("indentation", &io::FeUncertaintyFile::indentation)

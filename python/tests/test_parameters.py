@@ -56,8 +56,8 @@ def test_the_keyword_constructor_takes_every_field_and_quantities_with_units():
 
 def test_describe_lists_the_same_keys_as_the_reference():
     import subprocess
-    keys = [key for _, options, _ in reference_sections() for key, _, _ in reference_rows(options)]
-    keys = list(dict.fromkeys(keys))
+    keys = [key for _, _, section in reference_sections()
+            for key in re.findall(r"^\| `([a-z_.]+)` \|", section, re.M)]
     described = subprocess.run([CLI, "describe", "--all"], capture_output=True, text=True, check=True).stdout
     assert re.findall(r"^([a-z_.]+)$", described, re.M) == keys
 
@@ -102,3 +102,27 @@ def test_the_fit_options_read_like_the_patch_case_file():
     fit = needlekit.FitOptions(kind=needlekit.PatchKind.Equilibrium, equilibrium=needlekit.EquilibriumFitOptions(tolerance=1e-4))
     assert fit.kind == needlekit.PatchKind.Equilibrium and fit.equilibrium.tolerance == 1e-4
     assert "in (0, inf]" in needlekit.FlexibleFitOptions.max_spring_energy.__doc__
+
+
+def test_an_optional_quantity_is_none_unless_given():
+    assert needlekit.PunctureOptions().critical_pressure is None and needlekit.PunctureOptions().toughness is None
+    assert needlekit.PunctureOptions(toughness="100 J/m2").toughness == pytest.approx(100)
+    assert "Default: None." in needlekit.PunctureOptions.critical_pressure.__doc__
+    assert "optional" in [kind for key, kind in re.findall(r"^\| `(puncture\.[a-z_]+)` \| [^|]+ \| `([^`]+)` \|",
+                                                            (SOURCE_DIR / "docs" / "reference.md").read_text(), re.M)
+                          if key == "puncture.toughness"]
+
+
+def test_the_insertion_sampling_and_calibration_tables_read_like_their_files():
+    import math
+    model = needlekit.PostPunctureFitOptions(stiffness="0.2 N/mm2", scale=0.3)
+    assert model.stiffness == pytest.approx(0.2e6) and model.scale == 0.3 and not model.fit_stiffness
+    curve = needlekit.InsertionCurveOptions(final_depth="1 mm", cutting_samples=50)
+    assert curve.final_depth == pytest.approx(1e-3) and curve.cutting_samples == 50
+    classes = needlekit.TriangleClassificationOptions(side_tolerance="2 deg", occlusion_test=True)
+    assert classes.side_tolerance == pytest.approx(math.radians(2)) and classes.occlusion_test
+    assert {"insertion_direction", "axis_point"} <= properties(needlekit.TriangleClassificationOptions)
+    sampling = needlekit.PropagationOptions(samples=256, method=needlekit.SamplingMethod.MonteCarlo, seed=7)
+    assert sampling.samples == 256 and sampling.method == needlekit.SamplingMethod.MonteCarlo and sampling.seed == 7
+    assert not needlekit.CalibrationSolverSettings(mesh_error=False).mesh_error
+    assert "in [0, 0.1)" in needlekit.CalibrationSolverSettings.relative_step.__doc__

@@ -11,6 +11,7 @@
 #include <map>
 #include <mutex>
 
+#include "needlekit/calibration/calibration_solver_parameters.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/calibration/discretisation_error.hpp"
 #include "needlekit/calibration/parameter_statistics.hpp"
@@ -404,6 +405,7 @@ std::string calibrated_case_text(const CalibrationProblem& problem, std::size_t 
 
 CalibrationResult calibrate(const CalibrationProblem& problem, const CalibrationOptions& options) {
   const Clock::time_point start = Clock::now();
+  check_ranges(kCalibrationSolverParameters, problem.solver, "calibration solver");  // Python may set any value
   std::vector<ExperimentModel> models;
   bool fe = false, fitted = false;
   for (const ExperimentSpec& e : problem.experiments) {

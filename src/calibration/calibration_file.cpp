@@ -2,9 +2,11 @@
 // and the case readers; the calibration folder sits above io.
 #include <fmt/format.h>
 
-#include "needlekit/io/toml_config.hpp"
 #include "needlekit/calibration/calibration_problem.hpp"
+#include "needlekit/calibration/calibration_solver_parameters.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
+#include "needlekit/io/toml_config.hpp"
+#include "needlekit/io/toml_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 
 namespace needlekit::calibration {
@@ -16,16 +18,6 @@ ExperimentKind kind_of_case(const toml::table& root) {
   if (root.get("post_puncture")) return ExperimentKind::Insertion;
   if (root.get("loading")) return ExperimentKind::Indentation;
   return ExperimentKind::Design;
-}
-
-double fraction_of(const Section& section, std::string_view key, double value, double upper) {
-  const toml::node* node = section.optional(key);
-  if (!node) return value;
-  const double read = number_at_least(section, *node, key, 0.0);
-  if (!(read > 0 && read < upper)) {
-    section.fail(*node, key, fmt::format("{} is out of range, expected a number in (0, {:g})", read, upper));
-  }
-  return read;
 }
 
 ParameterSpec read_parameter(const Section& entry, const std::string& where) {
@@ -140,19 +132,9 @@ CalibrationProblem parse_calibration_toml(std::string_view text, std::string_vie
   problem.file = path;
   problem.name = path.stem().string();
   if (const toml::node* node = top.optional("name")) problem.name = text_of(top, *node, "name", "a name");
-  if (const auto solver = top.optional_subsection(
-          "solver", {"max_iterations", "relative_step", "function_tolerance", "parameter_tolerance", "mesh_error",
-                     "mesh_error_refinement"})) {
-    if (const toml::node* node = solver->optional("max_iterations"))
-      problem.solver.max_iterations = integer_at_least(*solver, *node, "max_iterations", 1);
-    problem.solver.relative_step = fraction_of(*solver, "relative_step", problem.solver.relative_step, 0.1);
-    problem.solver.function_tolerance = fraction_of(*solver, "function_tolerance", problem.solver.function_tolerance, 1);
-    problem.solver.parameter_tolerance =
-        fraction_of(*solver, "parameter_tolerance", problem.solver.parameter_tolerance, 1);
-    if (const toml::node* node = solver->optional("mesh_error"))
-      problem.solver.mesh_error = boolean_of(*solver, *node, "mesh_error");
-    problem.solver.mesh_error_refinement =
-        fraction_of(*solver, "mesh_error_refinement", problem.solver.mesh_error_refinement, 1);
+  if (const auto solver =
+          top.optional_subsection("solver", keys_of_group(kCalibrationSolverParameters, "solver"))) {
+    read_parameters(*solver, kCalibrationSolverParameters, "solver", problem.solver);
   }
   for (std::string_view key : {"parameters", "experiments"}) {
     const toml::node& node = top.required(key, fmt::format("[[{}]] entries", key));

@@ -99,7 +99,7 @@ ExperimentModel::ExperimentModel(const ExperimentSpec& experiment, const std::ve
   const bool insertion = experiment_.kind == ExperimentKind::Insertion;
   insertion::IndentationCase c = fe_case(experiment_, text, std::nullopt, insertion ? &settings : nullptr);
   insertion::validate(c);
-  const double reach = insertion ? settings.final_depth : c.depth;
+  const double reach = insertion ? settings.curve.final_depth : c.depth;
   if (experiment_.measured && experiment_.measured->depth.back() > reach * (1 + 1e-9)) {
     throw InvalidInput(fmt::format("{}: {}: the measured curve goes to {:.6g} um, deeper than the case's {} of "
                                    "{:.6g} um, expected {} >= the deepest measured sample",
@@ -213,12 +213,9 @@ Prediction ExperimentModel::cutting(Prediction prediction, const io::InsertionSe
   insertion::NeedleInsertion needle;
   needle.pre_puncture = pre;
   needle.loads = &*setup_->loads;
-  needle.stiffness = settings.stiffness;
-  needle.scale = settings.scale;
-  insertion::InsertionCurveOptions options;
-  options.final_depth = settings.final_depth;
-  options.cutting_samples = settings.cutting_samples;
-  const insertion::InsertionCurve curve = insertion::insertion_curve({needle}, options);
+  needle.stiffness = settings.model.stiffness;
+  needle.scale = settings.model.scale;
+  const insertion::InsertionCurve curve = insertion::insertion_curve({needle}, settings.curve);
   prediction.curve.depth = curve.depth;
   prediction.curve.force = curve.force;
   if (!curve.punctures.empty()) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/insertion/insertion_curve_parameters.hpp"
 
 namespace needlekit::insertion {
 namespace {
@@ -132,10 +133,7 @@ void add_needle(const NeedleInsertion& needle, std::size_t i, double puncture_di
 
 InsertionCurve insertion_curve(const std::vector<NeedleInsertion>& needles, const InsertionCurveOptions& options) {
   if (needles.empty()) throw InvalidInput("needles: none given, expected at least one needle");
-  if (!(options.final_depth > 0) || !std::isfinite(options.final_depth))
-    throw InvalidInput(fmt::format("final_depth: {} m, expected a finite depth > 0", options.final_depth));
-  if (options.cutting_samples < 1)
-    throw InvalidInput(fmt::format("cutting_samples: {}, expected >= 1", options.cutting_samples));
+  check_ranges(kInsertionCurveParameters, options, "insertion curve");
 
   const std::size_t count = needles.size();
   std::vector<double> puncture_displacement(count, std::numeric_limits<double>::infinity());

@@ -78,8 +78,6 @@ double contact_pressure(const PunctureSample& sample) {
 
 void validate(const PunctureOptions& options) {
   check_ranges(kPunctureParameters, options, "puncture");
-  if (options.critical_pressure) require_positive(*options.critical_pressure, "puncture.critical_pressure", "Pa");
-  if (options.toughness) require_positive(*options.toughness, "puncture.toughness", "J/m^2");
   if (options.criterion != PunctureLaw::AveragedPressure) return;
   if (!options.critical_pressure) {
     throw InvalidInput("puncture.criterion: \"averaged-pressure\" without a critical_pressure, expected "

@@ -7,11 +7,10 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/geometry/surface_mesh.hpp"
+#include "needlekit/insertion/triangle_classification_parameters.hpp"
 
 namespace needlekit::insertion {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d unnormalized_normal(const geometry::TriangleMesh& mesh, int t) {
   const auto& tri = mesh.triangles[static_cast<std::size_t>(t)];
@@ -75,12 +74,7 @@ void validate(const TriangleClassificationOptions& options, const geometry::Surf
   const double d_norm = options.insertion_direction.norm();
   if (!(d_norm > 0) || !std::isfinite(d_norm))
     throw InvalidInput("insertion_direction: expected a finite, non-zero vector");
-  for (auto [name, value] : {std::pair{"side_tolerance", options.side_tolerance},
-                             std::pair{"alpha_tolerance", options.alpha_tolerance}})
-    if (!(value >= 0 && value <= kPi / 4))
-      throw InvalidInput(fmt::format("{}: {} rad, expected an angle in [0, 45] deg", name, value));
-  if (!(options.bore_radius >= 0) || !std::isfinite(options.bore_radius))
-    throw InvalidInput(fmt::format("bore_radius: {} m, expected a finite length >= 0", options.bore_radius));
+  check_ranges(kTriangleClassificationParameters, options, "classification");
   if (options.occlusion_test && surface == nullptr)
     throw InvalidInput("occlusion_test: the occlusion test casts rays against the needle and needs its SurfaceMesh");
 }

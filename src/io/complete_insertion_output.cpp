@@ -1,7 +1,9 @@
 #include "needlekit/io/complete_insertion_output.hpp"
 
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_output.hpp"
+#include "needlekit/io/parameter_json.hpp"
 
 namespace needlekit::io {
 
@@ -36,6 +38,9 @@ nlohmann::json complete_insertion_json(const InsertionCase& insertion_case,
   json["pre_puncture_source"] = result.indentation ? "fe" : "csv";
   json["complete"] = result.status != insertion::CompleteInsertionStatus::SolverFailed;
   json["notes"] = notes;
+  nlohmann::json inputs = indentation_inputs_json(indentation_case);
+  add_parameters_json(insertion::kPostPunctureParameters, options.post_puncture, inputs);
+  json["inputs"] = inputs;
   if (const std::optional<insertion::IndentationResult>& fe = result.indentation) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},
                   {"nodes", fe->nodes}, {"total_seconds", fe->total_seconds},

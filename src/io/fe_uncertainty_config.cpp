@@ -2,6 +2,8 @@
 
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/toml_config.hpp"
+#include "needlekit/io/toml_parameters.hpp"
+#include "needlekit/uncertainty/fe_surrogate_parameters.hpp"
 #include "uncertainty_tables.hpp"
 
 namespace needlekit::io {
@@ -26,12 +28,9 @@ FeUncertaintyFile parse_fe_uncertainty_toml(std::string_view text, std::string_v
   result.options.sampling = tables.sampling;
   if (const toml::node* node = root.get("surrogate")) {
     if (!node->is_table()) top.fail(*node, "surrogate", "expected a table [surrogate]");
-    const Section s(*node->as_table(), "surrogate", file, {"design_runs", "validation_runs", "depth_limit"});
-    if (const toml::node* n = s.optional("design_runs")) result.options.design_runs = integer_at_least(s, *n, "design_runs", 0);
-    if (const toml::node* n = s.optional("validation_runs")) {
-      result.options.validation_runs = integer_at_least(s, *n, "validation_runs", 1);
-    }
-    result.options.depth_limit = optional_positive_quantity(s, "depth_limit", Dimension::Length);
+    const Section s(*node->as_table(), "surrogate", file,
+                    keys_of_group(uncertainty::kFeSurrogateParameters, "surrogate"));
+    read_parameters(s, uncertainty::kFeSurrogateParameters, "surrogate", result.options);
   }
   std::vector<std::string> notes;
   try {

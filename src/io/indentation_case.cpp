@@ -9,7 +9,7 @@
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/toml_config.hpp"
 #include "tissue_config_toml.hpp"
-#include "toml_parameters.hpp"
+#include "needlekit/io/toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace {
@@ -253,13 +253,11 @@ double two_insertion_toughness_of(const Section& puncture, const toml::node& nod
   return table.at(node, [&] { return insertion::two_insertion_toughness(first, second, options).toughness; });
 }
 
-// [puncture]: the rows of insertion::kPunctureParameters (the law, its material length), the critical pressure and
-// the toughness, given or from two insertions (toughness_from).
+// [puncture]: the rows of insertion::kPunctureParameters (the law, its material length, the optional critical
+// pressure and toughness), and the toughness from two insertions (toughness_from).
 void read_puncture(const Section& puncture, const std::filesystem::path& base_directory,
                    insertion::IndentationCase& result) {
   read_parameters(puncture, insertion::kPunctureParameters, "puncture", result.puncture);
-  result.puncture.critical_pressure = optional_positive_quantity(puncture, "critical_pressure", Dimension::Pressure);
-  result.puncture.toughness = optional_positive_quantity(puncture, "toughness", Dimension::Stiffness);
   if (const toml::node* node = puncture.optional("toughness_from")) {
     if (result.puncture.toughness) {
       puncture.fail(*node, "toughness_from", "given together with toughness, expected one of them");
@@ -343,7 +341,7 @@ insertion::IndentationCase parse_indentation_case_toml(std::string_view text, st
     read_solver(top.subsection(*node, "solver", keys_of_group(fem::kSolverParameters, "solver")), result);
   }
   std::vector<std::string_view> puncture_keys = keys_of_group(insertion::kPunctureParameters, "puncture");
-  puncture_keys.insert(puncture_keys.end(), {"critical_pressure", "toughness", "toughness_from"});
+  puncture_keys.push_back("toughness_from");
   if (const toml::node* node = top.optional("puncture")) {
     read_puncture(top.subsection(*node, "puncture", puncture_keys), base_directory, result);
   }

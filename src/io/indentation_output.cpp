@@ -171,8 +171,9 @@ nlohmann::json bending_json(const insertion::IndentationResult& result) {
           {"margin", std::isfinite(b.margin) ? nlohmann::json(b.margin) : nlohmann::json(nullptr)}};
 }
 
-// The inputs as the parameter tables declare them, under the case file's tables (io/parameter_json.hpp).
-nlohmann::json inputs_json(const insertion::IndentationCase& c) {
+}  // namespace
+
+nlohmann::json indentation_inputs_json(const insertion::IndentationCase& c) {
   nlohmann::json inputs = nlohmann::json::object();
   add_parameters_json(insertion::kLoadingParameters, static_cast<const insertion::Loading&>(c), inputs);
   add_parameters_json(fem::kSolverParameters, c.solver, inputs);
@@ -180,7 +181,6 @@ nlohmann::json inputs_json(const insertion::IndentationCase& c) {
   add_parameters_json(insertion::kPunctureParameters, c.puncture, inputs);
   return inputs;
 }
-}  // namespace
 
 nlohmann::json indentation_json(const insertion::IndentationCase& c, const insertion::IndentationResult& result) {
   nlohmann::json json;
@@ -246,7 +246,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   }
   json["mesh_quality"] = quality;
   json["notes"] = indentation_scale_warnings(c);
-  json["inputs"] = inputs_json(c);
+  json["inputs"] = indentation_inputs_json(c);
   json["mesh_seconds"] = result.mesh_seconds;
   json["setup_seconds"] = result.setup_seconds;
   json["total_seconds"] = result.total_seconds;

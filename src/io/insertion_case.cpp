@@ -4,18 +4,18 @@
 #include <sstream>
 
 #include "needlekit/geometry/surface_mesh.hpp"
+#include "needlekit/insertion/insertion_curve_parameters.hpp"
 #include "needlekit/insertion/post_puncture_parameters.hpp"
+#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/toml_config.hpp"
-#include "toml_parameters.hpp"
+#include "needlekit/io/toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace {
 
 using config::Section;
-
-constexpr double kPi = 3.14159265358979323846;
 
 bool is_header_of(std::string_view line, std::string_view table) {
   const std::size_t start = line.find_first_not_of(" \t");
@@ -44,22 +44,16 @@ std::string without_tables(std::string_view text, std::initializer_list<std::str
   return out;
 }
 
-double angle_of(const Section& section, std::string_view key, double fallback) {
-  const toml::node* node = section.optional(key);
-  if (!node) return fallback;
-  const double value = config::quantity_of(section, *node, key, units::Dimension::Angle);
-  if (!(value >= 0 && value <= kPi / 4))
-    section.fail(*node, key, fmt::format("{} rad is out of range, expected an angle in [0, 45] deg", value));
-  return value;
-}
-
-// [post_puncture]'s keys: the curve's and the fit's, the rows of insertion::kPostPunctureParameters, the
-// classification's and the measured curve, in the order the messages have always listed them.
+// [post_puncture]'s keys: the rows of the fit's and the curve's tables, of insertion::kPostPunctureParameters and of
+// the classification's, then the measured curve, in the order the messages have always listed them.
 std::vector<std::string_view> post_puncture_keys() {
-  std::vector<std::string_view> keys{"stiffness", "scale", "final_depth", "samples"};
-  const std::vector<std::string_view> rows = config::keys_of_group(insertion::kPostPunctureParameters, "post_puncture");
-  keys.insert(keys.end(), rows.begin(), rows.end());
-  keys.insert(keys.end(), {"side_tolerance", "alpha_tolerance", "occlusion_test", "measured"});
+  std::vector<std::string_view> keys;
+  const auto add = [&keys](const std::vector<std::string_view>& rows) { keys.insert(keys.end(), rows.begin(), rows.end()); };
+  add(config::keys_of_group(insertion::kPostPunctureFitParameters, "post_puncture"));
+  add(config::keys_of_group(insertion::kInsertionCurveParameters, "post_puncture"));
+  add(config::keys_of_group(insertion::kPostPunctureParameters, "post_puncture"));
+  add(config::keys_of_group(insertion::kTriangleClassificationParameters, "post_puncture"));
+  keys.push_back("measured");
   return keys;
 }
 
@@ -78,20 +72,10 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
                                    config::location(source_name, post_node->source())));
   const Section post(*post_node->as_table(), "post_puncture", source_name, post_puncture_keys());
   InsertionSettings settings;
-  settings.stiffness = config::positive_quantity(post, "stiffness", units::Dimension::Pressure);
-  {
-    const toml::node& node = post.required("scale", "a number > 0, e.g. 0.168");
-    settings.scale = config::number_at_least(post, node, "scale", 0);
-    if (!(settings.scale > 0)) post.fail(node, "scale", "0 is out of range, expected a number > 0");
-  }
-  settings.final_depth = config::positive_quantity(post, "final_depth", units::Dimension::Length);
-  if (const toml::node* node = post.optional("samples"))
-    settings.cutting_samples = config::integer_in(post, *node, "samples", 1, limits::kMaxCurveSamples);
+  config::read_parameters(post, insertion::kPostPunctureFitParameters, "post_puncture", settings.model);
+  config::read_parameters(post, insertion::kInsertionCurveParameters, "post_puncture", settings.curve);
   config::read_parameters(post, insertion::kPostPunctureParameters, "post_puncture", settings.post_puncture);
-  settings.classification.side_tolerance = angle_of(post, "side_tolerance", settings.classification.side_tolerance);
-  settings.classification.alpha_tolerance = angle_of(post, "alpha_tolerance", settings.classification.alpha_tolerance);
-  if (const toml::node* node = post.optional("occlusion_test"))
-    settings.classification.occlusion_test = config::boolean_of(post, *node, "occlusion_test");
+  config::read_parameters(post, insertion::kTriangleClassificationParameters, "post_puncture", settings.classification);
   if (const toml::node* node = post.optional("measured"))
     settings.measured = base_directory / config::text_of(post, *node, "measured", "a CSV file name");
 
@@ -136,12 +120,10 @@ InsertionCase read_insertion_case(const std::filesystem::path& path) {
   InsertionCase c;
   c.indentation = parse_indentation_case_toml(settings.indentation_text, path.string(), base);
   insertion::CompleteInsertionOptions& o = c.options;
-  o.model.stiffness = settings.stiffness;
-  o.model.scale = settings.scale;
+  o.model = settings.model;
   o.post_puncture = settings.post_puncture;
   o.classification = settings.classification;
-  o.curve.final_depth = settings.final_depth;
-  o.curve.cutting_samples = settings.cutting_samples;
+  o.curve = settings.curve;
   o.pre_puncture = std::move(settings.pre_puncture);
   if (settings.measured) {
     o.measured = read_force_curve_csv(*settings.measured);

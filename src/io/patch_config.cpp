@@ -7,7 +7,7 @@
 #include "config_tables.hpp"
 #include "needlekit/io/toml_config.hpp"
 #include "needlekit/patch/fit_parameters.hpp"
-#include "toml_parameters.hpp"
+#include "needlekit/io/toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace {

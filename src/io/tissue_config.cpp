@@ -7,7 +7,7 @@
 #include "needlekit/mesh/layered_block_parameters.hpp"
 #include "needlekit/mesh/msh_import.hpp"
 #include "tissue_config_toml.hpp"
-#include "toml_parameters.hpp"
+#include "needlekit/io/toml_parameters.hpp"
 
 namespace needlekit::io {
 namespace config {

@@ -1,6 +1,8 @@
 #include "uncertainty_tables.hpp"
 
 #include "needlekit/io/toml_config.hpp"
+#include "needlekit/io/toml_parameters.hpp"
+#include "needlekit/uncertainty/propagation_parameters.hpp"
 
 namespace needlekit::io::config {
 namespace {
@@ -104,28 +106,6 @@ void collect_inputs(const toml::table& table, const std::string& prefix, std::st
   }
 }
 
-void read_sampling(const Section& sampling, uncertainty::PropagationOptions& options) {
-  if (const toml::node* node = sampling.optional("samples")) {
-    const std::int64_t samples = integer_of(sampling, *node, "samples");
-    if (samples < 2 || samples > 100'000'000) {
-      sampling.fail(*node, "samples", fmt::format("{} is out of range, expected an integer in [2, 1e8]", samples));
-    }
-    options.samples = static_cast<std::size_t>(samples);
-  }
-  if (const toml::node* node = sampling.optional("method")) {
-    const std::string text = text_of(sampling, *node, "method", "one of: " + choices_of(uncertainty::kSamplingMethodNames));
-    options.method = sampling.at(*node, [&] { return uncertainty::sampling_method_from_string(text, sampling.what("method")); });
-  }
-  if (const toml::node* node = sampling.optional("seed")) {
-    const std::int64_t seed = integer_of(sampling, *node, "seed");
-    if (seed < 0) sampling.fail(*node, "seed", fmt::format("{} is negative, expected an integer >= 0", seed));
-    options.seed = static_cast<std::uint64_t>(seed);
-  }
-  if (const toml::node* node = sampling.optional("sobol_indices")) {
-    options.sobol_indices = boolean_of(sampling, *node, "sobol_indices");
-  }
-}
-
 }  // namespace
 
 units::Dimension design_input_dimension(std::string_view key, std::string_view what) {
@@ -148,8 +128,9 @@ UncertaintyTables read_uncertainty_tables(const toml::table& root, std::string_v
   });
   for (PlacedInput& p : placed) tables.inputs.push_back(std::move(p.input));
   if (const toml::node* node = root.get("sampling")) {
-    read_sampling(Section(*node->as_table(), "sampling", file, {"samples", "method", "seed", "sobol_indices"}),
-                  tables.sampling);
+    const Section sampling(*node->as_table(), "sampling", file,
+                           keys_of_group(uncertainty::kPropagationParameters, "sampling"));
+    read_parameters(sampling, uncertainty::kPropagationParameters, "sampling", tables.sampling);
   }
   if (const toml::node* node = root.get("correlation")) {
     if (!node->is_array_of_tables()) {

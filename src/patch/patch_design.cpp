@@ -4,34 +4,14 @@
 #include <fmt/format.h>
 
 #include "needlekit/core/errors.hpp"
+#include "needlekit/patch/patch_design_parameters.hpp"
 
 namespace needlekit::patch {
 
 std::string_view to_string(SpringDirection direction) { return name_of(kSpringDirectionNames, direction); }
 
-namespace {
-
-void require_positive(double value, std::string_view key, std::string_view unit, double unit_factor) {
-  if (!std::isfinite(value) || !(value > 0)) {
-    throw InvalidInput(fmt::format("{}: {:.6g} {} is not positive, expected a positive value", key,
-                                   value / unit_factor, unit));
-  }
-}
-
-}  // namespace
-
 PatchDesign patch_design(const PatchDesignOptions& o) {
-  for (const auto& [count, key] : {std::pair{o.needles_u, "patch.needles_per_row (U)"},
-                                   std::pair{o.needles_v, "patch.needles_per_row (V)"}}) {
-    if (count < 2 || count > 10000) {
-      throw InvalidInput(fmt::format("{}: {} is out of range, expected an integer in [2, 10000]", key, count));
-    }
-  }
-  require_positive(o.width_u, "patch.size (U)", "mm", 1e-3);
-  require_positive(o.width_v, "patch.size (V)", "mm", 1e-3);
-  require_positive(o.stiffness_u, "patch.spring_constant (U)", "N/mm", 1e3);
-  require_positive(o.stiffness_v, "patch.spring_constant (V)", "N/mm", 1e3);
-  require_positive(o.stiffness_diagonal, "patch.spring_constant (diagonal)", "N/mm", 1e3);
+  check_ranges(kPatchDesignParameters, o, "patch design");
   needle::validate(o.needle, "needle");
   materials::validate(o.material, "needle.material");
 

@@ -8,6 +8,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
+#include "needlekit/uncertainty/fe_surrogate_parameters.hpp"
 #include "windowed_input.hpp"
 
 namespace needlekit::uncertainty {
@@ -236,8 +237,7 @@ FeSurrogateResult fe_surrogate(const insertion::IndentationCase& base, const std
     throw InvalidInput("mesh.split: the FE surrogate reuses one tissue mesh and has no two-grid level, expected "
                        "split = false");
   }
-  if (options.validation_runs < 1) throw InvalidInput("surrogate.validation_runs: expected >= 1");
-  if (options.design_runs < 0) throw InvalidInput("surrogate.design_runs: expected >= 0 (0: twice the terms)");
+  check_ranges(kFeSurrogateParameters, options, "surrogate");
   FeSurrogateResult result;
   result.depth_limit = options.depth_limit ? *options.depth_limit : base.depth;
   if (!(result.depth_limit > 0)) throw InvalidInput("surrogate.depth_limit: expected a depth > 0");

@@ -11,6 +11,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/interrupt.hpp"
+#include "needlekit/uncertainty/propagation_parameters.hpp"
 #include "needlekit/uncertainty/sobol_indices.hpp"
 
 namespace needlekit::uncertainty {
@@ -111,12 +112,8 @@ private:
 };
 
 void validate(const InputTransform& inputs, const Model& model, const PropagationOptions& options) {
-  if (options.samples < 2) {
-    throw InvalidInput(fmt::format("sampling.samples: {} is too few, expected at least 2", options.samples));
-  }
+  check_ranges(kPropagationParameters, options, "sampling");
   if (inputs.size() == 0) throw InvalidInput("uncertain: no uncertain inputs, expected at least one");
-  if (options.histogram_bins < 1) throw InvalidInput("histogram_bins: expected >= 1");
-  if (options.threads < 0) throw InvalidInput("threads: expected >= 0");
   if (model.outputs().empty()) throw InvalidInput("model: no outputs");
 }
 

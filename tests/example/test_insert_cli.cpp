@@ -62,6 +62,13 @@ TEST(InsertCli, GivenPrePunctureCurveGivesTheCompleteCurveWithPlot) {
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_NEAR(json["puncture_depth_um"].get<double>(), 230, 1e-6);
   EXPECT_NEAR(json["puncture_force_N"].get<double>(), 0.014, 1e-9);
+  // The inputs echoed from the parameter tables (io/parameter_json.hpp): the case's and the defaults.
+  const auto& inputs = json["inputs"];
+  EXPECT_NEAR(inputs["loading"]["depth_m"].get<double>(), 300e-6, 1e-18);
+  EXPECT_NEAR(inputs["puncture"]["critical_pressure_Pa"].get<double>(), 0.663e6, 1e-6);
+  EXPECT_EQ(inputs["post_puncture"]["cap_at_cutting_pressure"],
+            insertion::PostPunctureOptions{}.cap_at_cutting_pressure);
+  EXPECT_EQ(inputs["post_puncture"]["reference_radius_m"], 0.0);
   const auto& phase = json["phase"];
   const auto& depth = json["depth_um"];
   const auto& force = json["force_N"];

@@ -125,7 +125,7 @@ TEST(AveragedContactPressure, TheLawFiresWhereTheAveragedPressureCrossesItsCriti
   options.toughness.reset();
   options.material_length = -1e-6;
   EXPECT_THAT([&] { validate(options); },
-              testing::ThrowsMessage<InvalidInput>(testing::HasSubstr("material_length = -1e-06: expected > 0")));
+              testing::ThrowsMessage<InvalidInput>(testing::HasSubstr("material_length = -1e-06 m: expected > 0 m")));
 }
 
 }  // namespace

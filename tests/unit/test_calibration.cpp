@@ -12,6 +12,7 @@
 #include "../support/expect_invalid.hpp"
 #include "needlekit/calibration/parameter_statistics.hpp"
 #include "needlekit/calibration/calibrate.hpp"
+#include "needlekit/calibration/calibration_solver_parameters.hpp"
 #include "needlekit/calibration/case_parameters.hpp"
 #include "needlekit/io/design_config.hpp"
 #include "../support/scratch_files.hpp"
@@ -249,6 +250,44 @@ TEST(CalibrationBadInput, NamesFileAndKey) {
   fails(insert_parameter + "[[experiments]]\ncase = \"insert.toml\"\nmeasured = \"m.csv\"\n", "expected at least 3");
   test::write_text(dir / "m.csv", "depth_um,f\n300,0.01\n400,0.03\n500,0.04\n");
   fails(insert_parameter + "[[experiments]]\ncase = \"insert.toml\"\nmeasured = \"m.csv\"\n", "force_");
+}
+
+// [solver] is read from calibration::kCalibrationSolverParameters: every key of the table reads back, relative_step = 0
+// (automatic, the default) is accepted, a value outside a row's range names the key and the range, and calibrate()
+// checks the settings Python may set.
+TEST(CalibrationSolverTable, EveryKeyReadsBackAndAValueOutsideItsRangeNamesTheRange) {
+  const auto dir = test::scratch_directory("calibration_solver_table");
+  test::write_text(dir / "d.toml", design(100));
+  const std::string rest = "[[parameters]]\npath = \"tissue.model.alpha\"\ninitial = \"0.02 N\"\n"
+                           "bounds = [\"0.001 N\", \"0.1 N\"]\n"
+                           "[[experiments]]\ncase = \"d.toml\"\npuncture = { depth = \"100 um\" }\n";
+  const auto read = [&](const std::string& solver) {
+    test::write_text(dir / "c.toml", "[solver]\n" + solver + rest);
+    return calibration::read_calibration_file(dir / "c.toml");
+  };
+  const calibration::SolverSettings given =
+      read("max_iterations = 7\nrelative_step = 0\nfunction_tolerance = 1e-8\nparameter_tolerance = 1e-9\n"
+           "mesh_error = false\nmesh_error_refinement = 0.5\n")
+          .solver;
+  EXPECT_EQ(given.max_iterations, 7);
+  EXPECT_EQ(given.relative_step, 0.0);
+  EXPECT_EQ(given.function_tolerance, 1e-8);
+  EXPECT_EQ(given.parameter_tolerance, 1e-9);
+  EXPECT_FALSE(given.mesh_error);
+  EXPECT_EQ(given.mesh_error_refinement, 0.5);
+  std::vector<std::string_view> keys;
+  for_each_parameter(calibration::kCalibrationSolverParameters, [&](const auto& row) { keys.push_back(row.key); });
+  EXPECT_EQ(keys, (std::vector<std::string_view>{"max_iterations", "relative_step", "function_tolerance",
+                                                  "parameter_tolerance", "mesh_error", "mesh_error_refinement"}));
+  test::expect_invalid([&] { read("max_iterations = 0\n"); },
+                       "c.toml:2: key 'solver.max_iterations': 0 is out of range, expected an integer >= 1");
+  test::expect_invalid([&] { read("relative_step = 0.1\n"); },
+                       "key 'solver.relative_step': 0.1 is out of range, expected a number in [0, 0.1)");
+  test::expect_invalid([&] { read("tolerance = 0.1\n"); }, "unknown key 'solver.tolerance'");
+  calibration::CalibrationProblem problem = read("");
+  problem.solver.function_tolerance = 2;
+  test::expect_invalid([&] { calibration::calibrate(problem); },
+                       "calibration solver function_tolerance = 2: expected in (0, 1)");
 }
 
 }  // namespace

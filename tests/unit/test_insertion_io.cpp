@@ -49,9 +49,9 @@ depth = "100 um"
 
 TEST(InsertionSettings, ReadsThePostPunctureTableAndBlanksItForTheIndentationReader) {
   const auto settings = io::parse_insertion_settings(kSettings, "case.toml");
-  EXPECT_DOUBLE_EQ(settings.stiffness, 0.2e6);
-  EXPECT_DOUBLE_EQ(settings.scale, 0.168);
-  EXPECT_DOUBLE_EQ(settings.final_depth, 1e-3);
+  EXPECT_DOUBLE_EQ(settings.model.stiffness, 0.2e6);
+  EXPECT_DOUBLE_EQ(settings.model.scale, 0.168);
+  EXPECT_DOUBLE_EQ(settings.curve.final_depth, 1e-3);
   EXPECT_NEAR(settings.classification.side_tolerance, 2 * 3.14159265358979 / 180, 1e-12);
   EXPECT_EQ(settings.indentation_text.find("post_puncture"), std::string::npos);
   EXPECT_EQ(settings.indentation_text.find("stiffness"), std::string::npos);

@@ -9,6 +9,7 @@
 #include "needlekit/insertion/loading_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/parameter_json.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
 
@@ -78,11 +79,7 @@ material_length = "40 um"
 critical_pressure = "0.5 MPa"
 )",
                                                                         "echo.toml");
-  nlohmann::json inputs = nlohmann::json::object();
-  io::add_parameters_json(insertion::kLoadingParameters, static_cast<const insertion::Loading&>(c), inputs);
-  io::add_parameters_json(fem::kSolverParameters, c.solver, inputs);
-  io::add_parameters_json(mesh::kLayeredBlockParameters, c.block, inputs);
-  io::add_parameters_json(insertion::kPunctureParameters, c.puncture, inputs);
+  const nlohmann::json inputs = io::indentation_inputs_json(c);
   EXPECT_NEAR(inputs["loading"]["depth_m"].get<double>(), 150e-6, 1e-18);
   EXPECT_EQ(inputs["loading"]["steps"], 3);
   EXPECT_EQ(inputs["model"]["contact"], "surface");
@@ -90,6 +87,8 @@ critical_pressure = "0.5 MPa"
   EXPECT_NEAR(inputs["mesh"]["size_at_tip_m"].get<double>(), 25e-6, 1e-18);
   EXPECT_EQ(inputs["puncture"]["criterion"], "averaged-pressure");
   EXPECT_NEAR(inputs["puncture"]["material_length_m"].get<double>(), 40e-6, 1e-18);
+  EXPECT_EQ(inputs["puncture"]["critical_pressure_Pa"], 0.5e6);  // an optional quantity given
+  EXPECT_TRUE(inputs["puncture"]["toughness_N_per_m"].is_null());  // and one not given
 }
 
 }  // namespace

@@ -11,18 +11,25 @@
 #include <sstream>
 #include <string>
 
+#include "needlekit/calibration/calibration_solver_parameters.hpp"
 #include "needlekit/core/parameter_text.hpp"
 #include "needlekit/fem/solver_parameters.hpp"
 #include "needlekit/insertion/loading_parameters.hpp"
+#include "needlekit/insertion/insertion_curve_parameters.hpp"
 #include "needlekit/insertion/post_puncture_parameters.hpp"
+#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/insertion/puncture_parameters.hpp"
 #include "needlekit/io/tissue_config.hpp"
+#include "needlekit/materials/needle_material.hpp"
 #include "needlekit/mesh/layered_block_parameters.hpp"
+#include "needlekit/uncertainty/fe_surrogate_parameters.hpp"
+#include "needlekit/uncertainty/propagation_parameters.hpp"
 #include "needlekit/io/patch_config.hpp"
 #include "needlekit/patch/fit_parameters.hpp"
+#include "needlekit/patch/patch_design_parameters.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/insertion_case.hpp"
-#include "needlekit/io/parameter_reference.hpp"
+#include "needlekit/reference/parameter_reference.hpp"
 
 namespace {
 
@@ -48,9 +55,8 @@ TEST(ParameterTables, EveryFieldOfSolverOptionsHasOneRow) {
   expect_one_row_per_field<fem::SolverOptions>(fem::kSolverParameters, fem::kSolverCallbackFields);
 }
 
-TEST(ParameterTables, EveryFieldOfPunctureOptionsHasOneRowButTheOptionalQuantities) {
-  expect_one_row_per_field<insertion::PunctureOptions>(insertion::kPunctureParameters,
-                                                       insertion::kPunctureOptionalFields);
+TEST(ParameterTables, EveryFieldOfPunctureOptionsHasOneRow) {
+  expect_one_row_per_field<insertion::PunctureOptions>(insertion::kPunctureParameters, 0);
 }
 
 TEST(ParameterTables, EveryFieldOfLoadingHasOneRow) {
@@ -59,6 +65,38 @@ TEST(ParameterTables, EveryFieldOfLoadingHasOneRow) {
 
 TEST(ParameterTables, EveryFieldOfLayeredBlockOptionsHasOneRow) {
   expect_one_row_per_field<mesh::LayeredBlockOptions>(mesh::kLayeredBlockParameters, mesh::kLayeredBlockListFields);
+}
+
+// PropagationOptions and FeSurrogateOptions but their callbacks and the surrogate's nested sampling; the
+// calibration's [solver] every field.
+TEST(ParameterTables, EveryFieldOfTheUncertaintyAndCalibrationTablesHasOneRow) {
+  expect_one_row_per_field<uncertainty::PropagationOptions>(uncertainty::kPropagationParameters,
+                                                            uncertainty::kPropagationCallbackFields);
+  expect_one_row_per_field<uncertainty::FeSurrogateOptions>(uncertainty::kFeSurrogateParameters,
+                                                            uncertainty::kFeSurrogateOtherFields);
+  expect_one_row_per_field<calibration::SolverSettings>(calibration::kCalibrationSolverParameters, 0);
+}
+
+TEST(ParameterTables, EveryFieldOfTheInsertionTablesHasOneRow) {
+  expect_one_row_per_field<insertion::PostPunctureFitOptions>(insertion::kPostPunctureFitParameters, 0);
+  expect_one_row_per_field<insertion::InsertionCurveOptions>(insertion::kInsertionCurveParameters, 0);
+  expect_one_row_per_field<insertion::TriangleClassificationOptions>(
+      insertion::kTriangleClassificationParameters, insertion::kTriangleClassificationVectorFields);
+}
+
+TEST(ParameterTables, EveryNumberOfPatchDesignOptionsHasOneRowAndPatchDesignChecksIt) {
+  expect_one_row_per_field<patch::PatchDesignOptions>(patch::kPatchDesignParameters, patch::kPatchDesignOtherFields);
+  patch::PatchDesignOptions options;
+  options.needle = {needle::Shape::Cone, 30e-6, 150e-6, 0, 500e-6};
+  options.material = materials::material_preset("silicon");
+  EXPECT_EQ(patch::patch_design(options).node_count(), 100);
+  options.width_v = -1e-3;
+  EXPECT_THAT([&] { patch::patch_design(options); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("patch design width_v = -0.001 m: expected > 0 m")));
+  options.width_v = 10e-3;
+  options.needles_u = 1;
+  EXPECT_THAT([&] { patch::patch_design(options); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("patch design needles_u = 1: expected in [2, 10000]")));
 }
 
 TEST(ParameterTables, EveryFieldOfPostPunctureOptionsHasOneRowButTheAxisPoint) {
@@ -115,7 +153,8 @@ TEST(ParameterTables, ValidationAndTheReaderRefuseANumberOutsideItsRangeNamingTh
       options.*row.field = -1;  // below every row's range
       EXPECT_THAT([&] { options.validate(); },
                   testing::ThrowsMessage<InvalidInput>(
-                      HasSubstr(fmt::format("solver {} = -1: expected {}", row.attribute(), row.range()))));
+                      HasSubstr(fmt::format("solver {} = -1{}: expected {}{}", row.attribute(),
+                                            si_unit_suffix(row), row.range(), si_unit_suffix(row)))));
       const std::string value = row.dimension == units::Dimension::Length ? "\"-1 um\"" : "-1";
       EXPECT_THAT([&] { io::parse_indentation_case_toml(kCase + fmt::format("[{}]\n{} = {}\n", row.group, row.key,
                                                                             value), "case.toml"); },
@@ -221,6 +260,29 @@ TEST(ParameterTables, TheInsertionReaderReadsEveryKeyOfThePostPunctureTableAtIts
               testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'post_puncture.tip_tolerance'")));
 }
 
+// [post_puncture] from the fit's, the curve's and the classification's tables alone, every key at the struct's
+// default, reads back as the defaults (the required stiffness, scale and final_depth included).
+TEST(ParameterTables, TheInsertionReaderReadsEveryKeyOfTheFitCurveAndClassificationTablesAtTheirDefaults) {
+  const auto rows = [](const auto& table, const auto& defaults) {
+    const std::string text = table_at_defaults(table, "post_puncture", defaults);
+    return text.substr(text.find('\n') + 1);
+  };
+  const auto& fit = insertion::kPostPunctureFitParameters;
+  const auto& curve = insertion::kInsertionCurveParameters;
+  const auto& classification = insertion::kTriangleClassificationParameters;
+  const io::InsertionSettings read = io::parse_insertion_settings(
+      "[post_puncture]\n" + rows(fit, insertion::PostPunctureFitOptions{}) +
+          rows(curve, insertion::InsertionCurveOptions{}) +
+          rows(classification, insertion::TriangleClassificationOptions{}),
+      "case.toml");
+  EXPECT_EQ(default_texts(fit, read.model), default_texts(fit, insertion::PostPunctureFitOptions{}));
+  EXPECT_EQ(default_texts(curve, read.curve), default_texts(curve, insertion::InsertionCurveOptions{}));
+  EXPECT_EQ(default_texts(classification, read.classification),
+            default_texts(classification, insertion::TriangleClassificationOptions{}));
+  EXPECT_THAT([] { io::parse_insertion_settings(kPostPuncture + "bore_radius = \"10 um\"\n", "case.toml"); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'post_puncture.bore_radius'")));
+}
+
 TEST(ParameterTables, TheInsertionReaderAndValidationRefuseAPostPunctureValueOutsideItsRange) {
   expect_the_reader_refuses_values_below_range(
       insertion::kPostPunctureParameters, "post_puncture",
@@ -231,7 +293,8 @@ TEST(ParameterTables, TheInsertionReaderAndValidationRefuseAPostPunctureValueOut
       options.*row.field = -1;
       EXPECT_THAT([&] { insertion::post_puncture_loads(geometry::TriangleMesh{}, {}, options); },
                   testing::ThrowsMessage<InvalidInput>(
-                      HasSubstr(fmt::format("post_puncture {} = -1: expected {}", row.attribute(), row.range()))));
+                      HasSubstr(fmt::format("post_puncture {} = -1{}: expected {}{}", row.attribute(),
+                                            si_unit_suffix(row), row.range(), si_unit_suffix(row)))));
     }
   });
 }
@@ -266,8 +329,8 @@ TEST(ParameterTables, ThePatchReaderReadsEveryKeyOfTheFitTablesAtItsDefault) {
   EXPECT_TRUE(equilibrium.load_given);
   EXPECT_THAT([] { patch_case_with("rigid", "contact_ratio = 2\n"); },
               testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown key 'patch.contact_ratio'")));
-  EXPECT_THAT(io::described("patch.kind"), HasSubstr("default: required in files (\"flexible\" in Python)"));
-  EXPECT_THAT(io::described("patch.max_spring_energy"), HasSubstr("range:   in (0, inf] J"));
+  EXPECT_THAT(reference::described("patch.kind"), HasSubstr("default: required in files (\"flexible\" in Python)"));
+  EXPECT_THAT(reference::described("patch.max_spring_energy"), HasSubstr("range:   in (0, inf] J"));
 }
 
 TEST(ParameterTables, ThePatchReaderRefusesAFitValueOutsideItsRange) {
@@ -279,21 +342,47 @@ TEST(ParameterTables, ThePatchReaderRefusesAFitValueOutsideItsRange) {
   });
 }
 
+// The optional quantities of [puncture]: absent, not given; given, read and checked against their range; described
+// as optional with no default.
+TEST(ParameterTables, TheOptionalPunctureQuantitiesAreNotGivenUnlessTheFileGivesThem) {
+  EXPECT_FALSE(io::parse_indentation_case_toml(kCase, "case.toml").puncture.critical_pressure.has_value());
+  const insertion::IndentationCase given = io::parse_indentation_case_toml(
+      kCase + "[puncture]\ncritical_pressure = \"0.663 MPa\"\ntoughness = \"100 J/m2\"\n", "case.toml");
+  EXPECT_DOUBLE_EQ(given.puncture.critical_pressure.value_or(0), 0.663e6);
+  EXPECT_DOUBLE_EQ(given.puncture.toughness.value_or(0), 100);
+  expect_the_reader_refuses_values_below_range(insertion::kPunctureParameters, "puncture", [](const std::string& line) {
+    io::parse_indentation_case_toml(kCase + "[puncture]\n" + line, "case.toml");
+  });
+  insertion::PunctureOptions options;
+  options.toughness = -1;
+  EXPECT_THAT([&] { insertion::validate(options); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("puncture toughness = -1 N/m: expected > 0 N/m")));
+  const std::string described = reference::described("puncture.critical_pressure");
+  EXPECT_THAT(described, HasSubstr("kind:    optional quantity (pressure"));
+  EXPECT_THAT(described, HasSubstr("default: optional: not given (None in Python)"));
+  EXPECT_THAT(described, HasSubstr("range:   > 0 Pa"));
+}
+
 TEST(ParameterTables, DescribeNamesTheUnitDefaultAndRangeOfAKey) {
-  const std::string friction = io::described("solver.friction");
+  const std::string friction = reference::described("solver.friction");
   EXPECT_THAT(friction, HasSubstr("Coulomb friction coefficient"));
   EXPECT_THAT(friction, HasSubstr("unit:    none"));
   EXPECT_THAT(friction, HasSubstr("default: 0\n"));
   EXPECT_THAT(friction, HasSubstr("range:   >= 0\n"));
   EXPECT_THAT(friction, HasSubstr("Python:  SolverOptions.friction"));
-  EXPECT_THAT(io::described("solver.boundary_tolerance"), HasSubstr("default: \"1e-09 m\""));
+  EXPECT_THAT(reference::described("solver.boundary_tolerance"), HasSubstr("default: \"1e-09 m\""));
   // The defaults of case files: neo-Hookean and surface contact, not the struct's.
-  EXPECT_THAT(io::described("model.law"), HasSubstr("default: \"neo-hookean\""));
-  EXPECT_THAT(io::described("model.element"), HasSubstr("Python:  SolverOptions.order"));
-  EXPECT_THAT(io::described("loading.depth"), HasSubstr("default: required in files (\"0.0002 m\" in Python)"));
-  EXPECT_THAT(io::described("loading.continue_after_puncture"),
+  EXPECT_THAT(reference::described("model.law"), HasSubstr("default: \"neo-hookean\""));
+  EXPECT_THAT(reference::described("model.element"), HasSubstr("Python:  SolverOptions.order"));
+  EXPECT_THAT(reference::described("loading.depth"), HasSubstr("default: required in files (\"0.0002 m\" in Python)"));
+  EXPECT_THAT(reference::described("loading.continue_after_puncture"),
               testing::AllOf(HasSubstr("default: false\n"), HasSubstr("Python:  IndentationCase.stop_at_puncture")));
-  EXPECT_THAT([] { io::described("solver.no_such_key"); },
+  // A key of two kinds of file is described for each, headed by where it is written.
+  EXPECT_THAT(reference::described("solver.max_iterations"),
+              testing::AllOf(HasSubstr("# indentation cases (`needlekit indent`), [model] and [solver]"),
+                             HasSubstr("Newton iterations"), HasSubstr("# calibration files (`needlekit calibrate`)"),
+                             HasSubstr("Levenberg-Marquardt iterations")));
+  EXPECT_THAT([] { reference::described("solver.no_such_key"); },
               testing::ThrowsMessage<InvalidInput>(HasSubstr("unknown parameter 'solver.no_such_key', expected one "
                                                              "of: model.law, model.element")));
 }
@@ -302,9 +391,9 @@ TEST(ParameterTables, DocsReferenceIsWhatTheTablesGenerate) {
   std::ifstream file(std::string(NEEDLEKIT_SOURCE_DIR) + "/docs/reference.md");
   std::stringstream text;
   text << file.rdbuf();
-  EXPECT_EQ(text.str(), io::reference_markdown())
+  EXPECT_EQ(text.str(), reference::reference_markdown())
       << "docs/reference.md is out of date: needlekit describe --all --markdown > docs/reference.md";
-  for (const std::string& key : io::parameter_keys()) EXPECT_THAT(text.str(), HasSubstr("| `" + key + "` |"));
+  for (const std::string& key : reference::parameter_keys()) EXPECT_THAT(text.str(), HasSubstr("| `" + key + "` |"));
 }
 
 }  // namespace

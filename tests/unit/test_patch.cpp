@@ -59,11 +59,12 @@ TEST(PatchDesign, RejectsNonPositiveSpringConstantsAndTooFewNeedles) {
   PatchDesignOptions o = options_of(10, 10e-3);
   o.stiffness_v = 0;
   EXPECT_THAT([&] { patch_design(o); },
-              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("patch.spring_constant (V): 0 N/mm is not positive")));
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("patch design stiffness_v = 0 N/m: expected > 0 N/m")));
   o.stiffness_v = -1e3;
   EXPECT_THROW(patch_design(o), InvalidInput);
   o = options_of(1, 10e-3);
-  EXPECT_THAT([&] { patch_design(o); }, ::testing::ThrowsMessage<InvalidInput>(HasSubstr("needles_per_row")));
+  EXPECT_THAT([&] { patch_design(o); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("needles_u = 1: expected in [2, 10000]")));
 }
 
 TEST(PatchPlacement, CentreOffTheMeshAndMissingVertexAreClearErrors) {

@@ -97,10 +97,11 @@ TEST(PunctureCriteria, RejectsNonPositiveParameters) {
   PunctureOptions options;
   options.critical_pressure = -1;
   EXPECT_THAT([&] { validate(options); },
-              testing::ThrowsMessage<InvalidInput>(HasSubstr("puncture.critical_pressure")));
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("puncture critical_pressure = -1 Pa: expected > 0 Pa")));
   options.critical_pressure.reset();
   options.toughness = 0;
-  EXPECT_THAT([&] { validate(options); }, testing::ThrowsMessage<InvalidInput>(HasSubstr("puncture.toughness")));
+  EXPECT_THAT([&] { validate(options); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("puncture toughness = 0 N/m: expected > 0 N/m")));
 }
 
 TEST(TwoInsertionToughness, IntegratesTheForceDifference) {

@@ -8,6 +8,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/io/uncertainty_config.hpp"
+#include "needlekit/uncertainty/design_uncertainty.hpp"
 
 #include "../support/expect_invalid.hpp"
 
@@ -80,7 +81,8 @@ TEST(UncertaintyConfig, BadInputNamesFileLineAndKey) {
                  "key 'uncertain.\"needle.tip_diameter\".median': does not apply to a normal distribution");
   expect_invalid([] { parse(R"("needle.tip_diameter" = { distribution = "normal", sd = "2 um" })",
                             "[sampling]\nsamples = 1\n"); },
-                 "uq.toml:15: key 'sampling.samples': 1 is out of range, expected an integer in [2, 1e8]");
+                 "uq.toml:15: key 'sampling.samples': 1 is out of range, expected an integer in [2, 1e+08] (the "
+                 "upper end is needlekit's work limit)");
   expect_invalid([] { parse(R"("needle.tip_diameter" = { distribution = "normal", sd = "2 um" })",
                             "[sampling]\nmethod = \"latin\"\n"); },
                  "key 'sampling.method': unknown value 'latin', expected one of: \"monte-carlo\" | \"sobol\"");
@@ -117,4 +119,24 @@ TEST(UncertaintyConfig, CorrelationMustBeConsistent) {
                   "[\"tissue.alpha\", \"needle.length\"]\nrho = 0.9\n[[correlation]]\ninputs = [\"tissue.tau\", "
                   "\"needle.length\"]\nrho = -0.9\n");
   }, "not positive definite");
+}
+
+// [sampling] is read from uncertainty::kPropagationParameters: every key reads back, threads and histogram_bins are
+// not keys of the file, and propagate() checks the rows Python and the CLI may set.
+TEST(UncertaintyConfig, SamplingIsReadAndCheckedFromItsParameterTable) {
+  constexpr std::string_view kTip = R"("needle.tip_diameter" = { distribution = "normal", sd = "2 um" })";
+  const io::UncertaintyFile file =
+      parse(kTip, "[sampling]\nsamples = 256\nmethod = \"monte-carlo\"\nseed = 7\nsobol_indices = false\n");
+  EXPECT_EQ(file.sampling.samples, 256u);
+  EXPECT_EQ(file.sampling.method, uncertainty::SamplingMethod::MonteCarlo);
+  EXPECT_EQ(file.sampling.seed, 7u);
+  EXPECT_FALSE(file.sampling.sobol_indices);
+  expect_invalid([&] { parse(kTip, "[sampling]\nseed = -1\n"); },
+                 "key 'sampling.seed': -1 is out of range, expected an integer >= 0");
+  expect_invalid([&] { parse(kTip, "[sampling]\nthreads = 2\n"); }, "unknown key 'sampling.threads'");
+  uncertainty::DesignUncertaintyOptions options;
+  options.sampling = file.sampling;
+  options.sampling.histogram_bins = 0;
+  expect_invalid([&] { uncertainty::design_uncertainty(file.design, file.inputs, file.correlations, options); },
+                 "sampling histogram_bins = 0: expected >= 1");
 }

@@ -5,6 +5,7 @@
 //                                   end of an integer is one of needlekit's work limits (core/limits.hpp)
 //   Flag<Options>                   true or false
 //   Choice<Options, Enum, N>        one of the names of an enum's table (core/enum_table.hpp)
+//   OptionalQuantity<Options>       a quantity that may be not given (std::optional<double>, empty by default)
 // A range's infinite end is open unless a double row closes it on purpose: (0, inf] admits inf (a cap switched off).
 // The config readers, their range checks, the validation of the struct, the CLI help, `needlekit describe`,
 // docs/reference.md and the Python keyword arguments all read the table (core/parameter_text.hpp turns rows into
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -104,6 +106,30 @@ struct Choice {
   std::string_view attribute() const { return name.empty() ? key : name; }
 };
 
+// A quantity that files and Python may leave out ([puncture] critical_pressure: the criterion is then not used): a
+// std::optional<double> field, empty in Options{}, with no default; its range applies to a given value.
+template <class Options>
+struct OptionalQuantity {
+  std::string_view key;
+  std::optional<double> Options::*field;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  Bound min_bound = Bound::Closed;
+  Bound max_bound = Bound::Closed;
+  std::string_view meaning;
+  std::string_view group = "";
+  units::Dimension dimension = units::Dimension::Dimensionless;
+  std::string_view name = "";
+
+  std::string_view attribute() const { return name.empty() ? key : name; }
+  // The same range as a number row: one set of rules for both.
+  Parameter<Options, double> as_number() const {
+    return {key, nullptr, min, max, min_bound, max_bound, meaning, group, dimension, name};
+  }
+  bool accepts(double value) const { return as_number().accepts(value); }
+  std::string range() const { return as_number().range(); }
+};
+
 // Calls visit(row) for every row of a table (a std::tuple of rows), in order.
 template <class Table, class Visit>
 constexpr void for_each_parameter(const Table& table, Visit&& visit) {
@@ -130,14 +156,34 @@ consteval std::size_t field_count() {
   }
 }
 
-// Throws InvalidInput "WHAT KEY = VALUE: expected RANGE" for the first number of `options` outside its row's range.
+namespace detail {
+// A number's value, or an optional quantity's when given.
+template <class Value>
+std::optional<double> given_value(const Value& value) {
+  return static_cast<double>(value);
+}
+inline std::optional<double> given_value(const std::optional<double>& value) { return value; }
+}  // namespace detail
+
+// " Pa" for a quantity row, "" for a pure number: what follows an SI value of the row in a message.
+template <class Row>
+std::string si_unit_suffix(const Row& row) {
+  if (row.dimension == units::Dimension::Dimensionless) return "";
+  return fmt::format(" {}", units::si_symbol(row.dimension));
+}
+
+// Throws InvalidInput "WHAT KEY = VALUE UNIT: expected RANGE UNIT" for the first number of `options` outside its
+// row's range, in SI ("puncture critical_pressure = -1 Pa: expected > 0 Pa"; an optional quantity not given is not
+// checked).
 template <class Options, class Table>
 void check_ranges(const Table& table, const Options& options, std::string_view what) {
   for_each_parameter(table, [&](const auto& row) {
     if constexpr (requires { row.accepts(0.0); }) {
-      const double value = static_cast<double>(options.*row.field);
-      if (!row.accepts(value)) {
-        throw InvalidInput(fmt::format("{} {} = {:g}: expected {}", what, row.attribute(), value, row.range()));
+      const std::optional<double> value = detail::given_value(options.*row.field);
+      if (value && !row.accepts(*value)) {
+        const std::string unit = si_unit_suffix(row);
+        throw InvalidInput(
+            fmt::format("{} {} = {:g}{}: expected {}{}", what, row.attribute(), *value, unit, row.range(), unit));
       }
     }
   });

@@ -20,7 +20,10 @@ struct ParameterText {
   std::string meaning;       // one line
   std::string choices;       // a choice's names, one line each with its meaning ("" otherwise)
   bool required = false;     // files must give it: default_text is then the struct's initializer, Python's default
-  std::string file_default() const { return required ? "required" : default_text; }  // what a file gets without it
+  bool optional = false;     // an optional quantity: files may leave it out (default_text is Python's None)
+  std::string file_default() const {  // what a file gets without it
+    return required ? "required" : optional ? "optional" : default_text;
+  }
 };
 
 namespace detail {
@@ -54,6 +57,18 @@ ParameterText text_of_row(const Choice<Options, Value, N>& row, const Options& d
   return {dotted_key(row.group, row.key), std::string(row.attribute()), "choice", "",
           fmt::format("\"{}\"", name_of(*row.names, defaults.*row.field)), choices_of(*row.names),
           std::string(row.meaning), meanings_of(*row.names, row.key), row.required};
+}
+// An optional quantity: "optional quantity (pressure)", its default Python's None (or the value `defaults` gives).
+template <class Options>
+ParameterText text_of_row(const OptionalQuantity<Options>& row, const Options& defaults) {
+  const std::string unit(units::si_symbol(row.dimension));
+  const std::optional<double> value = defaults.*row.field;
+  ParameterText text{dotted_key(row.group, row.key), std::string(row.attribute()),
+                     fmt::format("optional quantity ({})", units::dimension_name(row.dimension)), unit,
+                     value ? fmt::format("\"{:g} {}\"", *value, unit) : "None",
+                     fmt::format("{} {}", row.range(), unit), std::string(row.meaning), ""};
+  text.optional = true;
+  return text;
 }
 }  // namespace detail
 

@@ -1,11 +1,12 @@
-// insertion::PostPunctureOptions' parameter table (core/parameter.hpp): one row per field that a row can express,
-// declared here once; the defaults are the struct's initializers (post_puncture_force.hpp). Insertion case files
-// write the rows of group "post_puncture" in [post_puncture] (`needlekit insert`); tip_tolerance is set from Python
-// only. The insertion case reader, `needlekit insert --help`, `needlekit describe`, docs/reference.md, the
-// validation in post_puncture_loads and Python's PostPunctureOptions read this table;
-// tests/unit/test_parameter_tables.cpp checks that every field has a row or is listed below.
+// The parameter tables of insertion::PostPunctureOptions and PostPunctureFitOptions (core/parameter.hpp): one row
+// per field that a row can express, declared here once; the defaults are the structs' initializers
+// (post_puncture_force.hpp). Insertion case files write the rows of group "post_puncture" in [post_puncture]
+// (`needlekit insert`); tip_tolerance and fit_stiffness are set from Python only. The insertion case reader,
+// `needlekit insert --help`, `needlekit describe`, docs/reference.md, the validation in post_puncture_loads and
+// Python's PostPunctureOptions and PostPunctureFitOptions read these tables; tests/unit/test_parameter_tables.cpp
+// checks that every field has a row or is listed below.
 //
-// A new parameter: its field with its initializer in PostPunctureOptions, and one row here.
+// A new parameter: its field with its initializer in the struct, and one row here.
 #pragma once
 #include <tuple>
 
@@ -43,5 +44,21 @@ inline constexpr std::size_t kPostPuncturePointFields = 1;
 static_assert(field_count<PostPunctureOptions>() ==
                   std::tuple_size_v<decltype(kPostPunctureParameters)> + kPostPuncturePointFields,
               "a field of PostPunctureOptions has no row in kPostPunctureParameters (or a row too many)");
+
+// K and S of Eq 3.18 (PostPunctureFitOptions), [post_puncture] stiffness and scale; fit_stiffness is set from Python
+// only (`needlekit insert` fits S to a measured curve).
+inline constexpr std::tuple kPostPunctureFitParameters{
+    Parameter<PostPunctureFitOptions, double>{"stiffness", &PostPunctureFitOptions::stiffness, 0, kNoLimit,
+                                              Bound::Open, Bound::Open,
+                                              "K of Eq 3.18, the tissue's cutting stiffness (fixed when fitting S)",
+                                              "post_puncture", units::Dimension::Pressure, "", true},
+    Parameter<PostPunctureFitOptions, double>{"scale", &PostPunctureFitOptions::scale, 0, kNoLimit, Bound::Open,
+                                              Bound::Open, "S of Eq 3.18 (fixed when fitting K)", "post_puncture",
+                                              units::Dimension::Dimensionless, "", true},
+    Flag<PostPunctureFitOptions>{"fit_stiffness", &PostPunctureFitOptions::fit_stiffness,
+                                 "fit K to a measured curve instead of S (only K*S is identifiable)"},
+};
+static_assert(field_count<PostPunctureFitOptions>() == std::tuple_size_v<decltype(kPostPunctureFitParameters)>,
+              "a field of PostPunctureFitOptions has no row in kPostPunctureFitParameters (or a row too many)");
 
 }  // namespace needlekit::insertion

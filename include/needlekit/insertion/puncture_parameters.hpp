@@ -1,7 +1,7 @@
-// insertion::PunctureOptions' parameter table (core/parameter.hpp): one row per field that a row can express, declared
-// here once, written in a case file's [puncture]. validate(PunctureOptions), the case reader, `needlekit describe`,
-// docs/reference.md and Python's PunctureOptions read it; tests/unit/test_parameter_tables.cpp checks that every field
-// has a row or is listed below.
+// insertion::PunctureOptions' parameter table (core/parameter.hpp): one row per field, declared here once, written in
+// a case file's [puncture] (critical_pressure and toughness are optional quantities: not given, their criterion is not
+// used). validate(PunctureOptions), the case reader, `needlekit describe`, docs/reference.md and Python's PunctureOptions read it; tests/unit/test_parameter_tables.cpp checks that every field
+// has a row.
 //
 // A new parameter: its field with its initializer in PunctureOptions, and one row here.
 #pragma once
@@ -20,12 +20,19 @@ inline constexpr std::tuple kPunctureParameters{
                                        "averaged-pressure: the radius l of the disc the contact pressure is averaged "
                                        "over (a property of the tissue)",
                                        "puncture", units::Dimension::Length},
+    OptionalQuantity<PunctureOptions>{"critical_pressure", &PunctureOptions::critical_pressure, 0, kNoLimit,
+                                      Bound::Open, Bound::Open,
+                                      "P_c: the contact pressure F/A at which the needle punctures (Eq 3.17), or "
+                                      "the averaged contact pressure of the averaged-pressure law (not given: the "
+                                      "criterion is not used)",
+                                      "puncture", units::Dimension::Pressure},
+    OptionalQuantity<PunctureOptions>{"toughness", &PunctureOptions::toughness, 0, kNoLimit, Bound::Open,
+                                      Bound::Open,
+                                      "J: the fracture energy per crack area of the fracture-energy criterion "
+                                      "(J/m2 = N/m; not given: the criterion is not used, or toughness_from)",
+                                      "puncture", units::Dimension::Stiffness},
 };
-// Fields that are not rows: critical_pressure and toughness, optional quantities (unset: the criterion is not used),
-// which core/parameter.hpp's rows cannot hold yet; the case reader reads them as optional positive quantities.
-inline constexpr std::size_t kPunctureOptionalFields = 2;
-static_assert(field_count<PunctureOptions>() ==
-                  std::tuple_size_v<decltype(kPunctureParameters)> + kPunctureOptionalFields,
+static_assert(field_count<PunctureOptions>() == std::tuple_size_v<decltype(kPunctureParameters)>,
               "a field of PunctureOptions has no row in kPunctureParameters (or a row too many)");
 
 }  // namespace needlekit::insertion

@@ -16,7 +16,8 @@ namespace needlekit::io {
 // "scale", "scale_source" ("fitted" | "case"), "case_scale", "final_depth_um", "pre_puncture_source" ("fe" | "csv"),
 // "complete" (false: the curve stops where the FE failed), "notes" (the scale warnings given), "fe" ({"status",
 // "reason", "elements", "nodes", "total_seconds", "models"}; absent for a measured pre-puncture curve),
-// "classification" (triangle counts and areas) and "fit" (null unless S was fitted to a measured curve).
+// "classification" (triangle counts and areas), "fit" (null unless S was fitted to a measured curve) and "inputs"
+// (indentation_inputs_json plus the [post_puncture] table's rows).
 nlohmann::json complete_insertion_json(const InsertionCase& insertion_case,
                                        const insertion::CompleteInsertionResult& result,
                                        const std::vector<std::string>& notes);

@@ -44,6 +44,11 @@ std::string fe_models_text(const insertion::IndentationCase& indentation_case);
 nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
                              const insertion::IndentationResult& result);
 
+// The inputs as the parameter tables declare them, under the case file's tables (io/parameter_json.hpp): loading,
+// model, solver, mesh and puncture, e.g. {"loading": {"depth_m": 0.00015, ...}, "puncture": {"critical_pressure_Pa":
+// null, ...}}. What indentation_json writes under "inputs".
+nlohmann::json indentation_inputs_json(const insertion::IndentationCase& indentation_case);
+
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "averaged_pressure_MPa" (p̄_l per step, with the averaged-pressure law),
 // "strain_energy_J", "external_work_J", "newton_iterations" (arrays, one entry per converged step), "elements",

@@ -33,10 +33,8 @@
 namespace needlekit::io {
 
 struct InsertionSettings {
-  double stiffness = 0;                       // N/m², K
-  double scale = 0;                           // S
-  double final_depth = 0;                     // m
-  int cutting_samples = 200;
+  insertion::PostPunctureFitOptions model;    // K and S (stiffness, scale)
+  insertion::InsertionCurveOptions curve;     // final_depth, samples
   insertion::PostPunctureOptions post_puncture;
   insertion::TriangleClassificationOptions classification;
   std::optional<std::filesystem::path> measured;          // resolved against the case file's directory

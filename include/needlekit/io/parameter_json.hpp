@@ -1,11 +1,12 @@
 // The inputs an options struct was run with, as JSON, from its parameter table (core/parameter.hpp) alone: one key per
 // row under the case file's table the row is written in ({"loading": {"depth_m": 0.0002, ...}}; a row in no table at
 // the top). A quantity's key names its SI unit ("depth_m", "critical_pressure_Pa"), a pure number or an integer is
-// written as is, a flag as the file writes it (a negated row's file key and value), a choice by its name. What
+// written as is, an optional quantity not given as null, a flag as the file writes it (a negated row's file key and value), a choice by its name. What
 // `needlekit indent --json` echoes under "inputs"; a new row appears there with nothing else to write.
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -38,6 +39,12 @@ inline nlohmann::json& table_of(std::string_view group, nlohmann::json& json) {
 template <class Options, class Value>
 void add_row_json(const Parameter<Options, Value>& row, const Options& options, nlohmann::json& json) {
   table_of(row.group, json)[std::string(row.key) + unit_suffix(row.dimension)] = options.*row.field;
+}
+template <class Options>
+void add_row_json(const OptionalQuantity<Options>& row, const Options& options, nlohmann::json& json) {
+  const std::optional<double>& value = options.*row.field;
+  nlohmann::json& slot = table_of(row.group, json)[std::string(row.key) + unit_suffix(row.dimension)];
+  slot = value ? nlohmann::json(*value) : nlohmann::json(nullptr);  // null: not given
 }
 template <class Options>
 void add_row_json(const Flag<Options>& row, const Options& options, nlohmann::json& json) {

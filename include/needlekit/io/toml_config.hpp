@@ -129,6 +129,10 @@ public:
 
   std::optional<Section> optional_subsection(std::string_view key,
                                              std::initializer_list<std::string_view> allowed_keys) const {
+    return optional_subsection(key, std::vector<std::string_view>(allowed_keys));
+  }
+  std::optional<Section> optional_subsection(std::string_view key,
+                                             const std::vector<std::string_view>& allowed_keys) const {
     const toml::node* node = optional(key);
     if (!node) return std::nullopt;
     return subsection(*node, key, allowed_keys);

@@ -2,6 +2,8 @@
 // toml_config.hpp: FILE:LINE: key 'solver.friction': -1.0 is out of range, expected a number >= 0.
 #pragma once
 #include <climits>
+#include <cstdint>
+#include <type_traits>
 #include <string_view>
 #include <vector>
 
@@ -13,8 +15,8 @@ namespace needlekit::io::config {
 namespace detail {
 // "[0, 90) deg" for a row's two-sided range in the unit of the value's text ("90 deg"), so that the message compares
 // like with like.
-template <class Options>
-std::string range_in_unit_of(const Parameter<Options, double>& row, std::string_view text) {
+template <class Row>
+std::string range_in_unit_of(const Row& row, std::string_view text) {
   const std::size_t unit_start = text.find_first_not_of("+-0123456789.eE ");
   const std::string_view unit = unit_start == std::string_view::npos ? "" : text.substr(unit_start);
   const double factor = units::unit_factor(unit, row.dimension, row.key);
@@ -24,9 +26,10 @@ std::string range_in_unit_of(const Parameter<Options, double>& row, std::string_
 }  // namespace detail
 
 // A quantity: written with a unit; a value outside the row's range is refused as "is not positive" for (0, inf),
-// in the value's own unit for a two-sided range, else against the range in SI.
-template <class Options>
-double quantity_of_row(const Section& section, const toml::node& node, const Parameter<Options, double>& row) {
+// in the value's own unit for a two-sided range, else against the range in SI. Row: a quantity's Parameter or an
+// OptionalQuantity.
+template <class Row>
+double quantity_of_row(const Section& section, const toml::node& node, const Row& row) {
   if (row.min == 0 && row.min_bound == Bound::Open && !std::isfinite(row.max)) {
     return positive_quantity_of(section, node, row.key, row.dimension);
   }
@@ -56,6 +59,12 @@ double value_of_row(const Section& section, const toml::node& node, const Parame
   return value;
 }
 
+// An optional quantity given in the file.
+template <class Options>
+double value_of_row(const Section& section, const toml::node& node, const OptionalQuantity<Options>& row) {
+  return quantity_of_row(section, node, row);
+}
+
 // An integer; a finite upper end is a work limit (core/limits.hpp) and the message says so.
 template <class Options>
 int value_of_row(const Section& section, const toml::node& node, const Parameter<Options, int>& row) {
@@ -66,6 +75,19 @@ int value_of_row(const Section& section, const toml::node& node, const Parameter
                              std::isfinite(row.max) ? " (the upper end is needlekit's work limit)" : ""));
   }
   return static_cast<int>(value);
+}
+
+// An unsigned count or seed (std::size_t, std::uint64_t): TOML's integers are signed, so at most 2^63 - 1.
+template <class Options, class Value>
+  requires std::is_unsigned_v<Value>
+Value value_of_row(const Section& section, const toml::node& node, const Parameter<Options, Value>& row) {
+  const std::int64_t value = integer_of(section, node, row.key);
+  if (value < 0 || !row.accepts(static_cast<double>(value))) {
+    section.fail(node, row.key,
+                 fmt::format("{} is out of range, expected an integer {}{}", value, row.range(),
+                             std::isfinite(row.max) ? " (the upper end is needlekit's work limit)" : ""));
+  }
+  return static_cast<Value>(value);
 }
 
 template <class Options>

@@ -8,7 +8,7 @@
 
 #include "needlekit/core/parameter_text.hpp"
 
-namespace needlekit::io {
+namespace needlekit::reference {
 
 struct ParameterGroup {
   std::string_view title;    // where the keys are written, e.g. "indentation cases, [model] and [solver]"
@@ -28,4 +28,4 @@ std::string described_all();
 // docs/reference.md.
 std::string reference_markdown();
 
-}  // namespace needlekit::io
+}  // namespace needlekit::reference
