@@ -69,6 +69,10 @@ TEST(InsertCli, GivenPrePunctureCurveGivesTheCompleteCurveWithPlot) {
   EXPECT_EQ(inputs["post_puncture"]["cap_at_cutting_pressure"],
             insertion::PostPunctureOptions{}.cap_at_cutting_pressure);
   EXPECT_EQ(inputs["post_puncture"]["reference_radius_m"], 0.0);
+  EXPECT_NEAR(inputs["post_puncture"]["stiffness_Pa"].get<double>(), 0.2e6, 1e-6);
+  EXPECT_EQ(inputs["post_puncture"]["scale"], 0.168);
+  EXPECT_EQ(inputs["post_puncture"]["samples"], 50);
+  EXPECT_EQ(inputs["post_puncture"]["occlusion_test"], false);
   const auto& phase = json["phase"];
   const auto& depth = json["depth_um"];
   const auto& force = json["force_N"];

@@ -17,7 +17,7 @@ namespace needlekit::io {
 // "complete" (false: the curve stops where the FE failed), "notes" (the scale warnings given), "fe" ({"status",
 // "reason", "elements", "nodes", "total_seconds", "models"}; absent for a measured pre-puncture curve),
 // "classification" (triangle counts and areas), "fit" (null unless S was fitted to a measured curve) and "inputs"
-// (indentation_inputs_json plus the [post_puncture] table's rows).
+// (indentation_inputs_json plus the rows of [post_puncture]'s four tables: model, curve, beta load, classification).
 nlohmann::json complete_insertion_json(const InsertionCase& insertion_case,
                                        const insertion::CompleteInsertionResult& result,
                                        const std::vector<std::string>& notes);
