@@ -121,16 +121,18 @@ TEST(UncertaintyConfig, CorrelationMustBeConsistent) {
   }, "not positive definite");
 }
 
-// [sampling] is read from uncertainty::kPropagationParameters: every key reads back, threads and histogram_bins are
-// not keys of the file, and propagate() checks the rows Python and the CLI may set.
+// [sampling] is read from uncertainty::kPropagationParameters: every key reads back, threads is not a key of the file,
+// and propagate() checks the rows Python and the CLI may set.
 TEST(UncertaintyConfig, SamplingIsReadAndCheckedFromItsParameterTable) {
   constexpr std::string_view kTip = R"("needle.tip_diameter" = { distribution = "normal", sd = "2 um" })";
   const io::UncertaintyFile file =
-      parse(kTip, "[sampling]\nsamples = 256\nmethod = \"monte-carlo\"\nseed = 7\nsobol_indices = false\n");
+      parse(kTip, "[sampling]\nsamples = 256\nmethod = \"monte-carlo\"\nseed = 7\nsobol_indices = false\n"
+                  "histogram_bins = 7\n");
   EXPECT_EQ(file.sampling.samples, 256u);
   EXPECT_EQ(file.sampling.method, uncertainty::SamplingMethod::MonteCarlo);
   EXPECT_EQ(file.sampling.seed, 7u);
   EXPECT_FALSE(file.sampling.sobol_indices);
+  EXPECT_EQ(file.sampling.histogram_bins, 7);  // the one-line row change that made it a key of files
   expect_invalid([&] { parse(kTip, "[sampling]\nseed = -1\n"); },
                  "key 'sampling.seed': -1 is out of range, expected an integer >= 0");
   expect_invalid([&] { parse(kTip, "[sampling]\nthreads = 2\n"); }, "unknown key 'sampling.threads'");

@@ -1,9 +1,8 @@
 // uncertainty::PropagationOptions' parameter table (core/parameter.hpp): one row per field but the progress callback,
 // declared here once; the defaults are the struct's initializers (propagation.hpp). Uncertainty files write the rows
-// of group "sampling" in [sampling]; threads (the CLI's --threads) and histogram_bins are set from the CLI and Python
-// only. The [sampling] reader, `needlekit uncertainty --help`, `needlekit describe`, docs/reference.md, the
-// validation in propagate() and Python's PropagationOptions read this table; tests/unit/test_parameter_tables.cpp
-// checks that every field has a row.
+// of group "sampling" in [sampling]; threads is set by the CLI's --threads and from Python only. The [sampling]
+// reader, `needlekit uncertainty --help`, `needlekit describe`, docs/reference.md, the validation in propagate() and
+// Python's PropagationOptions read this table; tests/unit/test_parameter_tables.cpp checks that every field has a row.
 //
 // A new parameter: its field with its initializer in PropagationOptions, and one row here.
 #pragma once
@@ -37,7 +36,7 @@ inline constexpr std::tuple kPropagationParameters{
                                        Bound::Closed, "threads (0: all hardware threads)"},
     Parameter<PropagationOptions, int>{"histogram_bins", &PropagationOptions::histogram_bins, 1, kNoLimit,
                                        Bound::Closed, Bound::Closed,
-                                       "bins of each continuous output's histogram, over its [min, max]"},
+                                       "bins of each continuous output's histogram, over its [min, max]", "sampling"},
 };
 static_assert(field_count<PropagationOptions>() ==
                   std::tuple_size_v<decltype(kPropagationParameters)> + kPropagationCallbackFields,
