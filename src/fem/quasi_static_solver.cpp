@@ -379,8 +379,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
   if (o.contact == ContactModel::Surface) {
     std::vector<Indenter> placed;
     for (const auto& nd : m.needles) placed.push_back(nd.indenter);
-    m.contact = std::make_unique<detail::SurfaceContact>(m.top, m.space, placed, o.penalty_factor, o.friction,
-                                                       o.two_pass);
+    m.contact = std::make_unique<detail::SurfaceContact>(m.top, m.space, placed, o);
   }
 
   // Degrees of freedom: boundary conditions (§3.4: sides and bottom fixed, top free) and tip nodes.

@@ -8,14 +8,14 @@
 namespace needlekit::fem::detail {
 
 SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space, const std::vector<Indenter>& needles,
-                               double penalty_factor, double friction, bool two_pass)
-    : top_nodes_(top.nodes), friction_(friction) {
+                               const SolverOptions& options)
+    : top_nodes_(top.nodes), friction_(options.friction) {
   h_min_ = std::numeric_limits<double>::infinity();
   stiffness_.resize(top.nodes.size());
   for (size_t t = 0; t < top.nodes.size(); ++t) {
     const int n = top.nodes[t];
     h_min_ = std::min(h_min_, top.node_size[n]);
-    stiffness_[t] = penalty_factor * space.node_youngs_modulus[n] / top.node_size[n] * top.node_area[n];
+    stiffness_[t] = options.penalty_factor * space.node_youngs_modulus[n] / top.node_size[n] * top.node_area[n];
   }
   const size_t count = top.nodes.size();
   std::vector<FrictionState> at_rest(count);  // the slip counts from the reference positions, the needle at d = 0
@@ -30,7 +30,7 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
         std::vector<char>(count, 1),  // the needle starts above the tissue
         at_rest, std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         NeedleEdgeContact(top, stiffness_,
-                          two_pass ? sharp_feature_points(needle.surface, h_min_ / 2, needle.edge_radius)
+                          options.two_pass ? sharp_feature_points(needle.surface, h_min_ / 2, needle.edge_radius)
                                    : std::vector<Eigen::Vector3d>{},
                           direction)});
   }

@@ -20,8 +20,9 @@ namespace needlekit::fem::detail {
 
 class SurfaceContact {
 public:
+  // The options' penalty_factor, friction and two_pass apply.
   SurfaceContact(const TopSurface& top, const FunctionSpace& space, const std::vector<Indenter>& needles,
-                 double penalty_factor, double friction, bool two_pass);
+                 const SolverOptions& options);
 
   // Contact energy of the state (u, needle displacement d); with `want_force` the contact forces into `force`
   // (per dof, zeroed first), with `want_tangent` the penalty tangent k n n^T added into `values` (pattern over the

@@ -140,16 +140,21 @@ void validate(const GeodesicDistanceOptions& options) {
 // The search for the shortest geodesic from p (location a) to q (location b) by shooting straightest geodesics from
 // p (Newton on the shot's angle and length), aimed first at q, then along the shortest edge path, and last through
 // saddle vertices (two legs that meet at the vertex). Every trace spends `budget` (triangle crossings).
+struct GeodesicEnds {
+  const SurfaceLocation& a;  // where the geodesic starts (p)
+  const SurfaceLocation& b;  // where it ends (q)
+};
+
 class GeodesicSearch {
 public:
-  GeodesicSearch(const SurfaceMesh& surface, const SurfaceLocation& a, const SurfaceLocation& b,
-                 const GeodesicDistanceOptions& options, std::int64_t& budget, GeodesicDistance& result)
-      : surface_(surface), a_(a), b_(b), p_(position(surface, a)), q_(position(surface, b)), options_(options),
-        budget_(budget), result_(result), n0_(surface.face_normal(a.triangle)) {
+  GeodesicSearch(const SurfaceMesh& surface, GeodesicEnds ends, const GeodesicDistanceOptions& options,
+                 std::int64_t& budget, GeodesicDistance& result)
+      : surface_(surface), a_(ends.a), b_(ends.b), p_(position(surface, ends.a)), q_(position(surface, ends.b)),
+        options_(options), budget_(budget), result_(result), n0_(surface.face_normal(ends.a.triangle)) {
     // The tangent frame of the start triangle, e1 towards the target.
     Eigen::Vector3d e1 = (q_ - p_) - (q_ - p_).dot(n0_) * n0_;
     if (!(e1.norm() > 1e-9 * result_.euclidean)) {
-      const auto& t = surface.mesh().triangles[a.triangle];
+      const auto& t = surface.mesh().triangles[ends.a.triangle];
       e1 = surface.mesh().vertices[t[1]] - surface.mesh().vertices[t[0]];
     }
     e1_ = e1.normalized();
@@ -321,7 +326,7 @@ GeodesicDistance budgeted_distance(const SurfaceMesh& surface, const SurfaceLoca
     result.path.points = {p};
     return result;
   }
-  Shot best = GeodesicSearch(surface, a, b, options, budget, result).run();
+  Shot best = GeodesicSearch(surface, {a, b}, options, budget, result).run();
   result.status = best.converged ? DistanceStatus::Converged : DistanceStatus::NotConverged;
   result.miss = best.miss;
   result.distance = best.path.length;
