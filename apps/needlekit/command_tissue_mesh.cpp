@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "terminal_warnings.hpp"
 #include "file_format_help.hpp"
 #include "needlekit/core/atomic_file.hpp"
 #include "needlekit/core/errors.hpp"
@@ -42,6 +43,7 @@ struct TissueMeshArguments {
 
 void run_tissue_mesh(const TissueMeshArguments& arguments) {
   io::TissueCase tissue = io::read_tissue_case(arguments.case_path);
+  print_warnings(tissue.warnings);
   tissue.block.threads = arguments.threads;
   const mesh::LayeredBlockOptions& options = tissue.block;
   create_output_directory(arguments.out_dir);  // before meshing: a directory that cannot be written fails fast

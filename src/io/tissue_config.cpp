@@ -214,7 +214,15 @@ TissueCase tissue_case_of(const toml::table& root, std::string_view file, const 
 TissueCase parse_tissue_case_toml(std::string_view text, std::string_view source_name,
                                   const std::filesystem::path& base_dir) {
   const toml::table root = config::parse_toml(text, source_name);
-  return config::tissue_case_of(root, source_name, base_dir);
+  TissueCase tissue = config::tissue_case_of(root, source_name, base_dir);
+  if (const toml::node* array = root.get("array")) {
+    tissue.warnings.push_back(fmt::format(
+        "{} table [array]: not read here; this meshes the block of [tissue] and [mesh] around the insertion sites "
+        "of [mesh] (one, centred, by default), not the array's block (`needlekit indent` meshes that: its "
+        "NAME_step_001.vtu holds the mesh)",
+        config::location(source_name, array->source())));
+  }
+  return tissue;
 }
 
 TissueCase read_tissue_case(const std::filesystem::path& path) {

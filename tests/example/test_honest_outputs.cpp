@@ -102,6 +102,16 @@ TEST_F(HonestOutputs, AnEmptyTissueCaseIsAnErrorNamingWhatIsMissing) {
   EXPECT_FALSE(fs::exists(dir_ / "out/tissue.vtu"));
 }
 
+// tissue-mesh on an array case meshes [tissue] and [mesh] only: it says so rather than ignore [array] silently.
+TEST_F(HonestOutputs, TissueMeshWarnsThatItDoesNotMeshAnArraysBlock) {
+  write("array.toml", "[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nsize_at_tip = \"150 um\"\n"
+                      "size_far = \"600 um\"\n[array]\nrows = 2\ncolumns = 2\npitch = \"600 um\"\n");
+  const CliRun r = run("tissue-mesh array.toml --out out");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("needlekit: warning: array.toml:6: table [array]: not read here"));
+  EXPECT_TRUE(fs::exists(dir_ / "out/tissue.vtu"));
+}
+
 // An 800 um depth into a 500 um block: refused before any meshing, naming the key.
 TEST_F(HonestOutputs, ADepthThroughTheBlockIsRefused) {
   write("deep.toml", "[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n[tissue]\n"

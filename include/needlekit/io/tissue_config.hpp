@@ -17,6 +17,8 @@
 //             tetrahedron count is larger is refused before meshing.
 #pragma once
 #include <filesystem>
+#include <string>
+#include <vector>
 #include <string_view>
 
 #include "needlekit/mesh/layered_block_mesh.hpp"
@@ -27,6 +29,9 @@ struct TissueCase {
   mesh::LayeredBlockOptions block;    // the block to mesh; with msh_file, its layers name the file's volumes
   std::filesystem::path msh_file;     // [mesh] file, resolved against the case file's folder; empty: mesh `block`
   double msh_unit = 1e-6;             // m per length unit of msh_file ([mesh] unit)
+  // Tables of the file that a tissue case does not read but a reader of whole cases would ([array]: the block of an
+  // array), each with FILE:LINE: `needlekit tissue-mesh` prints them as warnings.
+  std::vector<std::string> warnings;
 };
 
 // Throws IoError (unreadable file, TOML syntax) or InvalidInput (an unknown, missing or invalid key).
