@@ -19,9 +19,6 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/core/units.hpp"
 #include "needlekit/insertion/complete_insertion.hpp"
-#include "needlekit/insertion/insertion_curve_parameters.hpp"
-#include "needlekit/insertion/post_puncture_parameters.hpp"
-#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/io/complete_insertion_output.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_case.hpp"
@@ -53,13 +50,13 @@ measured, the curve, JSON and plot use the fitted S (JSON: scale, scale_source =
 that stops converging writes what converged (the JSON alone if no step did) and exits with code 3.)";
 
 std::string post_puncture_help() {
-  std::vector<ParameterText> texts =
-      parameter_texts<insertion::PostPunctureFitOptions>(insertion::kPostPunctureFitParameters);
-  const auto add = [&texts](const std::vector<ParameterText>& more) { texts.insert(texts.end(), more.begin(), more.end()); };
-  add(parameter_texts<insertion::InsertionCurveOptions>(insertion::kInsertionCurveParameters));
-  add(parameter_texts<insertion::PostPunctureOptions>(insertion::kPostPunctureParameters));
-  add(parameter_texts<insertion::TriangleClassificationOptions>(insertion::kTriangleClassificationParameters));
-  return settings_help(texts, "post_puncture", "  [post_puncture]", 19);
+  std::vector<ParameterText> texts;
+  const insertion::CompleteInsertionOptions defaults;
+  io::for_each_post_puncture_table(defaults, [&texts](const auto& table, const auto& options) {
+    const std::vector<ParameterText> rows = parameter_texts(table, options);
+    texts.insert(texts.end(), rows.begin(), rows.end());
+  });
+  return settings_help(texts, "post_puncture", "  [post_puncture]");
 }
 
 struct InsertArguments {

@@ -1,8 +1,5 @@
 #include "needlekit/io/complete_insertion_output.hpp"
 
-#include "needlekit/insertion/insertion_curve_parameters.hpp"
-#include "needlekit/insertion/post_puncture_parameters.hpp"
-#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/io/indentation_output.hpp"
 #include "needlekit/io/insertion_output.hpp"
 #include "needlekit/io/parameter_json.hpp"
@@ -41,10 +38,9 @@ nlohmann::json complete_insertion_json(const InsertionCase& insertion_case,
   json["complete"] = result.status != insertion::CompleteInsertionStatus::SolverFailed;
   json["notes"] = notes;
   nlohmann::json inputs = indentation_inputs_json(indentation_case);
-  add_parameters_json(insertion::kPostPunctureFitParameters, options.model, inputs);
-  add_parameters_json(insertion::kInsertionCurveParameters, options.curve, inputs);
-  add_parameters_json(insertion::kPostPunctureParameters, options.post_puncture, inputs);
-  add_parameters_json(insertion::kTriangleClassificationParameters, options.classification, inputs);
+  for_each_post_puncture_table(options, [&inputs](const auto& table, const auto& values) {
+    add_parameters_json(table, values, inputs);
+  });
   json["inputs"] = inputs;
   if (const std::optional<insertion::IndentationResult>& fe = result.indentation) {
     json["fe"] = {{"status", insertion::to_string(fe->status)}, {"reason", fe->reason}, {"elements", fe->elements},

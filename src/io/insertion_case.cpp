@@ -4,9 +4,6 @@
 #include <sstream>
 
 #include "needlekit/geometry/surface_mesh.hpp"
-#include "needlekit/insertion/insertion_curve_parameters.hpp"
-#include "needlekit/insertion/post_puncture_parameters.hpp"
-#include "needlekit/insertion/triangle_classification_parameters.hpp"
 #include "needlekit/io/force_curve_csv.hpp"
 #include "needlekit/io/indentation_case.hpp"
 #include "needlekit/io/toml_config.hpp"
@@ -48,11 +45,11 @@ std::string without_tables(std::string_view text, std::initializer_list<std::str
 // the classification's, then the measured curve, in the order the messages have always listed them.
 std::vector<std::string_view> post_puncture_keys() {
   std::vector<std::string_view> keys;
-  const auto add = [&keys](const std::vector<std::string_view>& rows) { keys.insert(keys.end(), rows.begin(), rows.end()); };
-  add(config::keys_of_group(insertion::kPostPunctureFitParameters, "post_puncture"));
-  add(config::keys_of_group(insertion::kInsertionCurveParameters, "post_puncture"));
-  add(config::keys_of_group(insertion::kPostPunctureParameters, "post_puncture"));
-  add(config::keys_of_group(insertion::kTriangleClassificationParameters, "post_puncture"));
+  InsertionSettings settings;
+  for_each_post_puncture_table(settings, [&keys](const auto& table, const auto&) {
+    const std::vector<std::string_view> rows = config::keys_of_group(table, "post_puncture");
+    keys.insert(keys.end(), rows.begin(), rows.end());
+  });
   keys.push_back("measured");
   return keys;
 }
@@ -72,10 +69,9 @@ InsertionSettings parse_insertion_settings(std::string_view text, std::string_vi
                                    config::location(source_name, post_node->source())));
   const Section post(*post_node->as_table(), "post_puncture", source_name, post_puncture_keys());
   InsertionSettings settings;
-  config::read_parameters(post, insertion::kPostPunctureFitParameters, "post_puncture", settings.model);
-  config::read_parameters(post, insertion::kInsertionCurveParameters, "post_puncture", settings.curve);
-  config::read_parameters(post, insertion::kPostPunctureParameters, "post_puncture", settings.post_puncture);
-  config::read_parameters(post, insertion::kTriangleClassificationParameters, "post_puncture", settings.classification);
+  for_each_post_puncture_table(settings, [&post](const auto& table, auto& options) {
+    config::read_parameters(post, table, "post_puncture", options);
+  });
   if (const toml::node* node = post.optional("measured"))
     settings.measured = base_directory / config::text_of(post, *node, "measured", "a CSV file name");
 

@@ -27,10 +27,25 @@
 #include "needlekit/insertion/complete_insertion.hpp"
 #include "needlekit/insertion/force_curve.hpp"
 #include "needlekit/insertion/indentation.hpp"
+#include "needlekit/insertion/insertion_curve_parameters.hpp"
 #include "needlekit/insertion/post_puncture_force.hpp"
+#include "needlekit/insertion/post_puncture_parameters.hpp"
 #include "needlekit/insertion/triangle_classification.hpp"
+#include "needlekit/insertion/triangle_classification_parameters.hpp"
 
 namespace needlekit::io {
+
+// The parameter tables [post_puncture] is read from, in the order its keys are listed: calls visit(table, member)
+// with the matching member of `holder`, an InsertionSettings or an insertion::CompleteInsertionOptions (both name
+// them model, curve, post_puncture, classification). The reader, `insert --help` and the JSON echo of the inputs
+// go through it, so a new table is added here once.
+template <class Holder, class Visit>
+void for_each_post_puncture_table(Holder& holder, Visit&& visit) {
+  visit(insertion::kPostPunctureFitParameters, holder.model);
+  visit(insertion::kInsertionCurveParameters, holder.curve);
+  visit(insertion::kPostPunctureParameters, holder.post_puncture);
+  visit(insertion::kTriangleClassificationParameters, holder.classification);
+}
 
 struct InsertionSettings {
   insertion::PostPunctureFitOptions model;    // K and S (stiffness, scale)
