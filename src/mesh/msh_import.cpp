@@ -18,6 +18,10 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
   if (!std::isfinite(options.unit) || options.unit <= 0) {
     throw InvalidInput(fmt::format("{}: unit = {} m; expected a positive length", name, options.unit));
   }
+  if (!std::isfinite(options.reader_cpu_limit) || options.reader_cpu_limit < 0) {
+    throw InvalidInput(fmt::format("{}: reader_cpu_limit = {} s; expected 0 (none) or a positive time", name,
+                                   options.reader_cpu_limit));
+  }
   std::error_code status;
   if (!std::filesystem::is_regular_file(file, status)) {
     throw IoError(fmt::format("{}: cannot read: no such file", name));
@@ -25,7 +29,8 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
   MshImportResult result;
   TetMesh& mesh = result.mesh;
   detail::GmshError error;
-  detail::MshContents contents = detail::read_msh_isolated(name, options.layers, error, options.keep_reader_process);
+  detail::MshContents contents = detail::read_msh_isolated(
+      name, options.layers, error, {.keep_process = options.keep_reader_process, .cpu_limit = options.reader_cpu_limit});
   detail::throw_if_failed(error);
   mesh.layers = std::move(contents.layers);
   const std::vector<std::vector<std::size_t>>& layer_corners = contents.layer_corners;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <signal.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -128,11 +129,23 @@ MshContents decode(const std::string& bytes, GmshError& error) {
   return contents;
 }
 
-std::string encode_request(const std::string& file, const std::vector<TissueLayer>& layers) {
+std::string encode_request(const std::string& file, const std::vector<TissueLayer>& layers, double cpu_limit) {
   Writer w;
   w.text(file);
   encode_layers(w, layers);
+  w.scalar(cpu_limit);
   return w.bytes();
+}
+
+// The profiling timer (user and system CPU time of the process) set to `seconds`; 0 stops it. Its SIGPROF, left to
+// its default action, ends the child.
+void set_cpu_timer(double seconds) {
+  itimerval timer{};
+  const auto whole = static_cast<long>(seconds);
+  timer.it_value.tv_sec = whole;
+  timer.it_value.tv_usec = static_cast<long>((seconds - static_cast<double>(whole)) * 1e6);
+  if (seconds > 0 && timer.it_value.tv_sec == 0 && timer.it_value.tv_usec == 0) timer.it_value.tv_usec = 1;
+  ::setitimer(ITIMER_PROF, &timer, nullptr);
 }
 
 // Sends every byte; false when the other end is gone (MSG_NOSIGNAL: a dead child is not a SIGPIPE for the parent).
@@ -173,13 +186,16 @@ std::optional<std::string> receive_message(int fd) {
 // The child's loop: one read per request until the parent closes its end.
 [[noreturn]] void serve_reads(int fd, const GmshModule& module) {
   // A crash kills the child with its signal, whatever handlers the program has (a sanitizer's report included).
-  for (int signal_number : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::signal(signal_number, SIG_DFL);
+  for (int signal_number : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGPROF}) ::signal(signal_number, SIG_DFL);
   while (const std::optional<std::string> request = receive_message(fd)) {
     Reader r(*request);
     const std::string file = r.text();
     const std::vector<TissueLayer> layers = decode_layers(r);
+    const auto cpu_limit = r.scalar<double>();
     GmshError error;
+    if (cpu_limit > 0) set_cpu_timer(cpu_limit);
     const MshContents contents = module.read_msh(file, layers, error);
+    if (cpu_limit > 0) set_cpu_timer(0);
     if (!send_message(fd, encode(error, contents))) break;
   }
   // _exit: the child runs no exit handlers of the parent's program (files, Gmsh's globals, sanitizer reports).
@@ -245,13 +261,19 @@ private:
 }  // namespace
 
 MshContents read_msh_isolated(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error,
-                              bool keep_process) {
+                              const ReaderProcessOptions& options) {
   // No other thread may be inside the module (holding Gmsh's lock) when the child is forked, and one read at a time
   // goes to the child.
   const std::lock_guard<std::mutex> lock(gmsh_call_mutex());
   static ReaderProcess process;
   int status = 0;
-  const std::optional<std::string> answer = process.read(file, encode_request(file, layers), status);
+  const std::optional<std::string> answer =
+      process.read(file, encode_request(file, layers, options.cpu_limit), status);
+  if (!answer && WIFSIGNALED(status) && WTERMSIG(status) == SIGPROF) {
+    throw InvalidInput(fmt::format("{}: Gmsh's .msh reader used up its {} s of CPU time on this file: it is malformed "
+                                   "(a count read from garbage) or larger than the reader's CPU time limit allows",
+                                   file, options.cpu_limit));
+  }
   if (!answer && WIFSIGNALED(status)) {
     throw InvalidInput(fmt::format("{}: Gmsh's .msh reader crashed on this file ({}): it is malformed; expected a "
                                    "Gmsh MSH 2.2 or 4.1 mesh whose element nodes are all listed in $Nodes",
@@ -263,7 +285,7 @@ MshContents read_msh_isolated(const std::string& file, const std::vector<TissueL
   }
   // Gmsh is initialised and finalised for each file (GmshSession), a refusal included, so a kept child starts each
   // file from Gmsh's initial state; only a crash needs a new child.
-  if (!keep_process) process.stop();
+  if (!options.keep_process) process.stop();
   return decode(*answer, error);
 }
 

@@ -17,10 +17,15 @@
 
 namespace needlekit::mesh::detail {
 
-// The module's read_msh(file, layers) run in a child process, kept for the next call when keep_process is true.
-// Throws InvalidInput naming the file when the child dies by a signal or fails, std::runtime_error when no child can
-// be started; reports the module's own errors in `error`.
+struct ReaderProcessOptions {
+  bool keep_process = false;  // the child stays for the next call
+  double cpu_limit = 0;       // s of CPU time (user and system) the child may spend on one file; 0: no limit
+};
+
+// The module's read_msh(file, layers) run in a child process. Throws InvalidInput naming the file when the child dies
+// by a signal (its CPU time limit included) or fails, std::runtime_error when no child can be started; reports the
+// module's own errors in `error`.
 MshContents read_msh_isolated(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error,
-                              bool keep_process);
+                              const ReaderProcessOptions& options);
 
 }  // namespace needlekit::mesh::detail

@@ -287,6 +287,25 @@ TEST(MshImport, GmshReaderCrashIsBadInput) {
   EXPECT_EQ(mesh::msh_import(good, o).mesh.tets.size(), 2u);
 }
 
+// reader_cpu_limit: a node block whose count is read as 10^8 (a malformed file of 78 bytes) makes Gmsh's MSH 4.1
+// reader allocate and loop for seconds (14.6 s under ASan); with a limit the file is refused by name once its reader
+// has spent the limit, and a well-formed file still reads.
+TEST(MshImport, ReaderCpuLimitRefusesAFileThatMakesGmshsReaderLoop) {
+  const auto looping = temp_file("looping.msh",
+                                 "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 100000000 1 100000000\n$EndNodes\n");
+  mesh::MshImportOptions limited;
+  limited.reader_cpu_limit = 0.2;
+  EXPECT_THAT([&] { mesh::msh_import(looping, limited); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr(
+                  looping.string() + ": Gmsh's .msh reader used up its 0.2 s of CPU time on this file")));
+  limited.layers = {{"top", 0, 1e5, 0.4}, {"bottom", 0, 1e5, 0.4}};
+  limited.reader_cpu_limit = 30;
+  EXPECT_EQ(mesh::msh_import(temp_file("good.msh", two_tets_msh()), limited).mesh.tets.size(), 2u);
+  limited.reader_cpu_limit = -1;
+  EXPECT_THAT([&] { mesh::msh_import(looping, limited); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("reader_cpu_limit = -1 s; expected 0 (none)")));
+}
+
 // keep_reader_process: the child that runs Gmsh's reader serves several files, and a file that crashes Gmsh's reader
 // (tests/data/fuzz-regressions/gmsh_msh) is that file's error only: the next file gets a fresh child and is read.
 TEST(MshImport, KeptReaderProcessIsReplacedAfterACrash) {

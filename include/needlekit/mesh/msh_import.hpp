@@ -23,6 +23,9 @@ struct MshImportOptions {
                                      // instead of being started for each file: for many imports in a row (fuzzing,
                                      // batch scripts). A child that crashed is replaced. It holds a copy-on-write
                                      // image of the program as it was when it started.
+  double reader_cpu_limit = 0;       // s of CPU time the reader's child may spend on one file, >= 0 (0: no limit);
+                                     // a file that needs more is refused by name (InvalidInput). For fuzzing: some
+                                     // malformed files make Gmsh's reader loop over a count read from garbage
 };
 
 struct MshImportResult {
