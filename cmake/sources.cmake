@@ -167,6 +167,7 @@ set(NEEDLEKIT_GMSH_SOURCES
 set(NEEDLEKIT_PETSC_SOURCES
   src/fem/petsc/parallel_session.cpp
   src/fem/petsc/petsc_linear_solve.cpp
+  src/fem/petsc/petsc_patch_operator.cpp
 )
 
 set(NEEDLEKIT_SERIAL_SESSION_SOURCES

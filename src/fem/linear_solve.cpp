@@ -16,7 +16,10 @@ const std::vector<char>& LinearSolve::assembled_elements() const {
 
 TangentLayout tangent_layout(SolverBackend backend, LinearSolver solver, bool nodal_average) {
   TangentLayout layout;
-  if (backend == SolverBackend::Petsc) return layout;
+  if (backend == SolverBackend::Petsc) {  // petsc_patch_operator.hpp: K = A + G D G^T as a shell, GAMG on P
+    layout.patch_term_in_product = layout.one_ring_preconditioner = nodal_average;
+    return layout;
+  }
   layout.patch_term_in_product = nodal_average && solver == LinearSolver::TwoGrid;
   layout.one_ring_preconditioner = nodal_average && solver == LinearSolver::CholeskyCg;
   return layout;

@@ -44,7 +44,7 @@ public:
 };
 
 // How the tangent must store the nodal average's patch term for `solver` (tangent_matrix.hpp); the PETSc backend
-// takes K itself, patch term included.
+// leaves it to the product and takes the one-ring P of the element part and bulk term for GAMG.
 TangentLayout tangent_layout(SolverBackend backend, LinearSolver solver, bool nodal_average);
 
 // The strategy of options.backend and `solver` (resolved: not Automatic; the built-in backend's) on `matrix`, laid

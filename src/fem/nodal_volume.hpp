@@ -89,6 +89,11 @@ public:
   // Node patches as groups for the sparse pattern: patch_pointers (nodes + 1) into patch_nodes (sorted).
   const std::vector<int>& patch_pointers() const { return patch_pointers_; }
   const std::vector<int>& patch_nodes() const { return patch_nodes_; }
+  // For the entry k of node b's patch (k in [patch_pointers()[b], patch_pointers()[b + 1]), a = patch_nodes()[k]):
+  // g_a's part at node b (m^3) at the last update with tangent, that is G's three rows of node b in node a's column.
+  const Eigen::Vector3d& gradient_at_patch_entry(size_t k) const {
+    return patch_gradient_[static_cast<size_t>(patch_transpose_[k])];
+  }
 
 private:
   const FunctionSpace& space_;

@@ -23,7 +23,15 @@ TangentMatrix::TangentMatrix(const TangentInputs& in, const TangentLayout& layou
                        " entries, more than this solver indexes");
   product_ = std::make_unique<SymmetricProduct>(pattern_, arena_);
   fill_element_slots(in);
-  if (two_ring && layout.one_ring_preconditioner) map_preconditioner_entries(in);
+  if (!in.nodal || !layout.one_ring_preconditioner) return;
+  if (two_ring) {
+    map_preconditioner_entries(in);
+  } else {  // the patch term in the product: P on K's own one-ring pattern
+    pre_pattern_ = pattern_;
+    pre_values_.assign(values_.size(), 0.0);
+    full_to_pre_.resize(values_.size());
+    for (size_t k = 0; k < full_to_pre_.size(); ++k) full_to_pre_[k] = static_cast<int32_t>(k);
+  }
 }
 
 void TangentMatrix::fill_element_slots(const TangentInputs& in) {

@@ -9,6 +9,8 @@
 //  - a one-ring preconditioner matrix P next to the two-ring K (the split preconditioner of
 //    split_preconditioned_solve.hpp): capture_preconditioner() copies K's one-ring entries as assembled so far into
 //    P, and the assembly then adds a per-element bulk term through preconditioner_slot().
+// The PETSc backend takes both: the patch term in the product and P, on the one-ring pattern of A, for GAMG
+// (petsc/petsc_patch_operator.hpp).
 #pragma once
 #include <tbb/task_arena.h>
 
@@ -28,7 +30,7 @@ namespace needlekit::fem::detail {
 // How K holds the nodal average's patch term (see above); both false without a nodal average.
 struct TangentLayout {
   bool patch_term_in_product = false;  // K stores the one-ring part A; the product adds G D G^T x
-  bool one_ring_preconditioner = false;  // K stores the two-ring tangent, P its one-ring bound
+  bool one_ring_preconditioner = false;  // P: the one-ring bound of K (with the patch term stored: K two-ring)
 };
 
 class TangentMatrix {

@@ -48,7 +48,16 @@ PetscLinearSolve::PetscLinearSolve(TangentMatrix& matrix, const TangentInputs& i
   partition_elements(inputs);
   collect_owned_rows();
   collect_sent_entries(inputs);
-  create_matrix();
+  k_ = create_matrix();
+  if (matrix_.splits_preconditioner()) {  // the nodal average's patch term in the product, GAMG on P
+    if (matrix_.preconditioner_values().size() != matrix_.values().size())
+      throw std::logic_error("PETSc backend: P's pattern must be the element part's (tangent_layout)");
+    p_ = create_matrix();
+    patch_ = std::make_unique<PetscPatchOperator>(
+        *inputs.nodal, inputs.free_index,
+        PetscPatchOperator::Numbering{node_order_, row_of_dof_, first_row_, static_cast<PetscInt>(owned_rows_.size())},
+        k_);
+  }
   set_near_null_space(inputs);
   create_solver();
 }
@@ -61,6 +70,8 @@ PetscLinearSolve::~PetscLinearSolve() {
   VecDestroy(&diagonal_);
   VecDestroy(&solution_);
   VecDestroy(&rhs_);
+  patch_.reset();
+  MatDestroy(&p_);
   MatDestroy(&k_);
 }
 
@@ -160,24 +171,28 @@ void PetscLinearSolve::collect_sent_entries(const TangentInputs& in) {
   sent_values_.assign(sent_entries_.size(), 0.0);
 }
 
-void PetscLinearSolve::create_matrix() {
+Mat PetscLinearSolve::create_matrix() {
   const PetscInt owned = static_cast<PetscInt>(owned_rows_.size());
   std::vector<PetscInt> diagonal_block(owned_rows_.size(), 0), off_diagonal_block(owned_rows_.size(), 0);
   for (size_t l = 0; l < owned_rows_.size(); ++l)
     for (PetscInt column : owned_rows_[l].columns)
       ++(column >= first_row_ && column < first_row_ + owned ? diagonal_block[l] : off_diagonal_block[l]);
-  check(MatCreate(PETSC_COMM_WORLD, &k_), "MatCreate");
-  check(MatSetSizes(k_, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
-  check(MatSetType(k_, MATAIJ), "MatSetType");
-  check(MatSetBlockSize(k_, 3), "MatSetBlockSize");
-  check(MatSeqAIJSetPreallocation(k_, 0, diagonal_block.data()), "MatSeqAIJSetPreallocation");
-  check(MatMPIAIJSetPreallocation(k_, 0, diagonal_block.data(), 0, off_diagonal_block.data()),
+  Mat m = nullptr;
+  check(MatCreate(PETSC_COMM_WORLD, &m), "MatCreate");
+  check(MatSetSizes(m, owned, owned, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(m, MATAIJ), "MatSetType");
+  check(MatSetBlockSize(m, 3), "MatSetBlockSize");
+  check(MatSeqAIJSetPreallocation(m, 0, diagonal_block.data()), "MatSeqAIJSetPreallocation");
+  check(MatMPIAIJSetPreallocation(m, 0, diagonal_block.data(), 0, off_diagonal_block.data()),
         "MatMPIAIJSetPreallocation");
-  check(MatSetOption(k_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-  check(MatSetOption(k_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
-  check(MatCreateVecs(k_, &solution_, &rhs_), "MatCreateVecs");
-  check(VecDuplicate(solution_, &diagonal_), "VecDuplicate");
-  check(VecScatterCreateToAll(solution_, &gather_, &gathered_), "VecScatterCreateToAll");
+  check(MatSetOption(m, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  check(MatSetOption(m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+  if (solution_ == nullptr) {
+    check(MatCreateVecs(m, &solution_, &rhs_), "MatCreateVecs");
+    check(VecDuplicate(solution_, &diagonal_), "VecDuplicate");
+    check(VecScatterCreateToAll(solution_, &gather_, &gathered_), "VecScatterCreateToAll");
+  }
+  return m;
 }
 
 // The six rigid-body modes from the reference coordinates of the owned nodes (GAMG's near-null space for elasticity).
@@ -193,7 +208,7 @@ void PetscLinearSolve::set_near_null_space(const TangentInputs& in) {
   check(VecRestoreArray(coordinates, &x), "VecRestoreArray");
   MatNullSpace rigid = nullptr;
   check(MatNullSpaceCreateRigidBody(coordinates, &rigid), "MatNullSpaceCreateRigidBody");
-  check(MatSetNearNullSpace(k_, rigid), "MatSetNearNullSpace");
+  check(MatSetNearNullSpace(preconditioner_matrix(), rigid), "MatSetNearNullSpace");
   check(MatNullSpaceDestroy(&rigid), "MatNullSpaceDestroy");
   check(VecDestroy(&coordinates), "VecDestroy");
 }
@@ -217,11 +232,18 @@ void PetscLinearSolve::element_part_assembled() {
     sent_values_[i] = values[static_cast<size_t>(sent_entries_[i].position)];
 }
 
-// The owned rows of this rank's values (its elements' part, and the contact and patch terms every rank has) and its
-// elements' entries in other ranks' rows, added to the zeroed matrix; MatAssemblyEnd sums them at their owners.
 void PetscLinearSolve::add_values() {
-  check(MatZeroEntries(k_), "MatZeroEntries");
-  const std::vector<double>& values = matrix_.values();
+  add_values(k_, matrix_.values());
+  if (!patch_) return;
+  add_values(p_, matrix_.preconditioner_values());  // the same pattern (checked in the constructor)
+  patch_->update();
+}
+
+// The owned rows of this rank's values (its elements' part, and the terms every rank has: contact, the patch term
+// when K stores it, P's bulk term) and its elements' entries in other ranks' rows, added to the zeroed matrix;
+// MatAssemblyEnd sums them at their owners.
+void PetscLinearSolve::add_values(Mat m, const std::vector<double>& values) {
+  check(MatZeroEntries(m), "MatZeroEntries");
   std::vector<PetscScalar> row_values;
   for (size_t l = 0; l < owned_rows_.size(); ++l) {
     const OwnedRow& row = owned_rows_[l];
@@ -229,15 +251,15 @@ void PetscLinearSolve::add_values() {
     for (size_t j = 0; j < row.columns.size(); ++j)
       row_values[j] = row.positions[j] < 0 ? 1.0 : values[static_cast<size_t>(row.positions[j])];
     const PetscInt global = first_row_ + static_cast<PetscInt>(l);
-    check(MatSetValues(k_, 1, &global, static_cast<PetscInt>(row.columns.size()), row.columns.data(),
+    check(MatSetValues(m, 1, &global, static_cast<PetscInt>(row.columns.size()), row.columns.data(),
                        row_values.data(), ADD_VALUES),
           "MatSetValues");
   }
   for (size_t i = 0; i < sent_entries_.size(); ++i)
-    check(MatSetValues(k_, 1, &sent_entries_[i].row, 1, &sent_entries_[i].column, &sent_values_[i], ADD_VALUES),
+    check(MatSetValues(m, 1, &sent_entries_[i].row, 1, &sent_entries_[i].column, &sent_values_[i], ADD_VALUES),
           "MatSetValues");
-  check(MatAssemblyBegin(k_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(k_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
 
 // Rank 0 sums and sends the sums to every rank: all ranks get the same bits (an all-reduce may add in a different
@@ -265,7 +287,7 @@ bool PetscLinearSolve::krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd&
   check(VecGetArray(rhs_, &b), "VecGetArray");
   for (size_t l = 0; l < owned_rows_.size(); ++l) b[l] = owned_rows_[l].free >= 0 ? rhs[owned_rows_[l].free] : 0.0;
   check(VecRestoreArray(rhs_, &b), "VecRestoreArray");
-  check(KSPSetOperators(ksp_, k_, k_), "KSPSetOperators");
+  check(KSPSetOperators(ksp_, patch_ ? patch_->operator_matrix() : k_, preconditioner_matrix()), "KSPSetOperators");
   if (!rtol_from_options_)
     check(KSPSetTolerances(ksp_, tolerance, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT), "KSPSetTolerances");
   check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve");
@@ -316,21 +338,24 @@ bool PetscLinearSolve::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, It
   return shifted_solve(rhs, du, rec, tolerance);
 }
 
-// K not positive definite (CG met a direction of non-positive curvature): K's diagonal is raised by the built-in
-// solves' growing fractions (conjugate_gradients.hpp) until CG succeeds: a shifted Newton step is still a descent
-// direction. The preconditioner built for a shifted K is not kept.
+// K not positive definite (CG met a direction of non-positive curvature): K's diagonal (and P's, when GAMG runs on
+// P) is raised by the built-in solves' growing fractions (conjugate_gradients.hpp) until CG succeeds: a shifted
+// Newton step is still a descent direction. The preconditioner built for a shifted K is not kept.
 bool PetscLinearSolve::shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
                                      double tolerance) {
-  check(MatGetDiagonal(k_, diagonal_), "MatGetDiagonal");
+  const Mat pre = preconditioner_matrix();
+  check(MatGetDiagonal(pre, diagonal_), "MatGetDiagonal");
   Vec shifted = nullptr;
   check(VecDuplicate(diagonal_, &shifted), "VecDuplicate");
   bool ok = false;
   for (size_t shift = 0; shift < kDiagonalShifts.size() && !ok; ++shift) {
     check(VecCopy(diagonal_, shifted), "VecCopy");
     check(VecScale(shifted, 1 + kDiagonalShifts[shift]), "VecScale");
-    check(MatDiagonalSet(k_, shifted, INSERT_VALUES), "MatDiagonalSet");
+    check(MatDiagonalSet(pre, shifted, INSERT_VALUES), "MatDiagonalSet");
+    if (patch_) patch_->set_shift(kDiagonalShifts[shift]);
     ok = krylov_solve(rhs, du, rec, tolerance);
   }
+  if (patch_) patch_->set_shift(0);
   check(VecDestroy(&shifted), "VecDestroy");
   return ok;
 }

@@ -8,20 +8,25 @@
 // aggregates nodes and the rigid-body modes are per node), the nodes in Morton order and cut into contiguous ranges
 // of equal size, one per rank; a prescribed dof is an identity row and column, so that the free rows are K's. It is
 // a MatMPIAIJ preallocated exactly from K's pattern. Each rank adds (ADD_VALUES) its elements' entries of the rows it
-// owns together with the terms every rank computes alike (contact, the nodal average's patch term: added once, by
-// the owner of the row), and its elements' entries of other ranks' rows, which PETSc sends to their owners in
-// MatAssemblyEnd. PETSc solves, and the solution is gathered to every rank (VecScatterCreateToAll). Options: KSPCG,
+// owns together with the terms every rank computes alike (contact: added once, by the owner of the row), and its
+// elements' entries of other ranks' rows, which PETSc sends to their owners in MatAssemblyEnd. With the nodal
+// average, that matrix is the one-ring element part A, a second one P = A + the element bulk term (the built-in
+// split preconditioner's bound of K) is GAMG's, and CG runs on K = A + G D G^T applied as a shell
+// (petsc_patch_operator.hpp). PETSc solves, and the solution is gathered to every rank (VecScatterCreateToAll).
+// Options: KSPCG,
 // PCGAMG, relative tolerance the Newton forcing term on the unpreconditioned residual (the built-in solves' test);
 // -ksp_* / -pc_* on the command line override them (KSPSetFromOptions).
 #pragma once
 #include <petscksp.h>
 
 #include <Eigen/Core>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "../linear_solve.hpp"
+#include "petsc_patch_operator.hpp"
 
 namespace needlekit::fem::detail {
 
@@ -58,10 +63,12 @@ private:
   void partition_elements(const TangentInputs& inputs);
   void collect_owned_rows();
   void collect_sent_entries(const TangentInputs& inputs);
-  void create_matrix();
+  Mat create_matrix();  // preallocated for the owned rows' pattern (and the solver's vectors, on the first call)
+  Mat preconditioner_matrix() const { return patch_ ? p_ : k_; }
   void set_near_null_space(const TangentInputs& inputs);
   void create_solver();
-  void add_values();  // this rank's part of the tangent's current values into k_
+  void add_values();  // this rank's part of the tangent's current values into k_ (and p_, G and D)
+  void add_values(Mat m, const std::vector<double>& values);
   bool krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
   void keep_preconditioner(bool keep);  // KSPSetReusePreconditioner, unless -ksp_reuse_preconditioner is given
   bool shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
@@ -78,7 +85,9 @@ private:
   std::vector<char> assembled_;          // per position of the assembly order: whether this rank assembles it
   std::vector<SentEntry> sent_entries_;  // this rank's element entries in rows of other ranks
   std::vector<double> sent_values_;      // their element part, kept by element_part_assembled
-  Mat k_ = nullptr;
+  Mat k_ = nullptr;  // K, or with the nodal average's patch term in the product its element part A
+  Mat p_ = nullptr;  // with the patch term in the product: P = A + the element bulk term, GAMG's matrix
+  std::unique_ptr<PetscPatchOperator> patch_;  // with the patch term in the product: K = A + G D G^T as a shell
   Vec rhs_ = nullptr, solution_ = nullptr, gathered_ = nullptr, diagonal_ = nullptr;
   VecScatter gather_ = nullptr;
   KSP ksp_ = nullptr;
