@@ -1,5 +1,6 @@
 #include "petsc_patch_operator.hpp"
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
@@ -49,12 +50,8 @@ PetscPatchOperator::PetscPatchOperator(const NodalVolumeAverage& nodal, const st
 
 PetscPatchOperator::~PetscPatchOperator() {
   if (!PetscInitializeCalled || PetscFinalizeCalled) return;  // PETSc already gone with the process's session
-  MatDestroy(&shell_);
-  MatDestroy(&gradients_);
-  VecDestroy(&curvature_);
-  VecDestroy(&node_values_);
-  VecDestroy(&shift_);
-  VecDestroy(&shifted_);
+  for (Mat* m : {&shell_, &gradients_}) MatDestroy(m);
+  for (Vec* v : {&curvature_, &node_values_, &shift_, &shifted_}) VecDestroy(v);
 }
 
 PetscInt PetscPatchOperator::owned_row_node(PetscInt local) const {
