@@ -142,6 +142,13 @@ void PetscLinearSolve::collect_owned_rows() {
     }
   for (size_t l = 0; l < owned_rows_.size(); ++l)
     if (owned_rows_[l].free < 0) add(first_row_ + static_cast<PetscInt>(l), first_row_ + static_cast<PetscInt>(l), -1);
+  std::vector<std::pair<PetscInt, int64_t>> sorted;  // each row in ascending column (write_owned_rows needs it)
+  for (OwnedRow& row : owned_rows_) {
+    sorted.clear();
+    for (size_t j = 0; j < row.columns.size(); ++j) sorted.emplace_back(row.columns[j], row.positions[j]);
+    std::sort(sorted.begin(), sorted.end());
+    for (size_t j = 0; j < sorted.size(); ++j) std::tie(row.columns[j], row.positions[j]) = sorted[j];
+  }
 }
 
 // The entries of this rank's elements that fall in rows of other ranks (at the partition's boundary): per element,
@@ -233,16 +240,32 @@ void PetscLinearSolve::element_part_assembled() {
 }
 
 void PetscLinearSolve::add_values() {
-  add_values(k_, matrix_.values());
+  add_values(k_, matrix_.values(), k_filled_);
   if (!patch_) return;
-  add_values(p_, matrix_.preconditioner_values());  // the same pattern (checked in the constructor)
+  add_values(p_, matrix_.preconditioner_values(), p_filled_);  // the same pattern (checked in the constructor)
   patch_->update();
 }
 
 // The owned rows of this rank's values (its elements' part, and the terms every rank has: contact, the patch term
-// when K stores it, P's bulk term) and its elements' entries in other ranks' rows, added to the zeroed matrix;
-// MatAssemblyEnd sums them at their owners.
-void PetscLinearSolve::add_values(Mat m, const std::vector<double>& values) {
+// when K stores it, P's bulk term) and its elements' entries in other ranks' rows, added to the matrix (written
+// straight into its arrays once its structure is set: `filled`); MatAssemblyEnd sums them at their owners.
+void PetscLinearSolve::add_values(Mat m, const std::vector<double>& values, bool& filled) {
+  if (filled) {
+    write_owned_rows(m, values);
+  } else {
+    set_owned_rows(m, values);
+    filled = true;
+  }
+  for (size_t i = 0; i < sent_entries_.size(); ++i)
+    check(MatSetValues(m, 1, &sent_entries_[i].row, 1, &sent_entries_[i].column, &sent_values_[i], ADD_VALUES),
+          "MatSetValues");
+  check(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
+// The first time: row by row through MatSetValues, which sets the matrix's structure (exactly the owned rows'
+// entries: the preallocation).
+void PetscLinearSolve::set_owned_rows(Mat m, const std::vector<double>& values) {
   check(MatZeroEntries(m), "MatZeroEntries");
   std::vector<PetscScalar> row_values;
   for (size_t l = 0; l < owned_rows_.size(); ++l) {
@@ -255,11 +278,40 @@ void PetscLinearSolve::add_values(Mat m, const std::vector<double>& values) {
                        row_values.data(), ADD_VALUES),
           "MatSetValues");
   }
-  for (size_t i = 0; i < sent_entries_.size(); ++i)
-    check(MatSetValues(m, 1, &sent_entries_[i].row, 1, &sent_entries_[i].column, &sent_values_[i], ADD_VALUES),
-          "MatSetValues");
-  check(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+}
+
+// Afterwards straight into the value arrays, without MatSetValues' search per entry (it was most of the assembly's
+// overhead at 1.14 M tetrahedra, docs/scaling.md): this rank's rows are a diagonal block (the columns it owns) and
+// an off-diagonal block (the others), two SeqAIJ matrices whose rows PETSc keeps in ascending column (the
+// off-diagonal block's columns numbered in ascending global order), so an owned row's entries, sorted by column
+// (collect_owned_rows), fill the two blocks' rows front to back. The blocks' sizes are checked against the rows.
+// The assembly that follows (add_values) marks the matrix changed for the preconditioner's set-up.
+void PetscLinearSolve::write_owned_rows(Mat m, const std::vector<double>& values) {
+  PetscBool sequential = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m), MATSEQAIJ, &sequential), "PetscObjectTypeCompare");
+  Mat diagonal = m, off_diagonal = nullptr;
+  if (!sequential) check(MatMPIAIJGetSeqAIJ(m, &diagonal, &off_diagonal, nullptr), "MatMPIAIJGetSeqAIJ");
+  PetscScalar *d = nullptr, *o = nullptr;
+  check(MatSeqAIJGetArrayWrite(diagonal, &d), "MatSeqAIJGetArrayWrite");
+  if (off_diagonal) check(MatSeqAIJGetArrayWrite(off_diagonal, &o), "MatSeqAIJGetArrayWrite");
+  const PetscInt owned_end = first_row_ + static_cast<PetscInt>(owned_rows_.size());
+  PetscInt in_diagonal = 0, in_off_diagonal = 0;
+  for (const OwnedRow& row : owned_rows_)
+    for (size_t j = 0; j < row.columns.size(); ++j) {
+      const double value = row.positions[j] < 0 ? 1.0 : values[static_cast<size_t>(row.positions[j])];
+      if (row.columns[j] >= first_row_ && row.columns[j] < owned_end)
+        d[in_diagonal++] = value;
+      else
+        o[in_off_diagonal++] = value;
+    }
+  check(MatSeqAIJRestoreArrayWrite(diagonal, &d), "MatSeqAIJRestoreArrayWrite");
+  if (off_diagonal) check(MatSeqAIJRestoreArrayWrite(off_diagonal, &o), "MatSeqAIJRestoreArrayWrite");
+  MatInfo diagonal_info, off_diagonal_info{};
+  check(MatGetInfo(diagonal, MAT_LOCAL, &diagonal_info), "MatGetInfo");
+  if (off_diagonal) check(MatGetInfo(off_diagonal, MAT_LOCAL, &off_diagonal_info), "MatGetInfo");
+  if (static_cast<PetscInt>(diagonal_info.nz_used) != in_diagonal ||
+      static_cast<PetscInt>(off_diagonal_info.nz_used) != in_off_diagonal)
+    throw std::logic_error("PETSc backend: the matrix's blocks do not hold the owned rows' entries");
 }
 
 // Rank 0 sums and sends the sums to every rank: all ranks get the same bits (an all-reduce may add in a different

@@ -68,7 +68,9 @@ private:
   void set_near_null_space(const TangentInputs& inputs);
   void create_solver();
   void add_values();  // this rank's part of the tangent's current values into k_ (and p_, G and D)
-  void add_values(Mat m, const std::vector<double>& values);
+  void add_values(Mat m, const std::vector<double>& values, bool& filled);
+  void set_owned_rows(Mat m, const std::vector<double>& values);
+  void write_owned_rows(Mat m, const std::vector<double>& values);
   bool krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
   void keep_preconditioner(bool keep);  // KSPSetReusePreconditioner, unless -ksp_reuse_preconditioner is given
   bool shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
@@ -93,6 +95,7 @@ private:
   KSP ksp_ = nullptr;
   bool rtol_from_options_ = false;  // -ksp_rtol given: it replaces the Newton forcing term
   bool reuse_from_options_ = false;  // -ksp_reuse_preconditioner given: it replaces the refresh rule below
+  bool k_filled_ = false, p_filled_ = false;  // the matrix's structure is set (add_values)
   bool have_preconditioner_ = false;  // the preconditioner was set up for an unshifted K and may be kept
   int last_iterations_ = 0;           // Krylov iterations of the last solve (what keeping the hierarchy looks at)
   KSPConvergedReason last_reason_ = KSP_CONVERGED_ITERATING;
