@@ -374,25 +374,33 @@ bool PetscLinearSolve::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, It
   const double tolerance = std::max(forcing, options_.linear_tolerance);
   rec.linear_iterations = 0;
   add_values();
-  const bool keep = have_preconditioner_ && last_iterations_ <= options_.two_grid_refresh_iterations;
-  rec.factorized = !keep;
-  keep_preconditioner(keep);
-  bool ok = krylov_solve(rhs, du, rec, tolerance);
-  if (!ok && keep) {
-    rec.factorized = true;
-    keep_preconditioner(false);
-    ok = krylov_solve(rhs, du, rec, tolerance);
+  if (shift_hint_ <= 0) {  // the last solve needed no shift, or the smallest: K is likely positive definite
+    const bool keep = have_preconditioner_ && last_iterations_ <= options_.two_grid_refresh_iterations;
+    rec.factorized = !keep;
+    keep_preconditioner(keep);
+    bool ok = krylov_solve(rhs, du, rec, tolerance);
+    if (!ok && keep) {
+      rec.factorized = true;
+      keep_preconditioner(false);
+      ok = krylov_solve(rhs, du, rec, tolerance);
+    }
+    have_preconditioner_ = ok;
+    if (ok) {
+      shift_hint_ = -1;
+      return true;
+    }
   }
-  have_preconditioner_ = ok;
-  if (ok) return true;
+  have_preconditioner_ = false;
   rec.factorized = true;
   keep_preconditioner(false);
   return shifted_solve(rhs, du, rec, tolerance);
 }
 
-// K not positive definite (CG met a direction of non-positive curvature): K's diagonal (and P's, when GAMG runs on
-// P) is raised by the built-in solves' growing fractions (conjugate_gradients.hpp) until CG succeeds: a shifted
-// Newton step is still a descent direction. The preconditioner built for a shifted K is not kept.
+// K not positive definite (CG met a direction of non-positive curvature, or did not converge): K's diagonal (and
+// P's, when GAMG runs on P) is raised by the built-in solves' growing fractions (conjugate_gradients.hpp) until CG
+// succeeds: a shifted Newton step is still a descent direction. As in the built-in two-grid solve, the next solve
+// after a shift larger than the smallest starts one shift below the one that worked (shift_hint_), without the
+// unshifted tries. The preconditioner built for a shifted K is not kept.
 bool PetscLinearSolve::shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
                                      double tolerance) {
   const Mat pre = preconditioner_matrix();
@@ -400,7 +408,8 @@ bool PetscLinearSolve::shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd
   Vec shifted = nullptr;
   check(VecDuplicate(diagonal_, &shifted), "VecDuplicate");
   bool ok = false;
-  for (size_t shift = 0; shift < kDiagonalShifts.size() && !ok; ++shift) {
+  size_t shift = static_cast<size_t>(std::max(shift_hint_ - 1, 0));
+  for (; shift < kDiagonalShifts.size() && !ok; ++shift) {
     check(VecCopy(diagonal_, shifted), "VecCopy");
     check(VecScale(shifted, 1 + kDiagonalShifts[shift]), "VecScale");
     check(MatDiagonalSet(pre, shifted, INSERT_VALUES), "MatDiagonalSet");
@@ -409,6 +418,7 @@ bool PetscLinearSolve::shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd
   }
   if (patch_) patch_->set_shift(0);
   check(VecDestroy(&shifted), "VecDestroy");
+  shift_hint_ = ok ? static_cast<int>(shift) - 1 : -1;
   return ok;
 }
 

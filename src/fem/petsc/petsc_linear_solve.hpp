@@ -75,7 +75,10 @@ private:
   void keep_preconditioner(bool keep);  // KSPSetReusePreconditioner, unless -ksp_reuse_preconditioner is given
   bool shifted_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
 
-  static constexpr PetscInt kMaxIterations = 1000;
+  // CG iterations before a solve counts as failed (and K's diagonal is shifted): the built-in two-grid solve's
+  // budget. At 1000, a tangent that was not positive definite cost minutes per try on a 627k-tetrahedron quarter
+  // array before its shift.
+  static constexpr PetscInt kMaxIterations = 200;
 
   TangentMatrix& matrix_;
   const SolverOptions& options_;
@@ -97,6 +100,7 @@ private:
   bool reuse_from_options_ = false;  // -ksp_reuse_preconditioner given: it replaces the refresh rule below
   bool k_filled_ = false, p_filled_ = false;  // the matrix's structure is set (add_values)
   bool have_preconditioner_ = false;  // the preconditioner was set up for an unshifted K and may be kept
+  int shift_hint_ = -1;     // index into kDiagonalShifts of the last shifted solve's shift, -1: none was needed
   int last_iterations_ = 0;           // Krylov iterations of the last solve (what keeping the hierarchy looks at)
   KSPConvergedReason last_reason_ = KSP_CONVERGED_ITERATING;
 };
