@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <unordered_map>
 #include <fmt/format.h>
 
 #include "gmsh_module.hpp"
@@ -12,6 +14,36 @@
 #include "needlekit/mesh/mesh_validation.hpp"
 
 namespace needlekit::mesh {
+namespace {
+
+// Node tag -> its first position in Gmsh's node list. Tags are usually 1..n, and then a table indexed by tag; a tag
+// far beyond the node count (a sparse numbering, or a malformed one: "-3050" read as 2^64 - 3050, which asked for a
+// table larger than memory; found by fuzz_gmsh_msh) goes through a hash map instead.
+class NodePositions {
+public:
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  explicit NodePositions(const std::vector<std::size_t>& tags) {
+    const std::size_t max_tag = tags.empty() ? 0 : *std::max_element(tags.begin(), tags.end());
+    if (max_tag <= 2 * tags.size() + 1024) {
+      table_.assign(max_tag + 1, kNone);
+      for (std::size_t k = tags.size(); k-- > 0;) table_[tags[k]] = k;
+    } else {
+      map_.reserve(tags.size());
+      for (std::size_t k = 0; k < tags.size(); ++k) map_.emplace(tags[k], k);
+    }
+  }
+  std::size_t find(std::size_t tag) const {
+    if (map_.empty()) return tag < table_.size() ? table_[tag] : kNone;
+    const auto it = map_.find(tag);
+    return it == map_.end() ? kNone : it->second;
+  }
+
+private:
+  std::vector<std::size_t> table_;
+  std::unordered_map<std::size_t, std::size_t> map_;
+};
+
+}  // namespace
 
 MshImportResult msh_import(const std::filesystem::path& file, const MshImportOptions& options) {
   const std::string name = file.string();
@@ -37,28 +69,25 @@ MshImportResult msh_import(const std::filesystem::path& file, const MshImportOpt
   const std::vector<std::size_t>& node_tags = contents.node_tags;
   const std::vector<double>& coords = contents.coords;
   // Compact node numbering over the nodes the tetrahedra use, in Gmsh's node order.
-  std::size_t max_tag = 0;
-  for (std::size_t tag : node_tags) max_tag = std::max(max_tag, tag);
-  std::vector<int> index_of_tag(max_tag + 1, -1);
-  for (const auto& c : layer_corners) {
-    for (std::size_t tag : c) {
-      if (tag > max_tag) throw IoError(fmt::format("{}: element node {} has no coordinates", name, tag));
-      index_of_tag[tag] = -2;  // used
-    }
-  }
+  const NodePositions positions(node_tags);
+  std::vector<int> index_of_position(node_tags.size(), -1);  // -2: used by a tetrahedron, not yet numbered
+  const auto position_of = [&](std::size_t tag) {
+    const std::size_t k = positions.find(tag);
+    if (k == NodePositions::kNone) throw IoError(fmt::format("{}: element node {} has no coordinates", name, tag));
+    return k;
+  };
+  for (const auto& c : layer_corners)
+    for (std::size_t tag : c) index_of_position[position_of(tag)] = -2;
   for (std::size_t k = 0; k < node_tags.size(); ++k) {
-    int& index = index_of_tag[node_tags[k]];
-    if (index != -2) continue;
-    index = static_cast<int>(mesh.nodes.size());
+    if (index_of_position[k] != -2) continue;
+    index_of_position[k] = static_cast<int>(mesh.nodes.size());
     mesh.nodes.emplace_back(Eigen::Vector3d(coords[3 * k], coords[3 * k + 1], coords[3 * k + 2]) * options.unit);
   }
   for (std::size_t l = 0; l < layer_corners.size(); ++l) {
     const auto& c = layer_corners[l];
-    for (std::size_t tag : c) {
-      if (index_of_tag[tag] < 0) throw IoError(fmt::format("{}: element node {} has no coordinates", name, tag));
-    }
+    const auto index = [&](std::size_t tag) { return index_of_position[position_of(tag)]; };
     for (std::size_t e = 0; e + 3 < c.size(); e += 4) {
-      mesh.tets.push_back({index_of_tag[c[e]], index_of_tag[c[e + 1]], index_of_tag[c[e + 2]], index_of_tag[c[e + 3]]});
+      mesh.tets.push_back({index(c[e]), index(c[e + 1]), index(c[e + 2]), index(c[e + 3])});
       mesh.tet_layer.push_back(static_cast<int>(l));
     }
   }

@@ -287,6 +287,33 @@ TEST(MshImport, GmshReaderCrashIsBadInput) {
   EXPECT_EQ(mesh::msh_import(good, o).mesh.tets.size(), 2u);
 }
 
+// Node tags far beyond the node count: a sparse numbering reads as the dense one, and a tag written "-3050" (read by
+// Gmsh as 2^64 - 3050; it asked for a table of 2^64 entries and ended the fuzzer with std::length_error, found by
+// fuzz_gmsh_msh: tests/data/fuzz-regressions/gmsh_msh/fuzz_gmsh_negative_node_tag_length_error.msh) is looked up
+// too, and the file is refused by name for what its tetrahedron then is.
+TEST(MshImport, SparseAndHugeNodeTagsAreLookedUpNotTabulated) {
+  const std::vector<mesh::TissueLayer> layers = {{"top", 0, 1e5, 0.4}, {"bottom", 0, 1e5, 0.4}};
+  mesh::MshImportOptions o;
+  o.layers = layers;
+  const mesh::MshImportResult dense = mesh::msh_import(temp_file("dense.msh", two_tets_msh()), o);
+  std::string sparse_text = two_tets_msh("1000000001 1000000003 1000000002 4000000000000");
+  for (const auto& [from, to] : {std::pair{"\n1 0 0 0\n2 100", "\n1000000001 0 0 0\n1000000002 100"},
+                                 std::pair{"\n3 0 100 0\n", "\n1000000003 0 100 0\n"},
+                                 std::pair{"\n5 0 0 -100\n", "\n4000000000000 0 0 -100\n"},
+                                 std::pair{"1 1 1 2 3 4\n", "1 1 1000000001 1000000002 1000000003 4\n"}})
+    sparse_text.replace(sparse_text.find(from), std::string(from).size(), to);
+  const mesh::MshImportResult sparse = mesh::msh_import(temp_file("sparse.msh", sparse_text), o);
+  ASSERT_EQ(sparse.mesh.tets.size(), dense.mesh.tets.size());  // Gmsh lists the nodes by tag: compare corners
+  for (std::size_t t = 0; t < dense.mesh.tets.size(); ++t)
+    for (int a = 0; a < 4; ++a)
+      EXPECT_EQ(sparse.mesh.nodes[sparse.mesh.tets[t][a]], dense.mesh.nodes[dense.mesh.tets[t][a]]) << t << " " << a;
+  const std::filesystem::path negative =
+      std::filesystem::path(NEEDLEKIT_TEST_DATA_DIR) / "fuzz-regressions/gmsh_msh/fuzz_gmsh_negative_node_tag_length_error.msh";
+  o.layers.clear();
+  EXPECT_THAT([&] { mesh::msh_import(negative, o); },
+              testing::ThrowsMessage<InvalidInput>(HasSubstr("tetrahedron 0 repeats node 0")));
+}
+
 // reader_cpu_limit: a node block whose count is read as 10^8 (a malformed file of 78 bytes) makes Gmsh's MSH 4.1
 // reader allocate and loop for seconds (14.6 s under ASan); with a limit the file is refused by name once its reader
 // has spent the limit, and a well-formed file still reads.
