@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <string>
 
 #include "needlekit/core/errors.hpp"
@@ -30,7 +31,7 @@ TangentMatrix::TangentMatrix(const TangentInputs& in, const TangentLayout& layou
     pre_pattern_ = pattern_;
     pre_values_.assign(values_.size(), 0.0);
     full_to_pre_.resize(values_.size());
-    for (size_t k = 0; k < full_to_pre_.size(); ++k) full_to_pre_[k] = static_cast<int32_t>(k);
+    std::iota(full_to_pre_.begin(), full_to_pre_.end(), 0);
   }
 }
 

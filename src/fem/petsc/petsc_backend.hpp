@@ -8,9 +8,8 @@
 namespace needlekit::fem::detail {
 
 // PETSc's CG + GAMG on `matrix` (laid out by tangent_layout(..., Petsc): with the nodal average, the patch term in
-// the product and the one-ring P) across the
-// processes of MPI_COMM_WORLD; starts MPI and PETSc if the process has not (parallel_session.hpp). Every rank must
-// call it, with the same mesh.
+// the product and the one-ring P) across the processes of MPI_COMM_WORLD; starts MPI and PETSc if the process has
+// not (parallel_session.hpp). Every rank must call it, with the same mesh.
 std::unique_ptr<LinearSolve> make_petsc_linear_solve(TangentMatrix& matrix, const TangentInputs& inputs,
                                                      const SolverOptions& options);
 

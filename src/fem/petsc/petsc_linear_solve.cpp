@@ -240,22 +240,22 @@ void PetscLinearSolve::element_part_assembled() {
 }
 
 void PetscLinearSolve::add_values() {
-  add_values(k_, matrix_.values(), k_filled_);
+  add_values(k_, matrix_.values());
   if (!patch_) return;
-  add_values(p_, matrix_.preconditioner_values(), p_filled_);  // the same pattern (checked in the constructor)
+  add_values(p_, matrix_.preconditioner_values());  // the same pattern (checked in the constructor)
   patch_->update();
 }
 
 // The owned rows of this rank's values (its elements' part, and the terms every rank has: contact, the patch term
 // when K stores it, P's bulk term) and its elements' entries in other ranks' rows, added to the matrix (written
-// straight into its arrays once its structure is set: `filled`); MatAssemblyEnd sums them at their owners.
-void PetscLinearSolve::add_values(Mat m, const std::vector<double>& values, bool& filled) {
-  if (filled) {
+// straight into its arrays once an assembly has set its structure); MatAssemblyEnd sums them at their owners.
+void PetscLinearSolve::add_values(Mat m, const std::vector<double>& values) {
+  PetscBool structure_set = PETSC_FALSE;
+  check(MatAssembled(m, &structure_set), "MatAssembled");
+  if (structure_set)
     write_owned_rows(m, values);
-  } else {
+  else
     set_owned_rows(m, values);
-    filled = true;
-  }
   for (size_t i = 0; i < sent_entries_.size(); ++i)
     check(MatSetValues(m, 1, &sent_entries_[i].row, 1, &sent_entries_[i].column, &sent_values_[i], ADD_VALUES),
           "MatSetValues");

@@ -13,9 +13,8 @@
 // average, that matrix is the one-ring element part A, a second one P = A + the element bulk term (the built-in
 // split preconditioner's bound of K) is GAMG's, and CG runs on K = A + G D G^T applied as a shell
 // (petsc_patch_operator.hpp). PETSc solves, and the solution is gathered to every rank (VecScatterCreateToAll).
-// Options: KSPCG,
-// PCGAMG, relative tolerance the Newton forcing term on the unpreconditioned residual (the built-in solves' test);
-// -ksp_* / -pc_* on the command line override them (KSPSetFromOptions).
+// Options: KSPCG, PCGAMG, relative tolerance the Newton forcing term on the unpreconditioned residual (the built-in
+// solves' test); -ksp_* / -pc_* on the command line override them (KSPSetFromOptions).
 #pragma once
 #include <petscksp.h>
 
@@ -68,7 +67,7 @@ private:
   void set_near_null_space(const TangentInputs& inputs);
   void create_solver();
   void add_values();  // this rank's part of the tangent's current values into k_ (and p_, G and D)
-  void add_values(Mat m, const std::vector<double>& values, bool& filled);
+  void add_values(Mat m, const std::vector<double>& values);
   void set_owned_rows(Mat m, const std::vector<double>& values);
   void write_owned_rows(Mat m, const std::vector<double>& values);
   bool krylov_solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& record, double tolerance);
@@ -98,7 +97,6 @@ private:
   KSP ksp_ = nullptr;
   bool rtol_from_options_ = false;  // -ksp_rtol given: it replaces the Newton forcing term
   bool reuse_from_options_ = false;  // -ksp_reuse_preconditioner given: it replaces the refresh rule below
-  bool k_filled_ = false, p_filled_ = false;  // the matrix's structure is set (add_values)
   bool have_preconditioner_ = false;  // the preconditioner was set up for an unshifted K and may be kept
   int shift_hint_ = -1;     // index into kDiagonalShifts of the last shifted solve's shift, -1: none was needed
   int last_iterations_ = 0;           // Krylov iterations of the last solve (what keeping the hierarchy looks at)
