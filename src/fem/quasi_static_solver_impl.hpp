@@ -38,6 +38,7 @@ struct QuasiStaticSolver::Impl {
   struct Failure {
     StepStatus status = StepStatus::IterationLimit;
     std::string why;
+    bool start_inverted = false;  // the (sub)step's start, before any Newton update, inverted an element
   };
 
   SolverOptions opt;
@@ -103,6 +104,8 @@ struct QuasiStaticSolver::Impl {
                             IterationRecord& rec);
   // `predict`: false when u already holds a start (advance_to's warm start) that the predictor must not move.
   bool substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict = true);
+  bool solve_substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict,
+                     bool extrapolate);
   StepResult advance(double target, const std::vector<Eigen::Vector3d>* start);
 };
 

@@ -117,12 +117,13 @@ CellLattice hexagonal_lattice(double pitch) {
   return {pitch, row_pair, {{-0.25 * pitch, -0.25 * row_pair}, {0.25 * pitch, 0.25 * row_pair}}};
 }
 
-SiteGridCheck site_grid(const LayeredBlockOptions& o, const CellLattice& lattice) {
-  if (!(lattice.pitch_x > 0 && lattice.pitch_y > 0) || lattice.sites.empty()) return {std::nullopt, "no lattice"};
-  if (o.insertion_sites.size() < 2) return {std::nullopt, "a single site"};
+namespace {
+
+// `sites` as every site of every cell of a grid of the lattice's cells (the grid's margins not yet set), or why not.
+SiteGridCheck whole_cells(const std::vector<Eigen::Vector2d>& sites, const CellLattice& lattice) {
   const Eigen::Vector2d pitch(lattice.pitch_x, lattice.pitch_y);
-  Eigen::Vector2d low = o.insertion_sites.front(), high = low;
-  for (const Eigen::Vector2d& s : o.insertion_sites) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  Eigen::Vector2d low = sites.front(), high = low;
+  for (const Eigen::Vector2d& s : sites) low = low.cwiseMin(s), high = high.cwiseMax(s);
   Eigen::Vector2d lowest = lattice.sites.front(), highest = lowest;  // the sites' extent within a cell
   for (const Eigen::Vector2d& s : lattice.sites) lowest = lowest.cwiseMin(s), highest = highest.cwiseMax(s);
   SiteGrid g;
@@ -133,7 +134,7 @@ SiteGridCheck site_grid(const LayeredBlockOptions& o, const CellLattice& lattice
   if (g.columns < 1 || g.rows < 1) return {std::nullopt, "sites that do not fill a cell of the lattice"};
   const std::size_t per_cell = lattice.sites.size();
   std::vector<char> seen(static_cast<std::size_t>(g.columns) * static_cast<std::size_t>(g.rows) * per_cell, 0);
-  for (const Eigen::Vector2d& s : o.insertion_sites) {
+  for (const Eigen::Vector2d& s : sites) {
     bool placed = false;
     for (std::size_t k = 0; k < per_cell && !placed; ++k) {
       const Eigen::Vector2d c = (s - g.first - lattice.sites[k]).cwiseQuotient(pitch);
@@ -148,12 +149,73 @@ SiteGridCheck site_grid(const LayeredBlockOptions& o, const CellLattice& lattice
     }
     if (!placed) return {std::nullopt, "sites off the lattice's grid of cells"};
   }
-  if (std::count(seen.begin(), seen.end(), 1) != static_cast<long>(o.insertion_sites.size()) ||
-      o.insertion_sites.size() != seen.size()) {
-    return {std::nullopt, per_cell > 1 ? "sites that are not every site of whole cells (a hexagonal array of an odd "
-                                         "number of rows)"
+  if (std::count(seen.begin(), seen.end(), 1) != static_cast<long>(sites.size()) || sites.size() != seen.size()) {
+    return {std::nullopt, per_cell > 1 ? "sites that are not every site of whole cells"
                                        : "sites that are not every point of a square grid"};
   }
+  return {g, ""};
+}
+
+// A lattice of row pairs (hexagonal) with an odd number of rows: the cells hold every row but the last, and the last
+// is the first site of each column's cell one row of cells higher, which the +y margin strip holds. The grid with
+// that row as top_row_sites, or no grid.
+std::optional<SiteGrid> cells_and_a_top_row(const std::vector<Eigen::Vector2d>& sites, const CellLattice& lattice) {
+  if (lattice.sites.size() < 2) return std::nullopt;
+  double top = sites.front().y();
+  for (const Eigen::Vector2d& s : sites) top = std::max(top, s.y());
+  std::vector<Eigen::Vector2d> below, row;
+  for (const Eigen::Vector2d& s : sites) (s.y() >= top - kGridTolerance * lattice.pitch_y ? row : below).push_back(s);
+  if (below.size() < 2) return std::nullopt;
+  std::optional<SiteGrid> g = whole_cells(below, lattice).grid;
+  if (!g || row.size() != static_cast<std::size_t>(g->columns)) return std::nullopt;
+  const Eigen::Vector2d in_last_cell = lattice.sites.front() + Eigen::Vector2d(0, lattice.pitch_y);
+  const Eigen::Vector2d first_site = g->first + Eigen::Vector2d(0, (g->rows - 1) * lattice.pitch_y) + in_last_cell;
+  std::vector<char> seen(static_cast<std::size_t>(g->columns), 0);
+  for (const Eigen::Vector2d& s : row) {
+    const double c = (s - first_site).x() / lattice.pitch_x, dy = (s - first_site).y() / lattice.pitch_y;
+    const long column = std::lround(c);
+    if (std::abs(c - static_cast<double>(column)) > kGridTolerance || std::abs(dy) > kGridTolerance || column < 0 ||
+        column >= g->columns || seen[static_cast<std::size_t>(column)]) {
+      return std::nullopt;
+    }
+    seen[static_cast<std::size_t>(column)] = 1;
+  }
+  g->top_row_sites = {in_last_cell};
+  return g;
+}
+
+// A square lattice framed from needle to needle: cells between the needles, which stand on the cells' corners, for
+// a block whose edge runs through a row or column of needles (a reduced model's symmetry plane through the middle
+// row of an odd count). Every needle still sees the same mesh: the four corners of one cell round it.
+std::optional<SiteGrid> corner_cells(const std::vector<Eigen::Vector2d>& sites, const CellLattice& lattice) {
+  if (lattice.sites.size() != 1 || lattice.pitch_x != lattice.pitch_y) return std::nullopt;
+  const Eigen::Vector2d pitch(lattice.pitch_x, lattice.pitch_y);
+  Eigen::Vector2d low = sites.front(), high = low;
+  for (const Eigen::Vector2d& s : sites) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  const Eigen::Vector2d cells = (high - low).cwiseQuotient(pitch);
+  SiteGrid g;
+  g.columns = static_cast<int>(std::lround(cells.x()));
+  g.rows = static_cast<int>(std::lround(cells.y()));
+  if (g.columns < 1 || g.rows < 1) return std::nullopt;
+  std::vector<char> seen(static_cast<std::size_t>(g.columns + 1) * static_cast<std::size_t>(g.rows + 1), 0);
+  for (const Eigen::Vector2d& s : sites) {
+    const Eigen::Vector2d c = (s - low).cwiseQuotient(pitch), r = c.array().round();
+    if ((c - r).lpNorm<Eigen::Infinity>() > kGridTolerance) return std::nullopt;
+    seen[static_cast<std::size_t>(r.y()) * static_cast<std::size_t>(g.columns + 1) + static_cast<std::size_t>(r.x())] = 1;
+  }
+  if (std::count(seen.begin(), seen.end(), 1) != static_cast<long>(seen.size()) || sites.size() != seen.size()) {
+    return std::nullopt;
+  }
+  g.first = low + 0.5 * pitch, g.pitch_x = pitch.x(), g.pitch_y = pitch.y();
+  const double hx = 0.5 * pitch.x(), hy = 0.5 * pitch.y();
+  g.sites = {{-hx, -hy}, {hx, -hy}, {-hx, hy}, {hx, hy}};
+  g.sites_on_corners = true;
+  return g;
+}
+
+// `g` with the block's margins beyond its cells, or why the block cannot hold the cells.
+SiteGridCheck with_margins(const LayeredBlockOptions& o, SiteGrid g) {
+  const Eigen::Vector2d pitch(g.pitch_x, g.pitch_y);
   const auto margin = [&](double value) { return std::abs(value) <= kGridTolerance * pitch.minCoeff() ? 0.0 : value; };
   const Eigen::Vector2d last = g.first + Eigen::Vector2d((g.columns - 1) * pitch.x(), (g.rows - 1) * pitch.y());
   g.margin_left = margin(g.first.x() - 0.5 * pitch.x() + 0.5 * o.width);
@@ -167,7 +229,29 @@ SiteGridCheck site_grid(const LayeredBlockOptions& o, const CellLattice& lattice
                                         m * 1e6)};
     }
   }
+  for (const Eigen::Vector2d& s : g.top_row_sites) {
+    if (s.y() >= 0.5 * pitch.y() + g.margin_top) return {std::nullopt, "a last row of needles on the block's edge"};
+  }
   return {g, ""};
+}
+
+}  // namespace
+
+SiteGridCheck site_grid(const LayeredBlockOptions& o, const CellLattice& lattice) {
+  if (!(lattice.pitch_x > 0 && lattice.pitch_y > 0) || lattice.sites.empty()) return {std::nullopt, "no lattice"};
+  if (o.insertion_sites.size() < 2) return {std::nullopt, "a single site"};
+  SiteGridCheck centred = whole_cells(o.insertion_sites, lattice);
+  if (!centred.grid) centred.grid = cells_and_a_top_row(o.insertion_sites, lattice);
+  if (centred.grid) centred = with_margins(o, *centred.grid);
+  if (centred.grid) return centred;
+  const std::optional<SiteGrid> corners = corner_cells(o.insertion_sites, lattice);
+  if (!corners) return centred;
+  if (o.site_circle_radius > 0) {
+    return {std::nullopt, centred.reason + "; with the needles on the cells' corners, their circles would cross the "
+                                           "cells' faces"};
+  }
+  SiteGridCheck framed = with_margins(o, *corners);
+  return framed.grid ? framed : centred;
 }
 
 TetMesh replicated_cells(const TetMesh& cell, const std::vector<int>& piece, const SiteGrid& grid) {

@@ -37,6 +37,8 @@ struct MshContents {
 struct CellLayout {
   double pitch_x = 0, pitch_y = 0;
   std::vector<Eigen::Vector2d> sites;  // m, from the cell's centre
+  std::vector<Eigen::Vector2d> top_row_sites;  // m, from the cell's centre: sites in the +y margin strip
+  bool sites_on_corners = false;               // the sites are the cell's four corners (SiteGrid)
   double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;  // -x, +x, -y, +y
 };
 

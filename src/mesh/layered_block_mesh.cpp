@@ -116,8 +116,9 @@ TetMesh replicated_block(const LayeredBlockOptions& options, const std::vector<T
                          const SiteGrid& grid) {
   detail::GmshError error;
   detail::CellBlockMesh cell;
-  const detail::CellLayout layout{grid.pitch_x,     grid.pitch_y,      grid.sites,     grid.margin_left,
-                                  grid.margin_right, grid.margin_bottom, grid.margin_top};
+  const detail::CellLayout layout{grid.pitch_x,      grid.pitch_y,       grid.sites,
+                                  grid.top_row_sites, grid.sites_on_corners, grid.margin_left,
+                                  grid.margin_right,  grid.margin_bottom, grid.margin_top};
   {
     const std::lock_guard<std::mutex> lock(detail::gmsh_call_mutex());
     cell = detail::gmsh_module().cell_block(options, layers, layout, error);

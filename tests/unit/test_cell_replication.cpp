@@ -198,6 +198,34 @@ TEST(CellReplication, TheCellIsMeshedOnceWhateverTheArraysSize) {
   expect_conforming_block(r32.block.mesh, three_by_two);
 }
 
+// A quarter model of a 3 x 3 array: the symmetry plane x = min runs through the first column of needles.
+mesh::LayeredBlockOptions needles_on_the_minus_x_edge() {
+  mesh::LayeredBlockOptions o = array_block(3, 3, 0.0);
+  o.width -= 0.5 * kPitch;
+  for (Eigen::Vector2d& s : o.insertion_sites) s.x() -= 0.25 * kPitch;
+  return o;
+}
+
+// Without circles round the needles, such a block is framed from needle to needle: the needles on the cells' corners.
+TEST(CellReplication, ReducedModelThroughAColumnOfNeedlesIsFramedFromNeedleToNeedle) {
+  mesh::LayeredBlockOptions o = needles_on_the_minus_x_edge();
+  o.site_circle_radius = 0;
+  const mesh::SiteGridCheck grid = mesh::site_grid(o, kSquare);
+  ASSERT_TRUE(grid.grid) << grid.reason;
+  EXPECT_TRUE(grid.grid->sites_on_corners);
+  EXPECT_EQ(grid.grid->columns, 2);
+  EXPECT_EQ(grid.grid->rows, 2);
+  EXPECT_EQ(grid.grid->margin_left, 0.0);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, kSquare);
+  ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
+  expect_conforming_block(r.block.mesh, o);
+  // Every needle has a node on its site. (The needles do not all see the same mesh: round a needle on the cells'
+  // outer corners the margin strips meet the cells.)
+  for (const Eigen::Vector2d& site : o.insertion_sites) {
+    EXPECT_EQ(nodes_near(r.block.mesh, site, 1e-9).size(), 1u) << site.transpose();
+  }
+}
+
 TEST(CellReplication, FallsBackToTheWholeBlockAndSaysWhy) {
   mesh::LayeredBlockOptions hexagonal = array_block(2, 2, 150e-6);
   hexagonal.insertion_sites[2].x() += 0.5 * kPitch;  // the second row shifted by half a pitch
@@ -207,16 +235,13 @@ TEST(CellReplication, FallsBackToTheWholeBlockAndSaysWhy) {
   EXPECT_FALSE(check.grid);
   EXPECT_THAT(check.reason, HasSubstr("off the lattice's grid"));
 
-  mesh::LayeredBlockOptions on_edge = array_block(3, 3, 0.0);  // a needle on a symmetry plane: a quarter of 3 x 3
-  on_edge.site_circle_radius = 0;  // a circle cannot be embedded across the block's edge
-  on_edge.width -= 0.5 * kPitch;
-  for (Eigen::Vector2d& s : on_edge.insertion_sites) s.x() -= 0.25 * kPitch;
+  // Needles on the block's edge with circles round them: centred cells would leave the block, and with the needles
+  // on the cells' corners the circles would cross the cells' faces (the whole block refuses such circles too).
+  const mesh::LayeredBlockOptions on_edge = needles_on_the_minus_x_edge();
   check = mesh::site_grid(on_edge, kSquare);
   EXPECT_FALSE(check.grid);
   EXPECT_THAT(check.reason, HasSubstr("leave the block"));
-  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(on_edge, kSquare);
-  EXPECT_EQ(r.meshing, mesh::BlockMeshing::WholeBlock);
-  EXPECT_THAT(r.reason, HasSubstr("leave the block"));
+  EXPECT_THAT(check.reason, HasSubstr("circles would cross"));
 
   mesh::LayeredBlockOptions thin = array_block(2, 2, 5e-6);
   EXPECT_THAT(mesh::site_grid(thin, kSquare).reason, HasSubstr("thinner than half the tip size"));
@@ -252,7 +277,7 @@ TEST(CellReplication, HexagonalArrayIsConformingAndEveryNeedleSeesItsRowsMesh) {
   }
 }
 
-TEST(CellReplication, HexagonalArrayIsTheSameOnOneAndTwoThreadsAndOddRowsFallBack) {
+TEST(CellReplication, HexagonalArrayIsTheSameOnOneAndTwoThreads) {
   mesh::LayeredBlockOptions o = hexagonal_block(2, 2, 100e-6);
   o.threads = 1;
   const mesh::ArrayBlockMesh one = mesh::array_block_mesh(o, mesh::hexagonal_lattice(kPitch));
@@ -260,8 +285,37 @@ TEST(CellReplication, HexagonalArrayIsTheSameOnOneAndTwoThreadsAndOddRowsFallBac
   const mesh::ArrayBlockMesh two = mesh::array_block_mesh(o, mesh::hexagonal_lattice(kPitch));
   ASSERT_EQ(one.meshing, mesh::BlockMeshing::ReplicatedCell) << one.reason;
   EXPECT_EQ(coordinate_hash(one.block.mesh), coordinate_hash(two.block.mesh));
-  // Three rows: the third is half a cell.
-  const mesh::SiteGridCheck odd = mesh::site_grid(hexagonal_block(2, 3, 100e-6), mesh::hexagonal_lattice(kPitch));
-  EXPECT_FALSE(odd.grid);
-  EXPECT_THAT(odd.reason, HasSubstr("odd number of rows"));
+}
+
+// An odd number of rows: the cells hold the row pairs, and the last row (the first row of a pair with no second) lies
+// in the +y margin strip, copied along x like the cell. Before, such an array was meshed whole.
+TEST(CellReplication, HexagonalArrayOfAnOddNumberOfRowsHasItsLastRowInTheMarginStrip) {
+  const mesh::LayeredBlockOptions o = hexagonal_block(3, 3, 120e-6);
+  const mesh::SiteGridCheck grid = mesh::site_grid(o, mesh::hexagonal_lattice(kPitch));
+  ASSERT_TRUE(grid.grid) << grid.reason;
+  EXPECT_EQ(grid.grid->rows, 1);
+  EXPECT_EQ(grid.grid->columns, 3);
+  ASSERT_EQ(grid.grid->top_row_sites.size(), 1u);
+  EXPECT_NEAR(grid.grid->top_row_sites[0].y(), 0.75 * kPitch * std::sqrt(3.0), 1e-12);
+  const mesh::ArrayBlockMesh r = mesh::array_block_mesh(o, mesh::hexagonal_lattice(kPitch));
+  ASSERT_EQ(r.meshing, mesh::BlockMeshing::ReplicatedCell) << r.reason;
+  expect_conforming_block(r.block.mesh, o);
+  // The last row's needles are copies of one another: the same nodes round each tip, and a node on each site.
+  const std::vector<Eigen::Vector3d> first = nodes_near(r.block.mesh, o.insertion_sites[6], 60e-6);
+  ASSERT_GT(first.size(), 10u);
+  for (std::size_t k = 6; k < 9; ++k) {
+    const std::vector<Eigen::Vector3d> near = nodes_near(r.block.mesh, o.insertion_sites[k], 60e-6);
+    ASSERT_EQ(near.size(), first.size()) << k;
+    for (const Eigen::Vector3d& p : near) {  // positions relative to the site
+      double nearest = 1.0;
+      for (const Eigen::Vector3d& q : first) nearest = std::min(nearest, (p - q).norm());
+      EXPECT_LT(nearest, 1e-12) << "needle " << k;
+    }
+    EXPECT_EQ(nodes_near(r.block.mesh, o.insertion_sites[k], 1e-9).size(), 1u) << "no node on needle " << k;
+  }
+  // One row only is not a cell: meshed whole, saying why.
+  const mesh::SiteGridCheck single_row =
+      mesh::site_grid(hexagonal_block(3, 1, 120e-6), mesh::hexagonal_lattice(kPitch));
+  EXPECT_FALSE(single_row.grid);
+  EXPECT_THAT(single_row.reason, HasSubstr("do not fill a cell"));
 }

@@ -42,7 +42,7 @@ struct CellLattice {
 CellLattice square_lattice(double pitch);
 // A hexagonal array of `pitch` (rows pitch*sqrt(3)/2 apart, every other row shifted by +pitch/2): a pair of rows in
 // a pitch by pitch*sqrt(3) cell, the sites at (-pitch/4, -pitch*sqrt(3)/4) and (+pitch/4, +pitch*sqrt(3)/4). Only an
-// even number of rows is whole pairs.
+// even number of rows is whole pairs; the last row of an odd number lies in the +y margin (SiteGrid::top_row_sites).
 CellLattice hexagonal_lattice(double pitch);
 
 // The block of an array of `lattice` whose needles are options.insertion_sites: assembled from copies of one cell
@@ -57,6 +57,12 @@ struct SiteGrid {
   Eigen::Vector2d first = Eigen::Vector2d::Zero();  // m, the centre of the cell at column 0, row 0
   double pitch_x = 0, pitch_y = 0;                  // m, > 0
   std::vector<Eigen::Vector2d> sites;               // m, the sites in a cell, from its centre
+  // m, from the centre of the last row's cell in each column: the sites of a row above the last row of cells (a
+  // hexagonal array of an odd number of rows: the first row of a pair that has no second), in the +y margin strip.
+  std::vector<Eigen::Vector2d> top_row_sites;
+  // The sites are the cell's four corners, each shared by the cells that meet there: a square array framed from
+  // needle to needle, for a reduced model whose symmetry plane runs through a row or column of needles.
+  bool sites_on_corners = false;
   int columns = 0, rows = 0;
   // m, >= 0: the block beyond the outermost cells: -x, +x, -y, +y.
   double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;
@@ -68,8 +74,10 @@ struct SiteGridCheck {
 };
 
 // The block's insertion sites as a grid of the lattice's cells, or why the block cannot be assembled from cells: no
-// lattice, fewer than two sites, sites that are not every site of every cell of a grid (a hexagonal array of an odd
-// number of rows: its last row is half a cell), a cell that leaves the block (a needle on the block's edge: a
+// lattice, fewer than two sites, sites that are not every site of every cell of a grid (except a hexagonal array's
+// last row of an odd number: half a cell, meshed in the +y margin strip), a cell that leaves the block (a square
+// array's cells are then framed from needle to needle instead, with the needles on their corners, when no circles
+// are to be embedded round the needles) (a needle on the block's edge: a
 // symmetry plane through a row or column), or a margin piece thinner than half of size_at_site (its tetrahedra
 // would be flat).
 SiteGridCheck site_grid(const LayeredBlockOptions& options, const CellLattice& lattice);

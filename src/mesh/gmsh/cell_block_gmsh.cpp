@@ -1,6 +1,7 @@
 // An array block's repeating cell with the Gmsh C++ API: one OpenCASCADE box per piece (the -x margin, the cell, the
 // +x margin, times the same in y) and layer, fragmented so that every piece and layer interface is conforming; the
-// sites (and their circles) embedded in the cell's top face; the cell's +x side faces set as periodic copies of its
+// sites (and their circles) embedded in the cell's top face (a hexagonal array's odd last row in the +y margin
+// strip's); the cell's +x side faces set as periodic copies of its
 // -x faces (gmsh::model::mesh::setPeriodic with a translation by pitch_x), and +y of -y (by pitch_y), in every row of
 // pieces and every layer, so that translated copies of the cell match node for node (cell_replication.hpp assembles
 // them).
@@ -97,17 +98,36 @@ void set_periodic_faces(int axis, double pitch, const std::vector<Segment>& acro
   }
 }
 
-// The sites (and their circles) embedded in the cell's top face, and, for a cell of several sites, their copies in
-// the neighbouring cells as free points for the size field; returns the point tags for the field.
-std::vector<int> cell_site_points(const LayeredBlockOptions& options, const CellLayout& layout, double u, double eps) {
-  std::vector<int> sites, circles, field_points;
+// Sites on the cell's corners (CellLayout::sites_on_corners): the top face's corner vertices, nothing to embed.
+std::vector<int> corner_site_points(const CellLayout& layout, double u, double eps) {
+  gmsh::model::occ::synchronize();
+  std::vector<int> corners;
   for (const Eigen::Vector2d& s : layout.sites) {
-    sites.push_back(gmsh::model::occ::addPoint(s.x() * u, s.y() * u, 0));
-    if (options.site_circle_radius > 0) {
-      circles.push_back(gmsh::model::occ::addCircle(s.x() * u, s.y() * u, 0, options.site_circle_radius * u));
-    }
+    gmsh::vectorpair vertex;
+    gmsh::model::getEntitiesInBoundingBox(s.x() * u - eps, s.y() * u - eps, -eps, s.x() * u + eps, s.y() * u + eps, eps,
+                                          vertex, 0);
+    if (vertex.size() != 1) throw std::logic_error(fmt::format("{} vertices at a corner of the cell", vertex.size()));
+    corners.push_back(vertex[0].second);
   }
+  return corners;
+}
+
+// The sites (and their circles) embedded in the cell's top face, the top row's in the +y margin strip's, and, for a
+// cell of several sites, their copies in the neighbouring cells as free points for the size field; returns the point
+// tags for the field.
+std::vector<int> cell_site_points(const LayeredBlockOptions& options, const CellLayout& layout, double u, double eps) {
+  if (layout.sites_on_corners) return corner_site_points(layout, u, eps);
+  std::vector<int> sites, circles, top_row, top_row_circles, field_points;
+  const auto add_site = [&](const Eigen::Vector2d& s, std::vector<int>& points, std::vector<int>& rims) {
+    points.push_back(gmsh::model::occ::addPoint(s.x() * u, s.y() * u, 0));
+    if (options.site_circle_radius > 0) {
+      rims.push_back(gmsh::model::occ::addCircle(s.x() * u, s.y() * u, 0, options.site_circle_radius * u));
+    }
+  };
+  for (const Eigen::Vector2d& s : layout.sites) add_site(s, sites, circles);
+  for (const Eigen::Vector2d& s : layout.top_row_sites) add_site(s, top_row, top_row_circles);
   field_points = sites;
+  field_points.insert(field_points.end(), top_row.begin(), top_row.end());
   if (layout.sites.size() > 1) {
     for (int i = -1; i <= 1; ++i) {
       for (int j = -1; j <= 1; ++j) {
@@ -124,6 +144,11 @@ std::vector<int> cell_site_points(const LayeredBlockOptions& options, const Cell
   const int top = face_in_box({-hx - eps, -hy - eps, -eps}, {hx + eps, hy + eps, eps});
   gmsh::model::mesh::embed(0, sites, 2, top);
   if (!circles.empty()) gmsh::model::mesh::embed(1, circles, 2, top);
+  if (!top_row.empty()) {
+    const int strip = face_in_box({-hx - eps, hy - eps, -eps}, {hx + eps, hy + layout.margin_top * u + eps, eps});
+    gmsh::model::mesh::embed(0, top_row, 2, strip);
+    if (!top_row_circles.empty()) gmsh::model::mesh::embed(1, top_row_circles, 2, strip);
+  }
   return field_points;
 }
 
