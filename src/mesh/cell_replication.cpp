@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 
 namespace needlekit::mesh {
@@ -119,13 +120,18 @@ CellLattice hexagonal_lattice(double pitch) {
 
 namespace {
 
+// The corners (lowest, highest) of the points' bounding box.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> extent(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Vector2d low = points.front(), high = low;
+  for (const Eigen::Vector2d& p : points) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  return {low, high};
+}
+
 // `sites` as every site of every cell of a grid of the lattice's cells (the grid's margins not yet set), or why not.
 SiteGridCheck whole_cells(const std::vector<Eigen::Vector2d>& sites, const CellLattice& lattice) {
   const Eigen::Vector2d pitch(lattice.pitch_x, lattice.pitch_y);
-  Eigen::Vector2d low = sites.front(), high = low;
-  for (const Eigen::Vector2d& s : sites) low = low.cwiseMin(s), high = high.cwiseMax(s);
-  Eigen::Vector2d lowest = lattice.sites.front(), highest = lowest;  // the sites' extent within a cell
-  for (const Eigen::Vector2d& s : lattice.sites) lowest = lowest.cwiseMin(s), highest = highest.cwiseMax(s);
+  const auto [low, high] = extent(sites);
+  const auto [lowest, highest] = extent(lattice.sites);  // the sites' extent within a cell
   SiteGrid g;
   g.first = low - lowest, g.pitch_x = pitch.x(), g.pitch_y = pitch.y(), g.sites = lattice.sites;
   const Eigen::Vector2d cells = ((high - low) - (highest - lowest)).cwiseQuotient(pitch);
@@ -161,8 +167,7 @@ SiteGridCheck whole_cells(const std::vector<Eigen::Vector2d>& sites, const CellL
 // that row as top_row_sites, or no grid.
 std::optional<SiteGrid> cells_and_a_top_row(const std::vector<Eigen::Vector2d>& sites, const CellLattice& lattice) {
   if (lattice.sites.size() < 2) return std::nullopt;
-  double top = sites.front().y();
-  for (const Eigen::Vector2d& s : sites) top = std::max(top, s.y());
+  const double top = extent(sites).second.y();
   std::vector<Eigen::Vector2d> below, row;
   for (const Eigen::Vector2d& s : sites) (s.y() >= top - kGridTolerance * lattice.pitch_y ? row : below).push_back(s);
   if (below.size() < 2) return std::nullopt;
@@ -186,12 +191,12 @@ std::optional<SiteGrid> cells_and_a_top_row(const std::vector<Eigen::Vector2d>& 
 
 // A square lattice framed from needle to needle: cells between the needles, which stand on the cells' corners, for
 // a block whose edge runs through a row or column of needles (a reduced model's symmetry plane through the middle
-// row of an odd count). Every needle still sees the same mesh: the four corners of one cell round it.
+// row of an odd count). A needle amid the cells sees the four corners of one cell round it; one on the cells' outer
+// corners also sees the margin strips.
 std::optional<SiteGrid> corner_cells(const std::vector<Eigen::Vector2d>& sites, const CellLattice& lattice) {
   if (lattice.sites.size() != 1 || lattice.pitch_x != lattice.pitch_y) return std::nullopt;
   const Eigen::Vector2d pitch(lattice.pitch_x, lattice.pitch_y);
-  Eigen::Vector2d low = sites.front(), high = low;
-  for (const Eigen::Vector2d& s : sites) low = low.cwiseMin(s), high = high.cwiseMax(s);
+  const auto [low, high] = extent(sites);
   const Eigen::Vector2d cells = (high - low).cwiseQuotient(pitch);
   SiteGrid g;
   g.columns = static_cast<int>(std::lround(cells.x()));

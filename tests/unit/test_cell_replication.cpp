@@ -124,6 +124,17 @@ std::vector<Eigen::Vector3d> nodes_near(const mesh::TetMesh& m, const Eigen::Vec
   return near;
 }
 
+// The largest distance from a point of `points` to its nearest point of `reference`.
+double farthest_from(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& reference) {
+  double farthest = 0;
+  for (const Eigen::Vector3d& p : points) {
+    double nearest = 1.0;
+    for (const Eigen::Vector3d& q : reference) nearest = std::min(nearest, (p - q).norm());
+    farthest = std::max(farthest, nearest);
+  }
+  return farthest;
+}
+
 std::uint64_t coordinate_hash(const mesh::TetMesh& m) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the coordinates' bits and the connectivity
   const auto mix = [&](std::uint64_t v) { h = (h ^ v) * 1099511628211ull; };
@@ -151,13 +162,8 @@ TEST(CellReplication, ThreeByThreeArrayIsConformingAndFillsTheBlock) {
   for (const Eigen::Vector2d& site : o.insertion_sites) {
     const std::vector<Eigen::Vector3d> near = nodes_near(r.block.mesh, site, 60e-6);
     ASSERT_EQ(near.size(), first.size());
-    double farthest = 0;  // from a node near this site to the nearest node of the same offset near the first site
-    for (const Eigen::Vector3d& p : near) {
-      double nearest = 1.0;
-      for (const Eigen::Vector3d& q : first) nearest = std::min(nearest, (p - q).norm());
-      farthest = std::max(farthest, nearest);
-    }
-    EXPECT_LT(farthest, 1e-12) << "site (" << site.x() << ", " << site.y() << ")";
+    // From a node near this site to the nearest node of the same offset near the first site.
+    EXPECT_LT(farthest_from(near, first), 1e-12) << "site (" << site.x() << ", " << site.y() << ")";
     EXPECT_EQ(nodes_near(r.block.mesh, site, 1e-9).size(), 1u) << "no node on the site";
   }
 }
@@ -265,13 +271,7 @@ TEST(CellReplication, HexagonalArrayIsConformingAndEveryNeedleSeesItsRowsMesh) {
       const Eigen::Vector2d& site = o.insertion_sites[k];
       const std::vector<Eigen::Vector3d> near = nodes_near(r.block.mesh, site, 60e-6);
       ASSERT_EQ(near.size(), first.size()) << k;
-      double farthest = 0;
-      for (const Eigen::Vector3d& p : near) {
-        double nearest = 1.0;
-        for (const Eigen::Vector3d& q : first) nearest = std::min(nearest, (p - q).norm());
-        farthest = std::max(farthest, nearest);
-      }
-      EXPECT_LT(farthest, 1e-12) << "needle " << k;
+      EXPECT_LT(farthest_from(near, first), 1e-12) << "needle " << k;
       EXPECT_EQ(nodes_near(r.block.mesh, site, 1e-9).size(), 1u) << "no node on needle " << k;
     }
   }
@@ -306,11 +306,7 @@ TEST(CellReplication, HexagonalArrayOfAnOddNumberOfRowsHasItsLastRowInTheMarginS
   for (std::size_t k = 6; k < 9; ++k) {
     const std::vector<Eigen::Vector3d> near = nodes_near(r.block.mesh, o.insertion_sites[k], 60e-6);
     ASSERT_EQ(near.size(), first.size()) << k;
-    for (const Eigen::Vector3d& p : near) {  // positions relative to the site
-      double nearest = 1.0;
-      for (const Eigen::Vector3d& q : first) nearest = std::min(nearest, (p - q).norm());
-      EXPECT_LT(nearest, 1e-12) << "needle " << k;
-    }
+    EXPECT_LT(farthest_from(near, first), 1e-12) << "needle " << k;  // positions relative to the sites
     EXPECT_EQ(nodes_near(r.block.mesh, o.insertion_sites[k], 1e-9).size(), 1u) << "no node on needle " << k;
   }
   // One row only is not a cell: meshed whole, saying why.
