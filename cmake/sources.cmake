@@ -118,6 +118,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/mesh/layer_assignment.cpp
   src/mesh/layered_block_mesh.cpp
   src/mesh/mesh_validation.cpp
+  src/mesh/mirrored_cell.cpp
   src/mesh/msh_import.cpp
   src/mesh/msh_read_isolated.cpp
   src/mesh/structured_block_mesh.cpp

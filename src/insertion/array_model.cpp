@@ -1,8 +1,10 @@
 #include "array_model.hpp"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -50,6 +52,25 @@ double base_diameter(const IndentationCase& c) {
 }
 
 double needle_length(const IndentationCase& c) { return c.geometry ? c.geometry->length : extent(c.needle, 2); }
+
+// Through a necessary condition: the area centroid of the needle's surface, turned by the azimuth, lies in the plane
+// (within kMirrorCentroidTolerance of the base diameter). A cone's or a cylinder's does; a bevel's lies off its axis
+// on the side away from its face.
+double off_mirror_plane(const IndentationCase& c, int axis) {
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  double area = 0;
+  for (const auto& t : c.needle.triangles) {
+    const Eigen::Vector3d& p = c.needle.vertices[static_cast<std::size_t>(t[0])];
+    const Eigen::Vector3d& q = c.needle.vertices[static_cast<std::size_t>(t[1])];
+    const Eigen::Vector3d& r = c.needle.vertices[static_cast<std::size_t>(t[2])];
+    const double triangle_area = 0.5 * (q - p).cross(r - p).norm();
+    moment += triangle_area * ((p + q + r) / 3).head<2>();
+    area += triangle_area;
+  }
+  if (!(area > 0)) return 0;
+  const double offset = std::abs((Eigen::Rotation2Dd(c.azimuth) * (moment / area))[axis]);
+  return offset <= kMirrorCentroidTolerance * base_diameter(c) ? 0.0 : offset;
+}
 
 IndentationCase modelled_case(const IndentationCase& c) {
   detail::ArrayModel model = detail::array_model(c);

@@ -90,6 +90,22 @@ std::vector<std::string> indentation_scale_warnings(const insertion::Indentation
                                    "come nearer to the tip's path",
                                    c.angle * 180 / M_PI));
   }
+  if (c.array && c.array->symmetry != insertion::ArraySymmetry::None) {
+    const bool quarter = c.array->symmetry == insertion::ArraySymmetry::Quarter;
+    for (int axis : {0, 1}) {
+      if (axis == 0 && !quarter) continue;
+      const double offset = insertion::off_mirror_plane(c, axis);
+      if (offset == 0) continue;
+      const char* name = axis == 0 ? "x" : "y";
+      warnings.push_back(fmt::format(
+          "array.symmetry = \"{}\" mirrors the needles across {} = 0, and this needle is not its own mirror image "
+          "there (its surface's centroid lies {} off its axis along {}: a bevel faces along loading.azimuth): the model "
+          "is of a patch whose needles at {} < 0 are mirror images, their bevels turned the other way; for a patch of "
+          "identical needles use symmetry = {}",
+          name_of(insertion::kArraySymmetryNames, c.array->symmetry), name, units::readable_length(offset), name, name,
+          axis == 0 && insertion::off_mirror_plane(c, 1) == 0 ? "\"half\" or \"none\"" : "\"none\""));
+    }
+  }
   if (c.array && !c.tissue_mesh && c.needles.size() > 1) {
     // An array's block is assembled from copies of one cell where it can be (mesh/cell_replication.hpp); otherwise
     // it is one Delaunay of the whole block, slow for a large array.

@@ -40,6 +40,12 @@ struct CellLayout {
   std::vector<Eigen::Vector2d> top_row_sites;  // m, from the cell's centre: sites in the +y margin strip
   bool sites_on_corners = false;               // the sites are the cell's four corners (SiteGrid)
   double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;  // -x, +x, -y, +y
+  // Only a quadrant, for a cell that is its own mirror image (mirrored_cell.hpp): [0, pitch_x/2] x [0, pitch_y/2] with
+  // one site on its corner at the origin and, along each axis, a margin piece on either side: beyond the quadrant
+  // ([pitch/2, pitch/2 + m], piece 2; absent when m = 0), the margin of a site at the cell's centre, and beyond the
+  // site ([-(m + pitch/2), 0], piece 0), the margin of sites on the cell's corners; m is the larger margin of the
+  // axis (less half a pitch for sites on the corners). No periodic faces: the mirror images match.
+  bool quadrant = false;
 };
 
 // The cell with the margins around it (up to 3 x 3 pieces: margin, cell, margin in x and in y), its opposite side

@@ -1,6 +1,7 @@
 // A parametric layered tissue block: the options checked here, the mesh made by the Gmsh module
 // (src/mesh/gmsh/layered_block_gmsh.cpp, opened on first use) or, for a square needle array, assembled from copies of
-// its cell (src/mesh/gmsh/cell_block_gmsh.cpp, cell_replication.hpp), then optionally split, reoriented and rated here.
+// its cell (src/mesh/gmsh/cell_block_gmsh.cpp, mirrored_cell.hpp, cell_replication.hpp), then optionally split,
+// reoriented and rated here.
 #include "needlekit/mesh/layered_block_mesh.hpp"
 
 #include <chrono>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "gmsh_module.hpp"
+#include "mirrored_cell.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/materials/tissue_presets.hpp"
 #include "needlekit/mesh/cell_replication.hpp"
@@ -116,14 +118,16 @@ TetMesh replicated_block(const LayeredBlockOptions& options, const std::vector<T
                          const SiteGrid& grid) {
   detail::GmshError error;
   detail::CellBlockMesh cell;
-  const detail::CellLayout layout{grid.pitch_x,      grid.pitch_y,       grid.sites,
-                                  grid.top_row_sites, grid.sites_on_corners, grid.margin_left,
-                                  grid.margin_right,  grid.margin_bottom, grid.margin_top};
+  detail::CellLayout layout{grid.pitch_x,      grid.pitch_y,       grid.sites,
+                            grid.top_row_sites, grid.sites_on_corners, grid.margin_left,
+                            grid.margin_right,  grid.margin_bottom, grid.margin_top};
+  layout.quadrant = detail::mirrors_from_a_quadrant(layout, options);
   {
     const std::lock_guard<std::mutex> lock(detail::gmsh_call_mutex());
     cell = detail::gmsh_module().cell_block(options, layers, layout, error);
   }
   detail::throw_if_failed(error);
+  if (layout.quadrant) cell = detail::mirrored_cell(cell, layout);
   reoriented_count(cell.mesh);  // before the copies: a translation keeps the orientation
   return replicated_cells(cell.mesh, cell.piece, grid);
 }

@@ -1,7 +1,9 @@
 // An array's block assembled from copies of one meshed cell (mesh/cell_replication.hpp, issue 36 item 5), square
-// (a needle's cell) and hexagonal (a pair of rows): it is conforming (every interior face shared by two tetrahedra, the boundary only on the block's six faces), has no
-// duplicate nodes, fills the block's volume layer by layer, gives every needle the same nodes under its tip, is the
-// same on one and two threads, and falls back to the whole block, saying why, where cells do not fit.
+// (a needle's cell) and hexagonal (a pair of rows): it is conforming (every interior face shared by two tetrahedra,
+// the boundary only on the block's six faces), has no duplicate nodes, fills the block's volume layer by layer, gives
+// every needle the same nodes under its tip, is the same on one and two threads, is mirror symmetric where the
+// square array is (its quarter model a part of it), and falls back to the whole block, saying why, where cells do not
+// fit.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -230,6 +232,54 @@ TEST(CellReplication, ReducedModelThroughAColumnOfNeedlesIsFramedFromNeedleToNee
   for (const Eigen::Vector2d& site : o.insertion_sites) {
     EXPECT_EQ(nodes_near(r.block.mesh, site, 1e-9).size(), 1u) << site.transpose();
   }
+}
+
+// The nodes of m in the box [low, high] of x and y (m), moved by `shift`.
+std::vector<Eigen::Vector3d> nodes_in(const mesh::TetMesh& m, const Eigen::Vector2d& low, const Eigen::Vector2d& high,
+                                      const Eigen::Vector2d& shift) {
+  std::vector<Eigen::Vector3d> inside;
+  const double tolerance = 1e-9 * kPitch;
+  for (Eigen::Vector3d p : m.nodes) {
+    p.head<2>() += shift;
+    if ((p.head<2>().array() >= low.array() - tolerance).all() && (p.head<2>().array() <= high.array() + tolerance).all())
+      inside.push_back(p);
+  }
+  return inside;
+}
+
+// Without circles, a square array's cell is mirrored from its quadrant (src/mesh/mirrored_cell.hpp): the block is as
+// symmetric as the array, and the quarter model through the middle row and column (its cells framed from needle to
+// needle) has the full model's nodes wherever both have cells.
+TEST(CellReplication, SquareArrayIsMirrorSymmetricAndItsQuarterIsPartOfIt) {
+  mesh::LayeredBlockOptions full = array_block(3, 3, 150e-6);
+  full.site_circle_radius = 0;
+  const mesh::ArrayBlockMesh whole = mesh::array_block_mesh(full, kSquare);
+  ASSERT_EQ(whole.meshing, mesh::BlockMeshing::ReplicatedCell) << whole.reason;
+  expect_conforming_block(whole.block.mesh, full);
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<Eigen::Vector3d> mirrored = whole.block.mesh.nodes;
+    for (Eigen::Vector3d& p : mirrored) p[axis] = -p[axis];
+    EXPECT_LT(farthest_from(mirrored, whole.block.mesh.nodes), 1e-12) << "mirrored across axis " << axis;
+  }
+
+  mesh::LayeredBlockOptions quarter = full;
+  quarter.width = 0.5 * full.width;
+  quarter.length = 0.5 * full.length;
+  const Eigen::Vector2d shift(0.25 * full.width, 0.25 * full.length);  // from the quarter's frame to the full one's
+  quarter.insertion_sites.clear();
+  for (const Eigen::Vector2d& s : full.insertion_sites) {
+    if (s.x() >= 0 && s.y() >= 0) quarter.insertion_sites.push_back(s - shift);
+  }
+  const mesh::ArrayBlockMesh part = mesh::array_block_mesh(quarter, kSquare);
+  ASSERT_EQ(part.meshing, mesh::BlockMeshing::ReplicatedCell) << part.reason;
+  EXPECT_TRUE(mesh::site_grid(quarter, kSquare).grid->sites_on_corners);
+  expect_conforming_block(part.block.mesh, quarter);
+  const Eigen::Vector2d low(0, 0), high(kPitch, kPitch);  // the cell between the four needles x, y >= 0
+  const std::vector<Eigen::Vector3d> in_full = nodes_in(whole.block.mesh, low, high, Eigen::Vector2d::Zero());
+  const std::vector<Eigen::Vector3d> in_part = nodes_in(part.block.mesh, low, high, shift);
+  EXPECT_EQ(in_full.size(), in_part.size());
+  EXPECT_LT(farthest_from(in_part, in_full), 1e-12);
+  EXPECT_LT(farthest_from(in_full, in_part), 1e-12);
 }
 
 TEST(CellReplication, FallsBackToTheWholeBlockAndSaysWhy) {

@@ -10,6 +10,7 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/insertion/needle_array.hpp"
 #include "needlekit/io/indentation_case.hpp"
+#include "needlekit/io/scale_warnings.hpp"
 #include "../../src/insertion/array_model.hpp"
 #include "../support/expect_invalid.hpp"
 
@@ -116,6 +117,36 @@ TEST(NeedleArray, TheHalfModelOfAnOddHexagonalArrayBalances) {
   std::vector<double> images(model.reduced->needles.size(), 0.0);
   for (std::size_t k = 0; k < model.source.size(); ++k) images[model.source[k]] += model.multiplicity[k];
   for (double sum : images) EXPECT_DOUBLE_EQ(sum, 2.0);
+}
+
+// The reduced models mirror every needle: a bevel (its face towards the azimuth) is its own mirror image across the
+// plane that holds its azimuth, not across the one normal to it; a reduced model across that plane is of a patch with
+// mirrored needles, which the run's notes say.
+TEST(NeedleArray, ReducedModelsOfBevelsSayWhenTheyMirrorTheBevels) {
+  const auto notes = [](const std::string& symmetry, const std::string& azimuth) {
+    std::string text = array_case("rows = 2\ncolumns = 2\nsymmetry = \"" + symmetry + "\"");
+    text.replace(text.find("shape = \"cone\""), 14, "shape = \"bevel\"");
+    text.replace(text.find("\"30 um\""), 7, "\"5 um\"");
+    std::string all;
+    for (const std::string& note : io::indentation_scale_warnings(parsed(text + "azimuth = \"" + azimuth + "\"\n")))
+      all += note + "\n";
+    return all;
+  };
+  EXPECT_THAT(notes("half", "0 deg"), testing::Not(HasSubstr("mirror image")));
+  EXPECT_THAT(notes("half", "180 deg"), testing::Not(HasSubstr("mirror image")));
+  EXPECT_THAT(notes("quarter", "0 deg"), testing::AllOf(HasSubstr("across x = 0"), HasSubstr("at x < 0 are mirror"),
+                                                        HasSubstr("use symmetry = \"half\" or \"none\"")));
+  EXPECT_THAT(notes("quarter", "0 deg"), testing::Not(HasSubstr("across y = 0")));
+  EXPECT_THAT(notes("half", "90 deg"), testing::AllOf(HasSubstr("across y = 0"), HasSubstr("use symmetry = \"none\"")));
+  // A cone is its own mirror image across every plane through its axis.
+  EXPECT_EQ(insertion::off_mirror_plane(parsed(array_case("rows = 2\ncolumns = 2\nsymmetry = \"quarter\"")), 0), 0.0);
+  // The §6.2 sharp bevel's centroid (the figure the header cites).
+  std::string bevel = array_case("rows = 2\ncolumns = 2\nsymmetry = \"half\"");
+  bevel.replace(bevel.find("shape = \"cone\""), 14, "shape = \"bevel\"");
+  bevel.replace(bevel.find("\"30 um\""), 7, "\"5 um\"");
+  bevel.replace(bevel.find("\"600 um\""), 8, "\"1000 um\"");
+  RecordProperty("sharp_bevel_centroid_off_axis_um", std::to_string(insertion::off_mirror_plane(parsed(bevel), 0) * 1e6));
+  EXPECT_NEAR(insertion::off_mirror_plane(parsed(bevel), 0), 35.1e-6, 0.1e-6);
 }
 
 TEST(NeedleArray, BadInputNamesFileLineAndKey) {

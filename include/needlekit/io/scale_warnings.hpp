@@ -27,7 +27,8 @@ std::vector<std::string> surface_scale_warnings(const geometry::TriangleMesh& su
 // A patch on a body surface: the surface and the needle as above, and the patch against the surface's median edge.
 std::vector<std::string> patch_scale_warnings(const geometry::TriangleMesh& surface, const patch::PatchDesign& design);
 // An indentation case: the needle's length, a needle mesh wider than the block or a needle longer than the block is
-// high (a needle STL in um declared as mm).
+// high (a needle STL in um declared as mm), a steep angle, an array's block meshed whole, and a reduced array model
+// whose needle is not its own mirror image across a symmetry plane (insertion::off_mirror_plane).
 std::vector<std::string> indentation_scale_warnings(const insertion::IndentationCase& indentation_case);
 
 }  // namespace needlekit::io

@@ -7,7 +7,9 @@
 // copies share on their common faces are merged exactly (the copy's periodic face node is the neighbour's own node,
 // found through the periodic pairing, not by a distance tolerance). The result is conforming (every interior face
 // shared by exactly two tetrahedra), has one node per position, and every needle at the same place in its cell
-// sees the same mesh under its tip.
+// sees the same mesh under its tip. A square array's cell (no circles round the needles) is itself assembled from
+// mirror images of its quadrant (src/mesh/mirrored_cell.hpp), so that the block is as symmetric as the array and a
+// reduced model is a part of the full model's mesh.
 #pragma once
 #include <Eigen/Core>
 #include <optional>
@@ -75,11 +77,10 @@ struct SiteGridCheck {
 
 // The block's insertion sites as a grid of the lattice's cells, or why the block cannot be assembled from cells: no
 // lattice, fewer than two sites, sites that are not every site of every cell of a grid (except a hexagonal array's
-// last row of an odd number: half a cell, meshed in the +y margin strip), a cell that leaves the block (a square
-// array's cells are then framed from needle to needle instead, with the needles on their corners, when no circles
-// are to be embedded round the needles) (a needle on the block's edge: a
-// symmetry plane through a row or column), or a margin piece thinner than half of size_at_site (its tetrahedra
-// would be flat).
+// last row of an odd number: half a cell, meshed in the +y margin strip), a cell that leaves the block (a needle on
+// the block's edge, where a symmetry plane runs through a row or column; a square array's cells are then framed
+// from needle to needle instead, with the needles on their corners, when no circles are to be embedded round the
+// needles), or a margin piece thinner than half of size_at_site (its tetrahedra would be flat).
 SiteGridCheck site_grid(const LayeredBlockOptions& options, const CellLattice& lattice);
 
 // The block assembled from `cell` (in m, the cell centred on the origin) whose tetrahedra belong to `piece`

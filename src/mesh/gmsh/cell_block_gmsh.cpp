@@ -11,11 +11,14 @@
 // can be a neighbouring cell's, so the field also takes the sites' copies in the eight neighbouring cells (points
 // that are not part of the model's volumes). Beyond the array's edge those copies stand for needles that do not
 // exist, and the margins are refined around them too: finer than needed, never coarser.
+// A cell that is its own mirror image (CellLayout::quadrant) is meshed as its quadrant x, y >= 0 with margin pieces
+// on both sides of it, and mirrored by the library (mirrored_cell.hpp).
 // Part of the Gmsh module; the layout is checked by layered_block_mesh (src/mesh/layered_block_mesh.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 #include "block_meshing_steps.hpp"
@@ -38,6 +41,20 @@ std::vector<Segment> segments(double pitch, double margin_low, double margin_hig
   if (margin_low > 0) result.push_back({-0.5 * pitch - margin_low, -0.5 * pitch, 0});
   result.push_back({-0.5 * pitch, 0.5 * pitch, 1});
   if (margin_high > 0) result.push_back({0.5 * pitch, 0.5 * pitch + margin_high, 2});
+  return result;
+}
+
+// A quadrant's extents along one axis (CellLayout::quadrant): [0, pitch/2] between the margin beyond the site (piece
+// 0, used by sites on the cell's corners) and the margin beyond the quadrant (piece 2, used by a site at the cell's
+// centre), the first half a pitch wider than the second. Both are meshed whichever is used, their widths rounded to
+// 1e-6 model units, so that a full model (sites at the centres) and a reduced one through a row of needles (sites on
+// the corners) mesh the same Gmsh model: Gmsh's 3D Delaunay meshes all volumes at once, so the quadrant's mesh
+// depends on every piece beside it.
+std::vector<Segment> quadrant_segments(double pitch, double margin_low, double margin_high, bool sites_on_corners) {
+  const double margin = std::max(margin_low, margin_high), half = 0.5 * pitch;
+  const double beyond_quadrant = std::max(0.0, std::round((sites_on_corners ? margin - half : margin) * 1e6) * 1e-6);
+  std::vector<Segment> result{{-(beyond_quadrant + half), 0, 0}, {0, half, 1}};
+  if (beyond_quadrant > 0) result.push_back({half, half + beyond_quadrant, 2});
   return result;
 }
 
@@ -98,11 +115,12 @@ void set_periodic_faces(int axis, double pitch, const std::vector<Segment>& acro
   }
 }
 
-// Sites on the cell's corners (CellLayout::sites_on_corners): the top face's corner vertices, nothing to embed.
-std::vector<int> corner_site_points(const CellLayout& layout, double u, double eps) {
+// Sites on corners of the top face (CellLayout::sites_on_corners, or the quadrant's site): its corner vertices,
+// nothing to embed.
+std::vector<int> corner_site_points(const std::vector<Eigen::Vector2d>& sites, double u, double eps) {
   gmsh::model::occ::synchronize();
   std::vector<int> corners;
-  for (const Eigen::Vector2d& s : layout.sites) {
+  for (const Eigen::Vector2d& s : sites) {
     gmsh::vectorpair vertex;
     gmsh::model::getEntitiesInBoundingBox(s.x() * u - eps, s.y() * u - eps, -eps, s.x() * u + eps, s.y() * u + eps, eps,
                                           vertex, 0);
@@ -116,7 +134,8 @@ std::vector<int> corner_site_points(const CellLayout& layout, double u, double e
 // cell of several sites, their copies in the neighbouring cells as free points for the size field; returns the point
 // tags for the field.
 std::vector<int> cell_site_points(const LayeredBlockOptions& options, const CellLayout& layout, double u, double eps) {
-  if (layout.sites_on_corners) return corner_site_points(layout, u, eps);
+  if (layout.quadrant) return corner_site_points({Eigen::Vector2d::Zero()}, u, eps);
+  if (layout.sites_on_corners) return corner_site_points(layout.sites, u, eps);
   std::vector<int> sites, circles, top_row, top_row_circles, field_points;
   const auto add_site = [&](const Eigen::Vector2d& s, std::vector<int>& points, std::vector<int>& rims) {
     points.push_back(gmsh::model::occ::addPoint(s.x() * u, s.y() * u, 0));
@@ -174,8 +193,12 @@ CellBlockMesh gmsh_cell_block(const LayeredBlockOptions& options, const std::vec
                               const CellLayout& layout) {
   const double u = 1 / kModelUnit;  // m -> model units
   const double px = layout.pitch_x * u, py = layout.pitch_y * u;
-  const std::vector<Segment> xs = segments(px, layout.margin_left * u, layout.margin_right * u);
-  const std::vector<Segment> ys = segments(py, layout.margin_bottom * u, layout.margin_top * u);
+  const auto axis_segments = [&](double pitch, double margin_low, double margin_high) {
+    return layout.quadrant ? quadrant_segments(pitch, margin_low * u, margin_high * u, layout.sites_on_corners)
+                           : segments(pitch, margin_low * u, margin_high * u);
+  };
+  const std::vector<Segment> xs = axis_segments(px, layout.margin_left, layout.margin_right);
+  const std::vector<Segment> ys = axis_segments(py, layout.margin_bottom, layout.margin_top);
   // The extent that holds every piece, centred on the cell (for the searches and the thin-layer boxes).
   const double w = 2 * std::max(-xs.front().low, xs.back().high), l = 2 * std::max(-ys.front().low, ys.back().high);
   CellBlockMesh result;
@@ -194,8 +217,10 @@ CellBlockMesh gmsh_cell_block(const LayeredBlockOptions& options, const std::vec
     }
     const double eps = 1e-3 * smallest;
     const std::vector<int> field_points = cell_site_points(options, layout, u, eps);
-    set_periodic_faces(0, px, ys, volumes, eps);
-    set_periodic_faces(1, py, xs, volumes, eps);
+    if (!layout.quadrant) {
+      set_periodic_faces(0, px, ys, volumes, eps);
+      set_periodic_faces(1, py, xs, volumes, eps);
+    }
     alternate_interface_algorithms(volumes, w, l, eps);
     set_size_fields(options, layers, volumes, field_points, w, l, u);
     set_mesh_options(0);  // one thread: the cell, and so the array, is the same in every run
