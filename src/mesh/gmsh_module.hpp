@@ -41,10 +41,10 @@ struct CellLayout {
   bool sites_on_corners = false;               // the sites are the cell's four corners (SiteGrid)
   double margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;  // -x, +x, -y, +y
   // Only a quadrant, for a cell that is its own mirror image (mirrored_cell.hpp): [0, pitch_x/2] x [0, pitch_y/2] with
-  // one site on its corner at the origin and, along each axis, a margin piece on either side: beyond the quadrant
-  // ([pitch/2, pitch/2 + m], piece 2; absent when m = 0), the margin of a site at the cell's centre, and beyond the
-  // site ([-(m + pitch/2), 0], piece 0), the margin of sites on the cell's corners; m is the larger margin of the
-  // axis (less half a pitch for sites on the corners). No periodic faces: the mirror images match.
+  // one site on its corner at the origin and, along each axis, the margin piece beyond it ([pitch/2, pitch/2 + m],
+  // piece 2; none when m = 0), m the axis' larger margin for a site at the cell's centre, half a pitch less for sites
+  // on the corners (whose margin beyond the needles begins with the half cell beyond them). No periodic faces: the
+  // mirror images match.
   bool quadrant = false;
 };
 

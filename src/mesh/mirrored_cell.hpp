@@ -2,21 +2,23 @@
 // quadrant (gmsh_module.hpp, CellLayout::quadrant). A cell meshed whole by Delaunay is not symmetric even where the
 // array is: on the 3 x 3 cone example the quarter model through the middle row and column, whose cells are framed
 // from needle to needle, differed from the full model by +2.3 to +4.4 % per needle (docs/arrays.md). Built from
-// mirror images of one quadrant with the needle on its corner, the full model's cells (needle at the centre) and the
-// framed cells (needles on the corners) are the same quadrants placed differently, and every needle of a square
-// array sees the same mesh round its tip.
+// images of one quadrant with the needle on its corner, the full model's cells (needle at the centre) and the framed
+// cells (needles on the corners) are the same quadrants placed differently.
 #pragma once
 #include "gmsh_module.hpp"
 
 namespace needlekit::mesh::detail {
 
 // The whole cell with its margin pieces (CellBlockMesh, pieces 3 * py + px) from `quadrant`, the Gmsh module's mesh
-// of `layout` with layout.quadrant set: with sites on the cell's corners the quadrant is first turned by a half turn
-// about (pitch_x/4, pitch_y/4) (its site to the cell's corner, its margin beyond the cell), then it is mirrored
-// across x = 0, y = 0 and both; a node on a mirror plane is shared by the images on its two sides (a node within
-// 1e-9 of the pitch of the plane is put on it). A margin piece is copied to the sides whose margin is > 0 (each side
-// of an axis has no margin or the same one, which array_cell_layout checks). The images across one plane are
-// reflected, so their tetrahedra are renumbered to stay right-handed.
+// of `layout` with layout.quadrant set, from images of the quadrant: for a site at the cell's centre the quadrant is
+// the cell's quadrant x, y >= 0; for sites on the corners that quadrant is the quadrant turned by a half turn (the
+// site to the cell's corner) and, beyond the site, its mirror images with their margins (the half of the site's
+// centred cell beyond it, then the margin of a centred cell): every needle of a square array, inside or on its
+// edge, then sees four images of the same quadrant round it. The cell's quadrant is then mirrored across x = 0,
+// y = 0 and both. Images share the nodes on their planes, which the quadrant has exactly on its planes (a node within
+// 1e-9 of the pitch of one is put on it), so they are merged by identical coordinates. A margin piece is kept on
+// the sides whose margin is > 0 (each side of an axis has no margin or the same one: mirrors_from_a_quadrant). A
+// reflected image's tetrahedra are renumbered to stay right-handed.
 CellBlockMesh mirrored_cell(const CellBlockMesh& quadrant, const CellLayout& layout);
 
 // Whether the cell of `layout` can be mirrored from a quadrant: one site at the cell's centre or sites on its corners,

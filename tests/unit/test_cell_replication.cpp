@@ -249,8 +249,8 @@ std::vector<Eigen::Vector3d> nodes_in(const mesh::TetMesh& m, const Eigen::Vecto
 
 // Without circles, a square array's cell is mirrored from its quadrant (src/mesh/mirrored_cell.hpp): the block is as
 // symmetric as the array, and the quarter model through the middle row and column (its cells framed from needle to
-// needle) has the full model's nodes wherever both have cells.
-TEST(CellReplication, SquareArrayIsMirrorSymmetricAndItsQuarterIsPartOfIt) {
+// needle) is the full model's quarter, node for node.
+TEST(CellReplication, SquareArrayIsMirrorSymmetricAndItsQuarterIsItsQuarter) {
   mesh::LayeredBlockOptions full = array_block(3, 3, 150e-6);
   full.site_circle_radius = 0;
   const mesh::ArrayBlockMesh whole = mesh::array_block_mesh(full, kSquare);
@@ -274,10 +274,12 @@ TEST(CellReplication, SquareArrayIsMirrorSymmetricAndItsQuarterIsPartOfIt) {
   ASSERT_EQ(part.meshing, mesh::BlockMeshing::ReplicatedCell) << part.reason;
   EXPECT_TRUE(mesh::site_grid(quarter, kSquare).grid->sites_on_corners);
   expect_conforming_block(part.block.mesh, quarter);
-  const Eigen::Vector2d low(0, 0), high(kPitch, kPitch);  // the cell between the four needles x, y >= 0
+  const Eigen::Vector2d low(0, 0), high(0.5 * full.width, 0.5 * full.length);  // the whole quarter x, y >= 0
   const std::vector<Eigen::Vector3d> in_full = nodes_in(whole.block.mesh, low, high, Eigen::Vector2d::Zero());
   const std::vector<Eigen::Vector3d> in_part = nodes_in(part.block.mesh, low, high, shift);
   EXPECT_EQ(in_full.size(), in_part.size());
+  EXPECT_EQ(in_part.size(), part.block.mesh.nodes.size());
+  EXPECT_EQ(4 * part.block.mesh.tets.size(), whole.block.mesh.tets.size());
   EXPECT_LT(farthest_from(in_part, in_full), 1e-12);
   EXPECT_LT(farthest_from(in_full, in_part), 1e-12);
 }

@@ -136,6 +136,28 @@ TEST(NeedleArrays, TheQuarterModelGivesTheFullModelsForces) {
   EXPECT_LT(quarter.elements, full.elements / 2);
 }
 
+// Without embedded rims a square array's cell is mirrored from its quadrant (src/mesh/mirrored_cell.hpp): the block
+// is as symmetric as the array, so the corner needles carry the same force to round-off, and the quarter model of a
+// 3 x 3 array, whose planes run through the middle row and column (each needle there cut in half), is the full
+// model's quarter, node for node: its forces are the full model's to the solver's tolerance.
+TEST(NeedleArrays, TheQuarterModelThroughARowOfNeedlesIsTheFullModelsQuarter) {
+  const auto without_rims = [](std::string text) {
+    return text.erase(text.find("site_circle_radius"), text.find('\n', text.find("site_circle_radius")) -
+                                                            text.find("site_circle_radius") + 1);
+  };
+  const std::string array = "rows = 3\ncolumns = 3\npitch = \"300 um\"\nmargin = \"400 um\"";
+  const auto full = run(without_rims(case_text(array, "", "10 um", 2)));
+  const auto quarter = run(without_rims(case_text(array + "\nsymmetry = \"quarter\"", "", "10 um", 2)));
+  ASSERT_EQ(quarter.needles.size(), 9u);
+  EXPECT_EQ(4 * quarter.elements, full.elements);
+  EXPECT_LT(spread(full, {0, 2, 6, 8}), 1e-9);
+  for (int k = 0; k < 9; ++k) {
+    RecordProperty("quarter_error_" + std::to_string(k),
+                   std::to_string(relative(quarter.needles[k].force.back(), full.needles[k].force.back())));
+    EXPECT_LT(relative(quarter.needles[k].force.back(), full.needles[k].force.back()), 1e-6) << "needle " << k;
+  }
+}
+
 // Bed of nails: at a fixed critical pressure, the plate travels further before the first needle punctures the closer
 // the needles stand (quarter models of 2 x 2 arrays).
 TEST(NeedleArrays, ThePlateTravelsFurtherToTheFirstPunctureTheCloserTheNeedles) {

@@ -11,8 +11,8 @@
 // can be a neighbouring cell's, so the field also takes the sites' copies in the eight neighbouring cells (points
 // that are not part of the model's volumes). Beyond the array's edge those copies stand for needles that do not
 // exist, and the margins are refined around them too: finer than needed, never coarser.
-// A cell that is its own mirror image (CellLayout::quadrant) is meshed as its quadrant x, y >= 0 with margin pieces
-// on both sides of it, and mirrored by the library (mirrored_cell.hpp).
+// A cell that is its own mirror image (CellLayout::quadrant) is meshed as its quadrant x, y >= 0 with the margin
+// pieces beyond it, and mirrored by the library (mirrored_cell.hpp).
 // Part of the Gmsh module; the layout is checked by layered_block_mesh (src/mesh/layered_block_mesh.cpp).
 #include <fmt/format.h>
 
@@ -44,17 +44,15 @@ std::vector<Segment> segments(double pitch, double margin_low, double margin_hig
   return result;
 }
 
-// A quadrant's extents along one axis (CellLayout::quadrant): [0, pitch/2] between the margin beyond the site (piece
-// 0, used by sites on the cell's corners) and the margin beyond the quadrant (piece 2, used by a site at the cell's
-// centre), the first half a pitch wider than the second. Both are meshed whichever is used, their widths rounded to
-// 1e-6 model units, so that a full model (sites at the centres) and a reduced one through a row of needles (sites on
-// the corners) mesh the same Gmsh model: Gmsh's 3D Delaunay meshes all volumes at once, so the quadrant's mesh
+// A quadrant's extents along one axis (CellLayout::quadrant): [0, pitch/2] and the margin beyond it, rounded to 1e-6
+// model units so that a full model and a reduced one through a row of needles (whose margin beyond the needles is
+// half a pitch wider) mesh the same Gmsh model: Gmsh's 3D Delaunay meshes all volumes at once, so the quadrant's mesh
 // depends on every piece beside it.
 std::vector<Segment> quadrant_segments(double pitch, double margin_low, double margin_high, bool sites_on_corners) {
   const double margin = std::max(margin_low, margin_high), half = 0.5 * pitch;
-  const double beyond_quadrant = std::max(0.0, std::round((sites_on_corners ? margin - half : margin) * 1e6) * 1e-6);
-  std::vector<Segment> result{{-(beyond_quadrant + half), 0, 0}, {0, half, 1}};
-  if (beyond_quadrant > 0) result.push_back({half, half + beyond_quadrant, 2});
+  const double beyond = std::max(0.0, std::round((sites_on_corners ? margin - half : margin) * 1e6) * 1e-6);
+  std::vector<Segment> result{{0, half, 1}};
+  if (beyond > 0) result.push_back({half, half + beyond, 2});
   return result;
 }
 
