@@ -98,10 +98,10 @@ std::vector<std::string> indentation_scale_warnings(const insertion::Indentation
       if (offset == 0) continue;
       const char* name = axis == 0 ? "x" : "y";
       warnings.push_back(fmt::format(
-          "array.symmetry = \"{}\" mirrors the needles across {} = 0, and this needle is not its own mirror image "
-          "there (its surface's centroid lies {} off its axis along {}: a bevel faces along loading.azimuth): the model "
-          "is of a patch whose needles at {} < 0 are mirror images, their bevels turned the other way; for a patch of "
-          "identical needles use symmetry = {}",
+          "array.symmetry = \"{}\" mirrors the needles across {} = 0, and this needle is not its own mirror "
+          "image there (its surface's centroid lies {} off its axis along {}: a bevel faces along loading.azimuth): "
+          "the model is of a patch whose needles at {} < 0 are mirror images, their bevels turned the other way; for "
+          "a patch of identical needles use symmetry = {}",
           name_of(insertion::kArraySymmetryNames, c.array->symmetry), name, units::readable_length(offset), name, name,
           axis == 0 && insertion::off_mirror_plane(c, 1) == 0 ? "\"half\" or \"none\"" : "\"none\""));
     }

@@ -51,7 +51,8 @@ private:
 }  // namespace
 
 bool mirrors_from_a_quadrant(const CellLayout& layout, const LayeredBlockOptions& options) {
-  const bool one_central_site = layout.sites.size() == 1 && layout.sites.front().norm() <= kPlaneTolerance * layout.pitch_x;
+  const bool one_central_site =
+      layout.sites.size() == 1 && layout.sites.front().norm() <= kPlaneTolerance * layout.pitch_x;
   return (one_central_site || layout.sites_on_corners) && layout.top_row_sites.empty() &&
          options.site_circle_radius == 0 &&
          mirrorable_margins(layout.margin_left, layout.margin_right, layout.pitch_x, layout.sites_on_corners) &&
@@ -64,8 +65,9 @@ CellBlockMesh mirrored_cell(const CellBlockMesh& quadrant, const CellLayout& lay
   // The quadrant's nodes put exactly on its planes.
   std::vector<Eigen::Vector3d> nodes = q.nodes;
   for (Eigen::Vector3d& p : nodes) {
-    for (const auto& [axis, plane, pitch] : {std::tuple{0, 0.0, layout.pitch_x}, std::tuple{0, half_x, layout.pitch_x},
-                                             std::tuple{1, 0.0, layout.pitch_y}, std::tuple{1, half_y, layout.pitch_y}}) {
+    for (const auto& [axis, plane, pitch] :
+         {std::tuple{0, 0.0, layout.pitch_x}, std::tuple{0, half_x, layout.pitch_x}, std::tuple{1, 0.0, layout.pitch_y},
+          std::tuple{1, half_y, layout.pitch_y}}) {
       if (std::abs(p[axis] - plane) <= kPlaneTolerance * pitch) p[axis] = plane;
     }
   }

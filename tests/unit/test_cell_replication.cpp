@@ -241,8 +241,8 @@ std::vector<Eigen::Vector3d> nodes_in(const mesh::TetMesh& m, const Eigen::Vecto
   const double tolerance = 1e-9 * kPitch;
   for (Eigen::Vector3d p : m.nodes) {
     p.head<2>() += shift;
-    if ((p.head<2>().array() >= low.array() - tolerance).all() && (p.head<2>().array() <= high.array() + tolerance).all())
-      inside.push_back(p);
+    const Eigen::Array2d xy = p.head<2>().array();
+    if ((xy >= low.array() - tolerance).all() && (xy <= high.array() + tolerance).all()) inside.push_back(p);
   }
   return inside;
 }

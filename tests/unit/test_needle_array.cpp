@@ -145,8 +145,9 @@ TEST(NeedleArray, ReducedModelsOfBevelsSayWhenTheyMirrorTheBevels) {
   bevel.replace(bevel.find("shape = \"cone\""), 14, "shape = \"bevel\"");
   bevel.replace(bevel.find("\"30 um\""), 7, "\"5 um\"");
   bevel.replace(bevel.find("\"600 um\""), 8, "\"1000 um\"");
-  RecordProperty("sharp_bevel_centroid_off_axis_um", std::to_string(insertion::off_mirror_plane(parsed(bevel), 0) * 1e6));
-  EXPECT_NEAR(insertion::off_mirror_plane(parsed(bevel), 0), 35.1e-6, 0.1e-6);
+  const double off_axis = insertion::off_mirror_plane(parsed(bevel), 0);
+  RecordProperty("sharp_bevel_centroid_off_axis_um", std::to_string(off_axis * 1e6));
+  EXPECT_NEAR(off_axis, 35.1e-6, 0.1e-6);
 }
 
 TEST(NeedleArray, BadInputNamesFileLineAndKey) {

@@ -109,8 +109,8 @@ double needle_length(const IndentationCase& indentation_case);
 // normal to `axis` (0: the plane x = 0 of a quarter model, 1: y = 0 of a half or quarter model), measured by the area
 // centroid of its surface off that plane (0 within kMirrorCentroidTolerance of the base diameter). A necessary
 // condition: a cone's and a cylinder's centroid is on every such plane, a bevel's lies off its axis on the side away
-// from its face (the §6.2 sharp bevel's 35.1 um along its azimuth). A reduced array model mirrors the needles across its
-// planes, so where this is not 0 it models a patch whose needles beyond the plane are mirror images.
+// from its face (the §6.2 sharp bevel's 35.1 um along its azimuth). A reduced array model mirrors the needles across
+// its planes, so where this is not 0 it models a patch whose needles beyond the plane are mirror images.
 double off_mirror_plane(const IndentationCase& indentation_case, int axis);
 inline constexpr double kMirrorCentroidTolerance = 1e-3;
 
