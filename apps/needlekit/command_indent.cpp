@@ -30,6 +30,7 @@ struct IndentArguments {
   std::string out_dir;
   bool json = false;
   bool no_plot = false;
+  bool newton_log = false;
   std::string size_at_tip;
   std::string size_far;
   std::string depth;
@@ -128,7 +129,14 @@ insertion::IndentationCase read_case(const IndentArguments& arguments) {
 }
 
 void run_indent(const IndentArguments& arguments) {
-  const insertion::IndentationCase indentation_case = read_case(arguments);
+  insertion::IndentationCase indentation_case = read_case(arguments);
+  if (arguments.newton_log && fem::process_rank() == 0) {
+    // One line per Newton iteration on stderr (rank 0), for following a long run and finding its hard steps.
+    indentation_case.solver.progress = [](const fem::SolverProgress& p) {
+      fmt::print(stderr, "newton: target {:.6g} um, augmentation {}, iteration {}: residual {:.4g} N, cut-backs {}\n",
+                 p.target_displacement * 1e6, p.augmentation, p.iteration, p.residual_norm, p.cutbacks);
+    };
+  }
   print_warnings(io::indentation_scale_warnings(indentation_case));
 
   std::optional<io::IndentationWriter> writer;
@@ -185,6 +193,9 @@ void add_indent_command(CLI::App& app) {
   command->add_flag("--json", arguments->json, "print the result as one JSON object (units in the key names)");
   command->add_flag("--no-plot", arguments->no_plot,
                     "with [array] and --out: do not write NAME_needle_map.png (needs /usr/bin/python3 with matplotlib)");
+  command->add_flag("--newton-log", arguments->newton_log,
+                    "print one line per Newton iteration on stderr: the step's target displacement, the surface "
+                    "contact's augmentation, the iteration, its residual and the cut-backs so far");
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--depth", arguments->depth, "override [loading] depth, e.g. \"50 um\"");

@@ -189,7 +189,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     state.last_du = alpha * rec.increment_norm;
     state.last_en = alpha * rec.energy_norm;
     book(rec, res);
-    if (opt.progress) opt.progress({disp, it, rec.residual_norm, cutbacks_so_far});
+    if (opt.progress) opt.progress({disp, it, rec.residual_norm, cutbacks_so_far, augmentation});
   }
   return false;
 }
@@ -254,10 +254,12 @@ bool QuasiStaticSolver::Impl::solve_substep(double target, StepResult& res, Fail
       book(rec, res);
     }
     u += dup;
+    augmentation = 0;
     return newton(target, res, failure, cutbacks_so_far);
   }
   // Surface contact: Newton at fixed multipliers, then augmented-Lagrangian updates.
   for (int aug = 0;; ++aug) {
+    augmentation = aug;
     if (!newton(target, res, failure, cutbacks_so_far)) return false;
     const double pen = contact->max_penetration();
     const bool settled = pen <= opt.penetration_tolerance * std::max(std::abs(target), contact->smallest_size()) &&

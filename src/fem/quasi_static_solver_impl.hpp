@@ -65,6 +65,7 @@ struct QuasiStaticSolver::Impl {
   double last_step = 0;            // m, its needle displacement change
   Eigen::VectorXd earlier_increment;  // the substep's before it (the quadratic predictor), empty if none
   double earlier_step = 0;            // m
+  int augmentation = 0;                // surface contact: the (sub)step's augmented-Lagrangian updates so far
   double converged_strain_energy = 0;  // J, of the state at which newton() last returned converged
 
   // ---- assembly (quasi_static_solver.cpp) ----

@@ -177,6 +177,26 @@ TEST_F(IndentCli, BluntBevelUnderFrictionalContactConvergesWithTheMesh) {
   EXPECT_NEAR(force[0] / force[1], 1.0, 0.10);
 }
 
+// --newton-log: one stderr line per Newton iteration, as many as the JSON counts, with the contact's augmentations.
+TEST_F(IndentCli, NewtonLogHasALinePerIterationTheJsonCounts) {
+  const CliRun r = run("indent " + kExamples +
+                       "indent_6_2_blunt_bevel_friction.toml --json --newton-log --depth '40 um' --steps 2 "
+                       "--size-at-tip '60 um'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  int iterations = 0;
+  for (const auto& n : json["newton_iterations"]) iterations += n.get<int>();
+  const std::regex line(R"(newton: target (20|40) um, augmentation (\d+), iteration (\d+): residual \S+ N, cut-backs 0)");
+  int lines = 0, augmented = 0;
+  for (auto it = std::sregex_iterator(r.err.begin(), r.err.end(), line); it != std::sregex_iterator(); ++it) {
+    ++lines;
+    augmented += std::stoi((*it)[2]) > 0;
+  }
+  EXPECT_GT(iterations, 2);
+  EXPECT_EQ(lines, iterations) << r.err;
+  EXPECT_GT(augmented, 0) << "surface contact updates its multipliers at least once per step";
+}
+
 // The averaged-pressure puncture law (issue 35 item 2) on the same frictional contact: the blunt bevel punctures at
 // one depth on the 40 and 28 um tip meshes (docs/indentation.md, "Averaged pressure under friction": 160.9, 162.6 and
 // 168.3 um on 40, 28 and 20 um; frictionless the 40 um mesh punctured at 132 um, 20 % before the 28 um one). The runs

@@ -125,6 +125,7 @@ struct SolverProgress {
   int iteration = 0;                // Newton iteration within the (sub)step, from 1
   double residual_norm = 0;         // N, free-dof residual
   int cutbacks = 0;                 // so far in this advance_to call
+  int augmentation = 0;             // surface contact: augmented-Lagrangian updates so far in this (sub)step
 };
 
 struct SolverOptions {
