@@ -133,8 +133,11 @@ void run_indent(const IndentArguments& arguments) {
   if (arguments.newton_log && fem::process_rank() == 0) {
     // One line per Newton iteration on stderr (rank 0), for following a long run and finding its hard steps.
     indentation_case.solver.progress = [](const fem::SolverProgress& p) {
-      fmt::print(stderr, "newton: target {:.6g} um, augmentation {}, iteration {}: residual {:.4g} N, cut-backs {}\n",
-                 p.target_displacement * 1e6, p.augmentation, p.iteration, p.residual_norm, p.cutbacks);
+      fmt::print(stderr,
+                 "newton: target {:.6g} um, augmentation {}, iteration {}: residual {:.4g} N, cut-backs {}, step "
+                 "length {:.4g}, CG {}{}\n",
+                 p.target_displacement * 1e6, p.augmentation, p.iteration, p.residual_norm, p.cutbacks, p.step_length,
+                 p.linear_iterations, p.contact_set_changed ? ", contact changed" : "");
     };
   }
   print_warnings(io::indentation_scale_warnings(indentation_case));
@@ -195,7 +198,8 @@ void add_indent_command(CLI::App& app) {
                     "with [array] and --out: do not write NAME_needle_map.png (needs /usr/bin/python3 with matplotlib)");
   command->add_flag("--newton-log", arguments->newton_log,
                     "print one line per Newton iteration on stderr: the step's target displacement, the surface "
-                    "contact's augmentation, the iteration, its residual and the cut-backs so far");
+                    "contact's augmentation, the iteration, its residual, the cut-backs so far, the line search's step length, "
+                    "the CG iterations and whether the nodes in contact changed");
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--depth", arguments->depth, "override [loading] depth, e.g. \"50 um\"");

@@ -189,7 +189,10 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     state.last_du = alpha * rec.increment_norm;
     state.last_en = alpha * rec.energy_norm;
     book(rec, res);
-    if (opt.progress) opt.progress({disp, it, rec.residual_norm, cutbacks_so_far, augmentation});
+    if (opt.progress) {
+      opt.progress({disp, it, rec.residual_norm, cutbacks_so_far, augmentation, alpha, rec.linear_iterations,
+                    state.last_set_change == it});
+    }
   }
   return false;
 }

@@ -186,11 +186,12 @@ TEST_F(IndentCli, NewtonLogHasALinePerIterationTheJsonCounts) {
   const nlohmann::json json = nlohmann::json::parse(r.out);
   int iterations = 0;
   for (const auto& n : json["newton_iterations"]) iterations += n.get<int>();
-  const std::regex line(R"(newton: target (20|40) um, augmentation (\d+), iteration (\d+): residual \S+ N, cut-backs 0)");
+  const std::regex line(R"(newton: target (20|40) um, augmentation (\d+), iteration (\d+): residual \S+ N, cut-backs 0, step length ([0-9.e+-]+), CG (\d+))");
   int lines = 0, augmented = 0;
   for (auto it = std::sregex_iterator(r.err.begin(), r.err.end(), line); it != std::sregex_iterator(); ++it) {
     ++lines;
     augmented += std::stoi((*it)[2]) > 0;
+    EXPECT_GT(std::stod((*it)[4]), 0.0) << "the line search's step length";
   }
   EXPECT_GT(iterations, 2);
   EXPECT_EQ(lines, iterations) << r.err;

@@ -126,6 +126,9 @@ struct SolverProgress {
   double residual_norm = 0;         // N, free-dof residual
   int cutbacks = 0;                 // so far in this advance_to call
   int augmentation = 0;             // surface contact: augmented-Lagrangian updates so far in this (sub)step
+  double step_length = 1;           // the line search's factor on the Newton update
+  int linear_iterations = 0;        // CG iterations of the update (0: a direct solve)
+  bool contact_set_changed = false;  // surface contact: the nodes in contact differ from the last iteration's
 };
 
 struct SolverOptions {
