@@ -160,6 +160,7 @@ void run_indent(const IndentArguments& arguments) {
   }
   const insertion::IndentationResult result = insertion::run_indentation(indentation_case, options);
   progress.finish();
+  if (fem::process_rank() == 0) print_warnings(io::indentation_result_notes(result));
   if (writer) writer->finish(result);
   if (writer && result.array && !arguments.no_plot) {
     writer->remember(write_needle_map(arguments.out_dir, indentation_case));

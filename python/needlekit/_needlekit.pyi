@@ -1779,6 +1779,9 @@ class IndentationResult:
     def mesh_seconds(self) -> float:
         """s"""
     @property
+    def min_volume_ratio(self) -> numpy.ndarray:
+        """the most compressed tetrahedron's J = det F per step (below 0.3: forces depend on the mesh)"""
+    @property
     def needles(self) -> List[NeedleOutcome]:
         """one NeedleOutcome per needle (of the whole array)"""
     @property
@@ -1861,6 +1864,9 @@ class IndentationStep:
     @property
     def max_contact_pressure(self) -> float:
         """Pa"""
+    @property
+    def min_volume_ratio(self) -> float:
+        """the most compressed tetrahedron's J = det F (below 0.3: forces depend on the mesh)"""
     @property
     def moment(self) -> numpy.ndarray:
         """N m, the tissue's moment on the needles about each needle's base centre, block axes"""

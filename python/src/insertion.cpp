@@ -127,6 +127,8 @@ void bind_indentation(py::module_& m) {
       .def_readonly("strain_energy", &IndentationStep::strain_energy, "J")
       .def_readonly("external_work", &IndentationStep::external_work, "J")
       .def_readonly("newton_iterations", &IndentationStep::newton_iterations)
+      .def_readonly("min_volume_ratio", &IndentationStep::min_volume_ratio,
+                    "the most compressed tetrahedron's J = det F (below 0.3: forces depend on the mesh)")
       .def_readonly("step_seconds", &IndentationStep::step_seconds, "s")
       .def_readonly("lateral_force", &IndentationStep::lateral_force,
                     "N, the tissue's force on the needles across their axis, block axes (x, y, z)")
@@ -164,7 +166,11 @@ void bind_indentation(py::module_& m) {
           [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::averaged_pressure); }, "Pa")
       .def_property_readonly(
           "strain_energy",
-          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::strain_energy); }, "J");
+          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::strain_energy); }, "J")
+      .def_property_readonly(
+          "min_volume_ratio",
+          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::min_volume_ratio); },
+          "the most compressed tetrahedron's J = det F per step (below 0.3: forces depend on the mesh)");
   m.def(
       "run_indentation",
       [](const IndentationCase& c, py::object progress, std::optional<std::string> output_directory) {

@@ -27,6 +27,13 @@ std::string fmt_um(double m) {
   return s.str();
 }
 
+// The norm of the free dofs of u.
+double free_norm(const Eigen::VectorXd& u, const std::vector<int>& free_dofs) {
+  double sum = 0;
+  for (int dof : free_dofs) sum += u[dof] * u[dof];
+  return std::sqrt(sum);
+}
+
 // Adds a finished iteration to the step's record.
 void book(const IterationRecord& rec, StepResult& res) {
   res.iterations.push_back(rec);
@@ -145,9 +152,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
       return false;
     }
     const double ref = std::max({fint.norm(), opt.contact == ContactModel::Surface ? fcontact.norm() : 0.0, tiny});
-    double unorm = 0;
-    for (int dof : dofs.free_dofs) unorm += u[dof] * u[dof];
-    unorm = std::sqrt(unorm);
+    const double unorm = free_norm(u, dofs.free_dofs);
     const bool res_ok = rec.residual_norm <= opt.residual_tolerance * ref;
     const bool disp_ok = state.last_du <= opt.displacement_tolerance * std::max(unorm, 1e-300);
     const bool energy_ok = it > 1 && state.last_en <= opt.energy_tolerance * state.first_energy_norm;
@@ -189,10 +194,9 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     state.last_du = alpha * rec.increment_norm;
     state.last_en = alpha * rec.energy_norm;
     book(rec, res);
-    if (opt.progress) {
+    if (opt.progress)
       opt.progress({disp, it, rec.residual_norm, cutbacks_so_far, augmentation, alpha, rec.linear_iterations,
                     state.last_set_change == it});
-    }
   }
   return false;
 }

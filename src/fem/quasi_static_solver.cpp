@@ -277,6 +277,22 @@ void QuasiStaticSolver::Impl::measure(StepResult& res) {
     if (res.contact_area[k] > 0) res.mean_contact_pressure[k] = res.indenter_force[k] / res.contact_area[k];
   }
   res.max_penetration = contact ? contact->max_penetration() : 0.0;
+  res.min_volume_ratio = smallest_volume_ratio();
+}
+
+double QuasiStaticSolver::Impl::smallest_volume_ratio() const {
+  const int nn = space.nodes_per_element, nq = space.points;
+  double smallest = std::numeric_limits<double>::infinity();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> ue(3, nn);
+  for (size_t e = 0; e < space.elements.size(); ++e) {
+    for (int a = 0; a < nn; ++a) ue.col(a) = u.segment<3>(3 * space.connectivity[e * nn + a]);
+    for (int q = 0; q < nq; ++q) {
+      const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> g(&space.gradients[(e * nq + q) * 3 * nn], 3,
+                                                                          nn);
+      smallest = std::min(smallest, (Eigen::Matrix3d::Identity() + ue * g.transpose()).determinant());
+    }
+  }
+  return smallest;
 }
 
 // ---- construction ---------------------------------------------------------------------------------------------

@@ -81,6 +81,7 @@ IndentationStep step_of(const fem::StepResult& solved, double depth, const detai
   step.newton_iterations = solved.newton_iterations;
   step.cutbacks = solved.cutbacks;
   step.factorizations = solved.factorizations;
+  step.min_volume_ratio = solved.min_volume_ratio;
   for (const fem::IterationRecord& iteration : solved.iterations) step.linear_iterations += iteration.linear_iterations;
   if (!solved.iterations.empty()) {
     step.max_residual = solved.iterations.front().residual_norm;

@@ -110,15 +110,29 @@ std::string force_depth_csv(const insertion::IndentationResult& result) {
   return out.str();
 }
 
+std::vector<std::string> indentation_result_notes(const insertion::IndentationResult& result) {
+  const auto crushed = std::find_if(result.steps.begin(), result.steps.end(), [](const insertion::IndentationStep& s) {
+    return s.min_volume_ratio < insertion::kCrushedVolumeRatio;
+  });
+  if (crushed == result.steps.end()) return {};
+  double smallest = 1;
+  for (const insertion::IndentationStep& s : result.steps) smallest = std::min(smallest, s.min_volume_ratio);
+  return {fmt::format("from {:g} um deep a tetrahedron is crushed to less than {:g} of its volume (smallest volume "
+                      "ratio {:.3g}): the forces from there on depend on the mesh, and Newton may slow down; expected a "
+                      "finer [mesh] size_at_tip, [model] contact = \"surface\" (the tip-node rule is a point load) or "
+                      "a shallower [loading] depth",
+                      crushed->depth * 1e6, insertion::kCrushedVolumeRatio, smallest)};
+}
+
 std::string solver_statistics_csv(const insertion::IndentationResult& result) {
   std::ostringstream out;
   out << "step,depth_um,newton_iterations,cutbacks,factorizations,cg_iterations,first_residual_N,final_residual_N,"
-         "assembly_s,solve_s,step_s\n";
+         "min_volume_ratio,assembly_s,solve_s,step_s\n";
   for (std::size_t k = 0; k < result.steps.size(); ++k) {
     const insertion::IndentationStep& s = result.steps[k];
-    out << fmt::format("{},{:.9g},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", k + 1, s.depth * 1e6,
+    out << fmt::format("{},{:.9g},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", k + 1, s.depth * 1e6,
                        s.newton_iterations, s.cutbacks, s.factorizations, s.linear_iterations, s.max_residual,
-                       s.final_residual, s.assembly_seconds, s.solve_seconds, s.step_seconds);
+                       s.final_residual, s.min_volume_ratio, s.assembly_seconds, s.solve_seconds, s.step_seconds);
   }
   return out.str();
 }
@@ -190,7 +204,9 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json.update(puncture_json(c, result));
   std::vector<double> depth, force, pressure, averaged, energy, work, lateral_x, lateral_y, moment;
   std::vector<int> iterations;
+  std::vector<double> volume_ratio;
   for (const insertion::IndentationStep& s : result.steps) {
+    volume_ratio.push_back(s.min_volume_ratio);
     depth.push_back(s.depth * 1e6);
     force.push_back(s.force);
     lateral_x.push_back(s.lateral_force.x());
@@ -215,6 +231,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["strain_energy_J"] = energy;
   json["external_work_J"] = work;
   json["newton_iterations"] = iterations;
+  json["min_volume_ratio"] = volume_ratio;  // the most compressed tetrahedron's J = det F
   json["elements"] = result.elements;
   json["nodes"] = result.nodes;
   json["dofs"] = result.dofs;
@@ -245,7 +262,9 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
                        {"mean_quality", q.mean_quality}});
   }
   json["mesh_quality"] = quality;
-  json["notes"] = indentation_scale_warnings(c);
+  std::vector<std::string> notes = indentation_scale_warnings(c);
+  for (std::string& note : indentation_result_notes(result)) notes.push_back(std::move(note));
+  json["notes"] = notes;
   json["inputs"] = indentation_inputs_json(c);
   json["mesh_seconds"] = result.mesh_seconds;
   json["setup_seconds"] = result.setup_seconds;

@@ -103,6 +103,16 @@ TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
   EXPECT_NEAR(json["puncture_depth_um"].get<double>(), 24.4, 1.0);
   const auto force = json["force_N"].get<std::vector<double>>();
   for (size_t k = 1; k < force.size(); ++k) EXPECT_GT(force[k], force[k - 1]) << "step " << k + 1;
+  // The tip-node rule's point load crushes the tetrahedra under the tip ever further (0.66 at 10 um, 0.0024 at
+  // 130 um): the run says from which depth its forces depend on the mesh.
+  const auto ratio = json["min_volume_ratio"].get<std::vector<double>>();
+  ASSERT_EQ(ratio.size(), 13u);
+  for (size_t k = 1; k < ratio.size(); ++k) EXPECT_LT(ratio[k], ratio[k - 1]) << "step " << k + 1;
+  EXPECT_GT(ratio.front(), 0.3);
+  EXPECT_GT(ratio.back(), 0.0);
+  EXPECT_LT(ratio.back(), 0.01);
+  EXPECT_THAT(json["notes"].dump(), HasSubstr("from 30 um deep a tetrahedron is crushed"));
+  EXPECT_THAT(r.err, HasSubstr("from 30 um deep a tetrahedron is crushed"));
 }
 
 TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {

@@ -128,6 +128,7 @@ TEST(UniaxialStrain, RollerSidesGiveTheConfinedCompressionStress) {
                          ? 0.5 * (lame.lambda + 2 * lame.mu) * std::pow(0.5 * (s * s - 1), 2)
                          : 0.5 * lame.mu * (s * s - 1) - lame.mu * std::log(s) + 0.5 * lame.lambda * std::pow(std::log(s), 2);
     EXPECT_NEAR(r.strain_energy, w * kSide * kSide * kSide, 1e-7 * w * kSide * kSide * kSide);
+    EXPECT_NEAR(r.min_volume_ratio, s, 1e-9) << "every tetrahedron is compressed to J = s";
   }
 }
 

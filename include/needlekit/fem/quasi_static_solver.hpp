@@ -72,6 +72,9 @@ struct StepResult {
   std::vector<double> contact_area;           // m^2, per needle: tributary area of the nodes in contact
   std::vector<int> contact_nodes;             // per needle: nodes in contact
   double max_penetration = 0;            // m, Surface contact: largest penetration after the last augmentation
+  // The smallest volume ratio J = det F at any quadrature point: how far the most compressed tetrahedron is crushed
+  // (the nodal-averaged volume lets single elements compress while their patch keeps its volume).
+  double min_volume_ratio = 1;
   double strain_energy = 0;              // J, stored in the tissue
   double external_work = 0;              // J, sum over needles of the trapezoidal integral of force over displacement
                                          // since the solver was built

@@ -157,6 +157,10 @@ inline constexpr EnumTable<IndentationStatus, 3> kIndentationStatusNames{{
 }};
 std::string_view to_string(IndentationStatus status);
 
+// Below this volume ratio J = det F a tetrahedron is crushed: under a 5 um tip meshed at 8 um the smallest ratio
+// fell to 0.27 at 130 um, where Newton began to need 50+ iterations (BENCHMARKS.md, twentieth session).
+inline constexpr double kCrushedVolumeRatio = 0.3;
+
 // One converged load step.
 struct IndentationStep {
   double depth = 0;                  // m, tip depth below the undeformed surface
@@ -181,6 +185,7 @@ struct IndentationStep {
   int cutbacks = 0;                  // step halvings needed
   int factorizations = 0;            // fresh Cholesky factorizations of this step
   int linear_iterations = 0;         // CG iterations on a reused factorization, summed over the step's solves
+  double min_volume_ratio = 1;       // the most compressed tetrahedron's J = det F (fem::StepResult's)
   double max_residual = 0;           // N, residual norm at the first Newton iteration of the step
   double final_residual = 0;         // N, residual norm at the last Newton iteration of the step
   double assembly_seconds = 0;       // wall time of this step

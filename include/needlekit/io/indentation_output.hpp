@@ -29,7 +29,8 @@ VtuGrid needle_grid(const insertion::IndentationCase& indentation_case, double i
 // external_work_J — one row per converged step, starting with the undeformed state (0, 0).
 std::string force_depth_csv(const insertion::IndentationResult& result);
 
-// step,depth_um,newton_iterations,cutbacks,first_residual_N,final_residual_N,assembly_s,solve_s,step_s.
+// step,depth_um,newton_iterations,cutbacks,factorizations,cg_iterations,first_residual_N,final_residual_N,
+// min_volume_ratio,assembly_s,solve_s,step_s.
 std::string solver_statistics_csv(const insertion::IndentationResult& result);
 
 // {"puncture_depth_um", "puncture_force_N" (null if none), "criterion" (the one that fired: "critical-pressure" |
@@ -49,12 +50,16 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 // null, ...}}. What indentation_json writes under "inputs".
 nlohmann::json indentation_inputs_json(const insertion::IndentationCase& indentation_case);
 
+// What the result says of the mesh's fitness: a note when a step crushed a tetrahedron below
+// insertion::kCrushedVolumeRatio of its volume, naming the first such depth and the smallest ratio.
+std::vector<std::string> indentation_result_notes(const insertion::IndentationResult& result);
+
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "averaged_pressure_MPa" (p̄_l per step, with the averaged-pressure law),
-// "strain_energy_J", "external_work_J", "newton_iterations" (arrays, one entry per converged step), "elements",
-// "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp: needles_json), "array"
-// (with an array: array_json), "layers", "mesh_quality", "notes" (warnings: io/scale_warnings.hpp), "mesh_seconds",
-// "setup_seconds", "total_seconds".
+// "strain_energy_J", "external_work_J", "newton_iterations", "min_volume_ratio" (arrays, one entry per converged
+// step), "elements", "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp:
+// needles_json), "array" (with an array: array_json), "layers", "mesh_quality", "notes" (warnings:
+// io/scale_warnings.hpp, then indentation_result_notes), "mesh_seconds", "setup_seconds", "total_seconds".
 nlohmann::json indentation_json(const insertion::IndentationCase& indentation_case,
                                 const insertion::IndentationResult& result);
 
