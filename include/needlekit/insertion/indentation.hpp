@@ -157,8 +157,10 @@ inline constexpr EnumTable<IndentationStatus, 3> kIndentationStatusNames{{
 }};
 std::string_view to_string(IndentationStatus status);
 
-// Below this volume ratio J = det F a tetrahedron is crushed: under a 5 um tip meshed at 8 um the smallest ratio
-// fell to 0.27 at 130 um, where Newton began to need 50+ iterations (BENCHMARKS.md, twentieth session).
+// Below this volume ratio J = det F a tetrahedron is crushed, and the forces depend on the mesh: under the §6.2 sharp
+// bevel (surface contact) the smallest ratio falls below it at 60 um on an 8 um tip mesh and at 40 um on 5.5 um;
+// in the 2.40 M-equivalent array it first did at 120 um, where Newton began to slow (BENCHMARKS.md, twentieth
+// session).
 inline constexpr double kCrushedVolumeRatio = 0.3;
 
 // One converged load step.
