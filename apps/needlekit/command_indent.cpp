@@ -199,8 +199,8 @@ void add_indent_command(CLI::App& app) {
                     "with [array] and --out: do not write NAME_needle_map.png (needs /usr/bin/python3 with matplotlib)");
   command->add_flag("--newton-log", arguments->newton_log,
                     "print one line per Newton iteration on stderr: the step's target displacement, the surface "
-                    "contact's augmentation, the iteration, its residual, the cut-backs so far, the line search's step length, "
-                    "the CG iterations and whether the nodes in contact changed");
+                    "contact's augmentation, the iteration, its residual, the cut-backs so far, the line search's "
+                    "step length, the CG iterations and whether the nodes in contact changed");
   command->add_option("--size-at-tip", arguments->size_at_tip, "override [mesh] size_at_tip, e.g. \"60 um\"");
   command->add_option("--size-far", arguments->size_far, "override [mesh] size_far, e.g. \"400 um\"");
   command->add_option("--depth", arguments->depth, "override [loading] depth, e.g. \"50 um\"");
