@@ -20,6 +20,7 @@ constexpr double kE = 10e3;     // Pa
 struct PunchRun {
   std::vector<double> forces;        // N, per step
   std::vector<int> newton_iterations;  // per step
+  std::vector<double> volume_ratios;   // per step: the most compressed tetrahedron's J
 };
 
 // A quarter flat punch pressed to 10 % of its radius in two steps.
@@ -36,6 +37,7 @@ PunchRun punch(SolverOptions options, double poisson_ratio) {
     EXPECT_TRUE(step.converged) << step.reason;
     run.forces.push_back(step.indenter_force[0]);
     run.newton_iterations.push_back(step.newton_iterations);
+    run.volume_ratios.push_back(step.min_volume_ratio);
   }
   return run;
 }
@@ -51,6 +53,10 @@ void expect_same_forces(const SolverOptions& options, double poisson_ratio) {
     EXPECT_NEAR(with_petsc.forces[k], builtin.forces[k], 1e-6 * builtin.forces[k])
         << "step " << k << " on " << process_count() << " rank(s)";
     EXPECT_EQ(with_petsc.newton_iterations[k], builtin.newton_iterations[k])
+        << "step " << k << " on " << process_count() << " rank(s)";
+    // Every rank holds the whole displacement, so each measures the whole mesh's most compressed tetrahedron.
+    EXPECT_LT(builtin.volume_ratios[k], 1.0);
+    EXPECT_NEAR(with_petsc.volume_ratios[k], builtin.volume_ratios[k], 1e-9)
         << "step " << k << " on " << process_count() << " rank(s)";
   }
 }
