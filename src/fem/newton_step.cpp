@@ -357,6 +357,7 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
   const bool evaluated = ok && stepped && !m.contact;
   const double strain_energy = evaluated ? m.converged_strain_energy : m.evaluate(m.u, m.d, true, false).strain_energy;
   m.measure(res);
+  res.min_volume_ratio = m.smallest_volume_ratio();  // once per call: not in measure(), which every substep's probe runs
   res.converged = ok;
   if (ok) res.status = StepStatus::Converged;
   res.indenter_displacement = m.d;

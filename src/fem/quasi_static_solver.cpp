@@ -277,7 +277,6 @@ void QuasiStaticSolver::Impl::measure(StepResult& res) {
     if (res.contact_area[k] > 0) res.mean_contact_pressure[k] = res.indenter_force[k] / res.contact_area[k];
   }
   res.max_penetration = contact ? contact->max_penetration() : 0.0;
-  res.min_volume_ratio = smallest_volume_ratio();
 }
 
 double QuasiStaticSolver::Impl::smallest_volume_ratio() const {

@@ -93,7 +93,7 @@ struct QuasiStaticSolver::Impl {
   Failure inverted(const Eval& ev) const;
   double tip_value(const Needle& nd, double disp) const { return -std::max(0.0, disp - nd.gap); }
   void add_free(Eigen::VectorXd& uu, const Eigen::VectorXd& du, double alpha) const;
-  // StepResult::min_volume_ratio at the current displacement.
+  // StepResult::min_volume_ratio at the current displacement (a loop over every element: once per advance_to).
   double smallest_volume_ratio() const;
   // Forces, pressures and flags of the converged state (fint/fcontact of the last evaluation).
   void measure(StepResult& res);
