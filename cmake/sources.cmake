@@ -76,6 +76,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/insertion/needle_outcomes.cpp
   src/insertion/post_puncture_force.cpp
   src/insertion/puncture_criteria.cpp
+  src/insertion/rezoning.cpp
   src/insertion/triangle_classification.cpp
   src/io/array_output.cpp
   src/io/body_view.cpp
@@ -121,9 +122,11 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/mesh/mirrored_cell.cpp
   src/mesh/msh_import.cpp
   src/mesh/msh_read_isolated.cpp
+  src/mesh/rezoned_mesh.cpp
   src/mesh/structured_block_mesh.cpp
   src/mesh/tet_adjacency.cpp
   src/mesh/tet_count_estimate.cpp
+  src/mesh/tet_locator.cpp
   src/mesh/uniform_refinement.cpp
   src/needle/cylindrical_wedge.cpp
   src/needle/needle_geometry.cpp
@@ -163,6 +166,7 @@ set(NEEDLEKIT_GMSH_SOURCES
   src/mesh/gmsh/gmsh_session.cpp
   src/mesh/gmsh/layered_block_gmsh.cpp
   src/mesh/gmsh/msh_read_gmsh.cpp
+  src/mesh/gmsh/surface_refill_gmsh.cpp
 )
 
 set(NEEDLEKIT_PETSC_SOURCES
@@ -289,6 +293,7 @@ set(NEEDLEKIT_VERIFICATION_TEST_SOURCES
   tests/verification/test_patch_fitting.cpp
   tests/verification/test_patch_uncertainty.cpp
   tests/verification/test_post_puncture_force.cpp
+  tests/verification/test_rezoning.cpp
   tests/verification/test_robust_design.cpp
   tests/verification/test_uncertainty.cpp
 )

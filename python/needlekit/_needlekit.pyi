@@ -1797,6 +1797,9 @@ class IndentationResult:
     def reason(self) -> str:
         ...
     @property
+    def remeshes(self) -> List[Remesh]:
+        """the rezonings, in order"""
+    @property
     def setup_seconds(self) -> float:
         """s"""
     @property
@@ -3579,6 +3582,49 @@ class RelativeError:
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 
+class Remesh:
+    """One rezoning of the tissue (SolverOptions.rezone): where, why, what it changed."""
+    def __init__(*args, **kwargs) -> Any:
+        """Initialize self.  See help(type(self)) for accurate signature."""
+    @property
+    def depth(self) -> float:
+        """m"""
+    @property
+    def elements_after(self) -> int:
+        ...
+    @property
+    def elements_before(self) -> int:
+        ...
+    @property
+    def failure(self) -> str:
+        """empty, or why the rezoning failed (the run went on without it)"""
+    @property
+    def force_after(self) -> float:
+        """N, on the new mesh at the same depth"""
+    @property
+    def force_before(self) -> float:
+        """N, on the old mesh"""
+    @property
+    def force_jump(self) -> float:
+        """force_after / force_before - 1"""
+    @property
+    def min_volume_ratio_after(self) -> float:
+        ...
+    @property
+    def min_volume_ratio_before(self) -> float:
+        ...
+    @property
+    def reason(self) -> str:
+        ...
+    @property
+    def seconds(self) -> float:
+        """s"""
+    @property
+    def step(self) -> int:
+        """the load step after which it happened"""
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field as a dict (SI)."""
+
 class RobustDesignOptions:
     ...
     def __init__(self, **kwargs) -> None:
@@ -3824,7 +3870,10 @@ Keywords (every field):
   two_grid_refresh_iterations: >= 1: two-grid: the coarse operator is renewed after a solve that needed more CG iterations (the PETSc backend: its preconditioner). Default: 25.
   max_reuse_iterations: >= 1: cholesky-cg: cap on the CG iterations of one solve on the last factorization. Default: 40.
   linear_tolerance: in (0, 1): tightest relative residual of CG (inexact Newton stops earlier). Default: 1e-10.
-  threads: >= 0: assembly threads (0: the default, all cores). Default: 0."""
+  threads: >= 0: assembly threads (0: the default, all cores). Default: 0.
+  rezone: true | false: surface contact: mesh the deformed tissue anew when a step crushes it or fails. Default: false.
+  rezone_volume_ratio: in (0, 1): rezone after a step whose smallest element J = det F is below this. Default: 0.5.
+  max_remeshes: >= 1: rezonings per run at most. Default: 10."""
     def __init__(self, **kwargs) -> None:
         """Keyword constructor: every field can be given by name; quantities as SI floats or strings with units."""
     @property
@@ -3908,6 +3957,11 @@ Keywords (every field):
     @max_iterations.setter
     def max_iterations(self, value: Any) -> None: ...
     @property
+    def max_remeshes(self) -> int:
+        """>= 1: rezonings per run at most. Default: 10."""
+    @max_remeshes.setter
+    def max_remeshes(self, value: Any) -> None: ...
+    @property
     def max_reuse_iterations(self) -> int:
         """>= 1: cholesky-cg: cap on the CG iterations of one solve on the last factorization. Default: 40."""
     @max_reuse_iterations.setter
@@ -3932,6 +3986,16 @@ Keywords (every field):
         """in (0, 1): Newton: residual norm relative to the reaction and internal forces. Default: 1e-06."""
     @residual_tolerance.setter
     def residual_tolerance(self, value: Any) -> None: ...
+    @property
+    def rezone(self) -> bool:
+        """true | false: surface contact: mesh the deformed tissue anew when a step crushes it or fails. Default: false."""
+    @rezone.setter
+    def rezone(self, value: Any) -> None: ...
+    @property
+    def rezone_volume_ratio(self) -> float:
+        """in (0, 1): rezone after a step whose smallest element J = det F is below this. Default: 0.5."""
+    @rezone_volume_ratio.setter
+    def rezone_volume_ratio(self, value: Any) -> None: ...
     @property
     def threads(self) -> int:
         """>= 0: assembly threads (0: the default, all cores). Default: 0."""

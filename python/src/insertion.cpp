@@ -138,6 +138,19 @@ void bind_indentation(py::module_& m) {
       .def_readonly("lateral_load", &BendingCheck::lateral_load, "N")
       .def_readonly("critical_load", &BendingCheck::critical_load, "N")
       .def_readonly("margin", &BendingCheck::margin, "critical_load / lateral_load (>= 1: safe)");
+  py::class_<Remesh>(m, "Remesh", "One rezoning of the tissue (SolverOptions.rezone): where, why, what it changed.")
+      .def_readonly("step", &Remesh::step, "the load step after which it happened")
+      .def_readonly("depth", &Remesh::depth, "m")
+      .def_readonly("reason", &Remesh::reason)
+      .def_readonly("failure", &Remesh::failure, "empty, or why the rezoning failed (the run went on without it)")
+      .def_readonly("elements_before", &Remesh::elements_before)
+      .def_readonly("elements_after", &Remesh::elements_after)
+      .def_readonly("force_before", &Remesh::force_before, "N, on the old mesh")
+      .def_readonly("force_after", &Remesh::force_after, "N, on the new mesh at the same depth")
+      .def_property_readonly("force_jump", &Remesh::force_jump, "force_after / force_before - 1")
+      .def_readonly("min_volume_ratio_before", &Remesh::min_volume_ratio_before)
+      .def_readonly("min_volume_ratio_after", &Remesh::min_volume_ratio_after)
+      .def_readonly("seconds", &Remesh::seconds, "s");
   py::class_<IndentationResult>(m, "IndentationResult",
                                 "Every converged step; depth, force, ... as numpy arrays (one entry per step).")
       .def_readonly("status", &IndentationResult::status)
@@ -147,6 +160,7 @@ void bind_indentation(py::module_& m) {
       .def_readonly("needles", &IndentationResult::needles, "one NeedleOutcome per needle (of the whole array)")
       .def_readonly("array", &IndentationResult::array, "an ArrayOutcome for an array case, else None")
       .def_readonly("bending", &IndentationResult::bending, "BendingCheck or None (no material with allowable_stress)")
+      .def_readonly("remeshes", &IndentationResult::remeshes, "the rezonings, in order")
       .def_readonly("elements", &IndentationResult::elements)
       .def_readonly("nodes", &IndentationResult::nodes)
       .def_readonly("dofs", &IndentationResult::dofs)

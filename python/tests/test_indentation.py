@@ -51,6 +51,23 @@ def test_indentation_reports_progress_and_runs_without_the_gil(tmp_path):
     assert (tmp_path / "flat_punch_result.json").exists() and (tmp_path / "flat_punch.pvd").exists()
 
 
+def test_a_rezoned_run_reports_its_remesh_and_writes_every_step(tmp_path):
+    case = coarse_flat_punch()
+    case.solver.contact = nk.ContactModel.Surface
+    case.solver.order = nk.ElementOrder.Linear
+    case.solver.rezone = True
+    case.solver.rezone_volume_ratio = 0.999  # after the first step, whatever its J
+    result = nk.run_indentation(case, output_directory=str(tmp_path))
+    assert result.status == nk.IndentationStatus.ReachedDepth, result.reason
+    assert len(result.remeshes) == 1  # the last step is never followed by one
+    remesh = result.remeshes[0]
+    assert remesh.failure == "" and remesh.step == 1 and remesh.depth == pytest.approx(10e-6)
+    assert remesh.elements_after > 0 and abs(remesh.force_jump) < 0.02
+    assert remesh.force_before == pytest.approx(result.force[0])
+    assert (tmp_path / "flat_punch_step_002.vtu").exists()  # the step solved on the new mesh
+    assert nk.indentation_json(case, result)["remeshes"][0]["step"] == 1
+
+
 def test_ctrl_c_stops_the_run_cleanly(tmp_path):
     def interrupt(p):
         if p.stage == "step":

@@ -60,6 +60,9 @@ void SolverOptions::validate() const {
       throw InvalidInput("solver volumetric = \"nodal-average\" is for linear tetrahedra: expected element = "
                          "\"linear\" (quadratic tetrahedra integrate the volume per element)");
   }
+  if (rezone && (contact != ContactModel::Surface || order != ElementOrder::Linear))
+    throw InvalidInput("solver rezone = true meshes the deformed tissue anew under surface contact with linear "
+                       "tetrahedra: expected contact = \"surface\" and element = \"linear\" (or rezone = false)");
 }
 
 }  // namespace needlekit::fem

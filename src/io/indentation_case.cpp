@@ -214,6 +214,12 @@ void read_solver(const Section& section, insertion::IndentationCase& c) {
                                fem::kNearlyIncompressible));
     }
   }
+  if (!solver.rezone) {  // settings of the rezoning: not silently ignored
+    for (std::string_view key : {"rezone_volume_ratio", "max_remeshes"}) {
+      if (const toml::node* node = section.optional(key))
+        section.fail(*node, key, "applies only with rezone = true; remove it or set rezone = true");
+    }
+  }
   if (solver.contact != fem::ContactModel::Surface) {  // settings of the surface contact: not silently ignored
     for (std::string_view key : {"penalty_factor", "penetration_tolerance", "max_augmentations", "friction", "two_pass"}) {
       if (const toml::node* node = section.optional(key)) {

@@ -26,6 +26,21 @@ nlohmann::json number_or_null(const std::optional<double>& value, double scale) 
   return value ? nlohmann::json(*value * scale) : nlohmann::json(nullptr);
 }
 
+// One object per rezoning (IndentationResult::remeshes).
+nlohmann::json remeshes_json(const insertion::IndentationResult& result) {
+  nlohmann::json remeshes = nlohmann::json::array();
+  for (const insertion::Remesh& r : result.remeshes) {
+    remeshes.push_back({{"step", r.step}, {"depth_um", r.depth * 1e6}, {"reason", r.reason},
+                        {"failure", r.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.failure)},
+                        {"elements_before", r.elements_before}, {"elements_after", r.elements_after},
+                        {"force_before_N", r.force_before}, {"force_after_N", r.force_after},
+                        {"force_jump_percent", 100 * r.force_jump()},
+                        {"min_volume_ratio_before", r.min_volume_ratio_before},
+                        {"min_volume_ratio_after", r.min_volume_ratio_after}, {"seconds", r.seconds}});
+  }
+  return remeshes;
+}
+
 }  // namespace
 
 VtuGrid indentation_grid(const fem::QuasiStaticSolver& solver, const mesh::TetMesh& tissue) {
@@ -114,14 +129,26 @@ std::vector<std::string> indentation_result_notes(const insertion::IndentationRe
   const auto crushed = std::find_if(result.steps.begin(), result.steps.end(), [](const insertion::IndentationStep& s) {
     return s.min_volume_ratio < insertion::kCrushedVolumeRatio;
   });
-  if (crushed == result.steps.end()) return {};
+  std::vector<std::string> notes;
+  for (const insertion::Remesh& r : result.remeshes) {
+    notes.push_back(r.failure.empty()
+                        ? fmt::format("rezoned at {:g} um (after load step {}; {}): {} -> {} tetrahedra, force {:.4g} -> "
+                                      "{:.4g} N ({:+.2f} %), smallest J {:.3g} -> {:.3g}",
+                                      r.depth * 1e6, r.step, r.reason, r.elements_before, r.elements_after,
+                                      r.force_before, r.force_after, 100 * r.force_jump(), r.min_volume_ratio_before,
+                                      r.min_volume_ratio_after)
+                        : fmt::format("rezoning at {:g} um (after load step {}; {}) failed: {}", r.depth * 1e6, r.step,
+                                      r.reason, r.failure));
+  }
+  if (crushed == result.steps.end()) return notes;
   double smallest = 1;
   for (const insertion::IndentationStep& s : result.steps) smallest = std::min(smallest, s.min_volume_ratio);
-  return {fmt::format("from {:g} um deep a tetrahedron is crushed to less than {:g} of its volume (smallest volume "
+  notes.push_back(fmt::format("from {:g} um deep a tetrahedron is crushed to less than {:g} of its volume (smallest volume "
                       "ratio {:.3g}): the forces from there on depend on the mesh, and Newton may slow down; expected a "
-                      "finer [mesh] size_at_tip, [model] contact = \"surface\" (the tip-node rule is a point load) or "
-                      "a shallower [loading] depth",
-                      crushed->depth * 1e6, insertion::kCrushedVolumeRatio, smallest)};
+                      "finer [mesh] size_at_tip, [model] contact = \"surface\" (the tip-node rule is a point load), "
+                      "[solver] rezone = true or a shallower [loading] depth",
+                      crushed->depth * 1e6, insertion::kCrushedVolumeRatio, smallest));
+  return notes;
 }
 
 std::string solver_statistics_csv(const insertion::IndentationResult& result) {
@@ -262,6 +289,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
                        {"mean_quality", q.mean_quality}});
   }
   json["mesh_quality"] = quality;
+  json["remeshes"] = remeshes_json(result);  // [solver] rezone
   std::vector<std::string> notes = indentation_scale_warnings(c);
   for (std::string& note : indentation_result_notes(result)) notes.push_back(std::move(note));
   json["notes"] = notes;

@@ -89,9 +89,21 @@ IndentationView::IndentationView(const insertion::IndentationCase& indentation_c
     : case_(indentation_case), options_(options) {}
 
 void IndentationView::set_mesh(const mesh::TetMesh& tissue) {
+  if (!steps_.empty()) {
+    // A rezoned mesh (IndentationOptions::on_mesh): the same boundary faces, their nodes numbered first in the same
+    // order, so the steps recorded so far keep their surface and the next ones sample the new mesh.
+    for (std::size_t i = 0; i < boundary_.nodes.size(); ++i) {
+      const int node = static_cast<int>(i);
+      if (node >= static_cast<int>(tissue.nodes.size()) ||
+          tissue.nodes[i] != tissue_.nodes[static_cast<std::size_t>(boundary_.nodes[i])])
+        throw std::logic_error("view: a new mesh after the first step must be a rezoning of the tissue");
+      boundary_.nodes[i] = node;
+    }
+    tissue_ = tissue;
+    return;
+  }
   tissue_ = tissue;
   boundary_ = tissue_view_surface(tissue_);
-  steps_.clear();
 }
 
 void IndentationView::add_step(const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver) {

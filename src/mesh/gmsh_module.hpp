@@ -7,7 +7,9 @@
 // points take and return only needlekit's header-only types and report errors through GmshError, so that no
 // exception crosses the dlopen boundary.
 #pragma once
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -55,6 +57,13 @@ struct CellBlockMesh {
   std::vector<int> piece;    // per tet: 3 * py + px, px (py) = 0 the -x (-y) margin, 1 the cell, 2 the +x (+y) margin
 };
 
+// A closed, outward-oriented triangulated surface whose inside is meshed anew (mesh/surface_refill.hpp).
+struct SurfaceToFill {
+  std::vector<Eigen::Vector3d> nodes;         // m
+  std::vector<std::array<int, 3>> triangles;  // into nodes
+  std::function<double(const Eigen::Vector3d&)> size;  // m, the tetrahedra's edge length wanted at a point inside
+};
+
 struct GmshModule {
   const char* version;  // NEEDLEKIT_VERSION of the build that made the module
   // The layered block's tetrahedra (layered_block_mesh.hpp), in m, not yet reoriented. Sets `error` on failure.
@@ -65,6 +74,10 @@ struct GmshModule {
                               const CellLayout& layout, GmshError& error);
   // The tetrahedra and physical volume groups of `file`, matched to `layers` as MshImportOptions::layers says.
   MshContents (*read_msh)(const std::string& file, const std::vector<TissueLayer>& layers, GmshError& error);
+  // The inside of `surface` as tetrahedra by Delaunay 3D on one thread, in m, not yet reoriented and with no layers:
+  // the surface's nodes first, in order (its triangles are the mesh's boundary faces, none moved or split), then the
+  // new ones inside.
+  TetMesh (*refill)(const SurfaceToFill& surface, GmshError& error);
 };
 
 // The module, opened on the first call (thread-safe). Throws std::runtime_error naming every place it looked when

@@ -138,6 +138,20 @@ TEST(IndentationCase, SolverSection) {
   EXPECT_TRUE(rough.solver.two_pass);
   EXPECT_THAT(error_of(surface("friction = -0.1\n")),
               HasSubstr("case.toml:35: key 'solver.friction': -0.1 is out of range, expected a number >= 0"));
+  // Rezoning: read under surface contact with linear tetrahedra; its settings without rezone = true are an error.
+  const auto linear_surface = [&](std::string_view lines) {
+    return replaced(replaced(surface(lines), "element = \"quadratic\"", "element = \"linear\""), "law = \"svk\"", "law = \"neo-hookean\"");
+  };
+  const auto rezoned = parse(linear_surface("rezone = true\nrezone_volume_ratio = 0.4\nmax_remeshes = 3\n"));
+  EXPECT_TRUE(rezoned.solver.rezone);
+  EXPECT_DOUBLE_EQ(rezoned.solver.rezone_volume_ratio, 0.4);
+  EXPECT_EQ(rezoned.solver.max_remeshes, 3);
+  EXPECT_THAT(error_of(linear_surface("max_remeshes = 3\n")),
+              HasSubstr("key 'solver.max_remeshes': applies only with rezone = true"));
+  EXPECT_THAT(error_of(linear_surface("rezone = true\nrezone_volume_ratio = 1.5\n")),
+              HasSubstr("key 'solver.rezone_volume_ratio': 1.5 is out of range, expected a number in (0, 1)"));
+  EXPECT_THAT(error_of(surface("rezone = true\n")),  // kCase's quadratic tetrahedra
+              HasSubstr("solver rezone = true meshes the deformed tissue anew under surface contact with linear"));
   EXPECT_THAT(error_of(with_solver("friction = 0.3\n")),
               HasSubstr("key 'solver.friction': applies only to [model] contact = \"surface\""));
   EXPECT_THAT(error_of(with_solver("residual_tolerance = 1.5\n")),

@@ -190,6 +190,13 @@ struct SolverOptions {
                                          // target or this
 
   int threads = 0;                       // TBB threads for assembly, 0 = default
+
+  // Rezoning (issue 35 item 3), done by insertion::run_indentation between load steps, not by the solver: the
+  // deformed tissue is meshed anew (mesh/rezoned_mesh.hpp) and the run continues on the new mesh. Surface contact
+  // and linear tetrahedra only.
+  bool rezone = false;                   // rezone when a step leaves the tissue crushed or fails
+  double rezone_volume_ratio = 0.5;      // (0, 1): rezone after a step whose smallest J = det F fell below this
+  int max_remeshes = 10;                 // >= 1: rezonings per run at most
   std::function<void(const SolverProgress&)> progress;  // optional
 
   // Throws InvalidInput naming the first field outside its range ("solver max_cutbacks = -1: expected >= 0").

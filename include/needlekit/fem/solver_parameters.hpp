@@ -109,6 +109,14 @@ inline constexpr std::tuple kSolverParameters{
                                      "solver"},
     Parameter<SolverOptions, int>{"threads", &SolverOptions::threads, 0, kNoLimit, Bound::Closed, Bound::Closed,
                                   "assembly threads (0: the default, all cores)", "solver"},
+    // [solver]: rezoning
+    Flag<SolverOptions>{"rezone", &SolverOptions::rezone,
+                        "surface contact: mesh the deformed tissue anew when a step crushes it or fails", "solver"},
+    Parameter<SolverOptions, double>{"rezone_volume_ratio", &SolverOptions::rezone_volume_ratio, 0, 1, Bound::Open,
+                                     Bound::Open, "rezone after a step whose smallest element J = det F is below this",
+                                     "solver"},
+    Parameter<SolverOptions, int>{"max_remeshes", &SolverOptions::max_remeshes, 1, kNoLimit, Bound::Closed,
+                                  Bound::Closed, "rezonings per run at most", "solver"},
 };
 // Fields that are not parameters: progress (a callback).
 inline constexpr std::size_t kSolverCallbackFields = 1;

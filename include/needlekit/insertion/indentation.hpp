@@ -214,7 +214,10 @@ struct IndentationOptions {
   std::function<void(const IndentationProgress&)> progress;
   // Called after each converged step with the solver in that state (e.g. to write a .vtu of the step).
   std::function<void(const IndentationStep&, const fem::QuasiStaticSolver&)> on_step;
-  // Called once after meshing with the tissue mesh that is solved (e.g. for its layer ids in output files).
+  // Called after meshing with the tissue mesh that is solved (e.g. for its layer ids in output files), and again with
+  // each rezoned mesh (SolverOptions::rezone) before the steps solved on it. A rezoned mesh has the earlier mesh's
+  // boundary: its boundary nodes are the earlier mesh's, at the same reference positions, numbered first and in the
+  // same order (mesh/rezoned_mesh.hpp).
   std::function<void(const mesh::TetMesh&)> on_mesh;
   // Warm start: the step displacements of an earlier run of the same case on the same mesh (its
   // IndentationResult::displacements), e.g. at slightly different material parameters. A load step at a depth found
@@ -255,6 +258,21 @@ struct BendingCheck {
   double margin = 0;                // critical_load / lateral_load (infinite for no lateral load); >= 1: safe
 };
 
+// One rezoning of the tissue (fem::SolverOptions::rezone; mesh/rezoned_mesh.hpp): where, why, and what it changed.
+// The step at `depth` was solved on the old mesh; the new mesh is brought into equilibrium at the same depth before
+// the run goes on.
+struct Remesh {
+  int step = 0;                        // the load step after which it happened (the last one kept)
+  double depth = 0;                    // m
+  std::string reason;                  // the smallest J below rezone_volume_ratio, or the next step's failure
+  int elements_before = 0, elements_after = 0;
+  double force_before = 0, force_after = 0;                     // N, at `depth` on the old and on the new mesh
+  double min_volume_ratio_before = 0, min_volume_ratio_after = 0;  // J = det F
+  double seconds = 0;                  // meshing, transfer and the new mesh's equilibrium
+  std::string failure;                 // not empty: the rezoning failed (why), and the run went on without it
+  double force_jump() const { return force_before != 0 ? force_after / force_before - 1 : 0; }
+};
+
 struct IndentationResult {
   IndentationStatus status = IndentationStatus::ReachedDepth;
   std::string reason;                         // why the run stopped (always set)
@@ -266,6 +284,7 @@ struct IndentationResult {
   std::optional<BendingCheck> bending;
   std::vector<StepDisplacement> displacements;  // per converged load step, with IndentationOptions::keep_displacements
   int warm_started_steps = 0;                 // load steps that started from IndentationOptions::warm_start
+  std::vector<Remesh> remeshes;               // with SolverOptions::rezone, in order
   int elements = 0;                           // tetrahedra of the tissue mesh
   int nodes = 0;                              // FE nodes (with the mid-edge nodes of quadratic elements)
   int dofs = 0;                               // free degrees of freedom

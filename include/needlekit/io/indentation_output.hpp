@@ -50,15 +50,18 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 // null, ...}}. What indentation_json writes under "inputs".
 nlohmann::json indentation_inputs_json(const insertion::IndentationCase& indentation_case);
 
-// What the result says of the mesh's fitness: a note when a step crushed a tetrahedron below
-// insertion::kCrushedVolumeRatio of its volume, naming the first such depth and the smallest ratio.
+// What the result says of its meshes: one note per rezoning (where, why, the force before and after, or why it
+// failed), and a note when a step crushed a tetrahedron below insertion::kCrushedVolumeRatio of its volume, naming
+// the first such depth and the smallest ratio.
 std::vector<std::string> indentation_result_notes(const insertion::IndentationResult& result);
 
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "averaged_pressure_MPa" (p̄_l per step, with the averaged-pressure law),
 // "strain_energy_J", "external_work_J", "newton_iterations", "min_volume_ratio" (arrays, one entry per converged
 // step), "elements", "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp:
-// needles_json), "array" (with an array: array_json), "layers", "mesh_quality", "notes" (warnings:
+// needles_json), "array" (with an array: array_json), "layers", "mesh_quality", "remeshes" (one object per
+// rezoning: step, depth_um, reason, failure, elements and force_N before and after, force_jump_percent,
+// min_volume_ratio before and after, seconds), "notes" (warnings:
 // io/scale_warnings.hpp, then indentation_result_notes), "mesh_seconds", "setup_seconds", "total_seconds".
 nlohmann::json indentation_json(const insertion::IndentationCase& indentation_case,
                                 const insertion::IndentationResult& result);

@@ -28,6 +28,8 @@ struct ViewOptions {
 class IndentationView {
 public:
   IndentationView(const insertion::IndentationCase& indentation_case, ViewOptions options = {});
+  // Again after steps were added: a rezoning of the tissue (IndentationOptions::on_mesh), whose steps are added to
+  // the same surface; another mesh is a std::logic_error.
   void set_mesh(const mesh::TetMesh& tissue);
   void add_step(const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver);
   // The same from the step's values: the needles' displacement (m, along their direction), the force on each needle

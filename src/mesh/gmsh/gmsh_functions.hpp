@@ -18,4 +18,7 @@ CellBlockMesh gmsh_cell_block(const LayeredBlockOptions& options, const std::vec
 // The tetrahedra and physical volume groups of a .msh file (msh_read_gmsh.cpp).
 MshContents gmsh_read_msh(const std::string& file, const std::vector<TissueLayer>& layers);
 
+// The inside of a closed surface, its triangles kept (surface_refill_gmsh.cpp).
+TetMesh gmsh_refill(const SurfaceToFill& surface);
+
 }  // namespace needlekit::mesh::detail

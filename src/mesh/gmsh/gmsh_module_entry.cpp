@@ -38,7 +38,11 @@ MshContents read_msh(const std::string& file, const std::vector<TissueLayer>& la
   return reporting_errors(error, [&] { return gmsh_read_msh(file, layers); });
 }
 
-const GmshModule kModule{NEEDLEKIT_VERSION, &layered_block, &cell_block, &read_msh};
+TetMesh refill(const SurfaceToFill& surface, GmshError& error) {
+  return reporting_errors(error, [&] { return gmsh_refill(surface); });
+}
+
+const GmshModule kModule{NEEDLEKIT_VERSION, &layered_block, &cell_block, &read_msh, &refill};
 
 }  // namespace
 }  // namespace needlekit::mesh::detail

@@ -1,0 +1,52 @@
+// Rezoning a deformed tissue mesh (issue 35 item 3): the tissue as the needles have deformed it is meshed anew, and
+// the new mesh is given a reference configuration and a displacement so that a total-Lagrangian solver continues
+// from it.
+//
+// 1. The deformed boundary (every boundary face of the old mesh at its current position) is kept as it is, node for
+//    node, and its inside is filled again by Delaunay 3D (Gmsh), with the old mesh's local element size: well-shaped
+//    tetrahedra replace the crushed ones under the tips.
+// 2. Each new node inside is located in the old deformed mesh (mesh/tet_locator.hpp) and carried back to the
+//    reference configuration with the old element's linear shape functions, X = sum_i N_i(x) X_i: the new element's
+//    deformation gradient is then the old mapping's average over it (for a linear old mapping, exactly the old one).
+//    The boundary nodes keep their old reference positions exactly, so the top surface, the symmetry planes and the
+//    fixed faces are where they were, and the contact's node-by-node history carries over (old_node).
+//    Where the old mapping bends sharply within a new tetrahedron (round a needle's rim, or where the surface layer
+//    is sheared along a bevel by more than an element), the carried-back tetrahedron can be flat or inverted:
+//     - a tetrahedron of four boundary nodes across a bend of the surface is split along its chord under the bend;
+//     - the inner nodes of the others are smoothed in the deformed state and carried back again;
+//     - what remains is retried with a slightly different Delaunay mesh (other sizes), and failing that refused.
+// 3. Each new tetrahedron takes the layer of the old tetrahedron that contains its deformed centroid. A layer
+//    interface is therefore resolved to the new elements' size, not kept as a surface.
+//
+// This is the rezone-and-remap step of an arbitrary Lagrangian-Eulerian method done in the total-Lagrangian frame
+// (Belytschko, Liu & Moran, Nonlinear Finite Elements, 2000, §7.4: rezone, then remap the state by interpolation);
+// the hyperelastic tissue carries no internal variables, so its state is its reference position.
+#pragma once
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "needlekit/mesh/tet_mesh.hpp"
+
+namespace needlekit::mesh {
+
+struct RezoneOptions {
+  // m, the new tetrahedra's edge length at a point of the deformed tissue; unset: the old mesh's own, the mean edge
+  // length in the deformed state interpolated from its nodes (scaled so that the element count stays about the same)
+  std::function<double(const Eigen::Vector3d&)> size;
+};
+
+struct RezonedMesh {
+  TetMesh mesh;                               // the new reference mesh (nodes pulled back; the old layers)
+  std::vector<Eigen::Vector3d> displacement;  // m, per new node: deformed minus reference position
+  std::vector<int> old_node;                  // per new node: the old node it is (every boundary node), or -1
+  int kept_nodes = 0;                         // the boundary nodes, numbered first
+};
+
+// Throws InvalidInput when `displacement` does not have one vector per node, and std::runtime_error when Gmsh cannot
+// fill the deformed boundary (it intersects itself) or, with every size tried, a new tetrahedron is inverted or
+// degenerate once carried back to the reference configuration.
+RezonedMesh rezoned_mesh(const TetMesh& reference, const std::vector<Eigen::Vector3d>& displacement,
+                         const RezoneOptions& options = {});
+
+}  // namespace needlekit::mesh
