@@ -17,7 +17,9 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
   out.record.force_before = step_force;
   out.record.min_volume_ratio_before = step_volume_ratio;
   try {
-    mesh::RezonedMesh rezoned = mesh::rezoned_mesh(tissue, solver.displacement());
+    mesh::RezoneOptions rezone;
+    rezone.volume_ratio = options.rezone_volume_ratio;  // only the crushed neighbourhoods (a failed step: all if none)
+    mesh::RezonedMesh rezoned = mesh::rezoned_mesh(tissue, solver.displacement(), rezone);
     auto next = std::make_unique<fem::QuasiStaticSolver>(rezoned.mesh, std::move(indenters), options);
     const fem::StepResult balanced = next->advance_to(solver.indenter_displacement(), rezoned.displacement);
     if (!balanced.converged) {

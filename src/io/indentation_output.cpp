@@ -34,7 +34,7 @@ nlohmann::json remeshes_json(const insertion::IndentationResult& result) {
                         {"failure", r.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.failure)},
                         {"elements_before", r.elements_before}, {"elements_after", r.elements_after},
                         {"force_before_N", r.force_before}, {"force_after_N", r.force_after},
-                        {"force_jump_percent", 100 * r.force_jump()},
+                        {"force_jump_percent", r.failure.empty() ? nlohmann::json(100 * r.force_jump()) : nlohmann::json(nullptr)},
                         {"min_volume_ratio_before", r.min_volume_ratio_before},
                         {"min_volume_ratio_after", r.min_volume_ratio_after}, {"seconds", r.seconds}});
   }

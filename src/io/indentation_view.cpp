@@ -90,14 +90,16 @@ IndentationView::IndentationView(const insertion::IndentationCase& indentation_c
 
 void IndentationView::set_mesh(const mesh::TetMesh& tissue) {
   if (!steps_.empty()) {
-    // A rezoned mesh (IndentationOptions::on_mesh): the same boundary faces, their nodes numbered first in the same
-    // order, so the steps recorded so far keep their surface and the next ones sample the new mesh.
-    for (std::size_t i = 0; i < boundary_.nodes.size(); ++i) {
-      const int node = static_cast<int>(i);
-      if (node >= static_cast<int>(tissue.nodes.size()) ||
-          tissue.nodes[i] != tissue_.nodes[static_cast<std::size_t>(boundary_.nodes[i])])
+    // A rezoned mesh (IndentationOptions::on_mesh): the same boundary faces, their nodes kept in the same order
+    // (at the same reference positions), so the steps recorded so far keep their surface and the next ones sample
+    // the new mesh there.
+    std::size_t next = 0;
+    for (int& node : boundary_.nodes) {
+      const Eigen::Vector3d& position = tissue_.nodes[static_cast<std::size_t>(node)];
+      while (next < tissue.nodes.size() && tissue.nodes[next] != position) ++next;
+      if (next == tissue.nodes.size())
         throw std::logic_error("view: a new mesh after the first step must be a rezoning of the tissue");
-      boundary_.nodes[i] = node;
+      node = static_cast<int>(next++);
     }
     tissue_ = tissue;
     return;

@@ -33,9 +33,40 @@ std::vector<double> deformed_node_sizes(const TetMesh& deformed) {
   return sum;
 }
 
-// The deformed boundary as a surface of its own nodes (numbered in ascending old index), with the old index of each.
-detail::SurfaceToFill deformed_boundary(const TetMesh& deformed, std::vector<int>& old_of_surface_node) {
-  const BoundarySurface boundary = boundary_surface(deformed, tet_topology(deformed));
+// The tetrahedra to mesh anew: those with J = det F below `volume_ratio`, grown by `rings` rings of neighbours
+// (tetrahedra sharing a node); all of them when none is below it (or volume_ratio is 0).
+std::vector<char> crushed_region(const TetMesh& reference, const TetMesh& deformed, double volume_ratio, int rings) {
+  std::vector<char> region(reference.tets.size(), 0);
+  bool any = false;
+  for (std::size_t e = 0; e < reference.tets.size(); ++e) {
+    const std::array<int, 4>& t = reference.tets[e];
+    const auto volume = [&](const TetMesh& m) {
+      const auto p = [&](int i) -> const Eigen::Vector3d& { return m.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
+      return signed_volume(p(0), p(1), p(2), p(3));
+    };
+    if (volume(deformed) < volume_ratio * volume(reference)) region[e] = 1, any = true;
+  }
+  if (!any) return std::vector<char>(reference.tets.size(), 1);
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> touched(reference.nodes.size(), 0);
+    for (std::size_t e = 0; e < reference.tets.size(); ++e)
+      if (region[e])
+        for (int a : reference.tets[e]) touched[static_cast<std::size_t>(a)] = 1;
+    for (std::size_t e = 0; e < reference.tets.size(); ++e)
+      for (int a : reference.tets[e]) region[e] |= touched[static_cast<std::size_t>(a)];
+  }
+  return region;
+}
+
+// The deformed boundary of the region's tetrahedra (the cavity that is refilled) as a surface of its own nodes
+// (numbered in ascending old index), with the old index of each.
+detail::SurfaceToFill cavity_boundary(const TetMesh& deformed, const std::vector<char>& region,
+                                      std::vector<int>& old_of_surface_node) {
+  TetMesh cavity;
+  cavity.nodes = deformed.nodes;
+  for (std::size_t e = 0; e < deformed.tets.size(); ++e)
+    if (region[e]) cavity.tets.push_back(deformed.tets[e]);
+  const BoundarySurface boundary = boundary_surface(cavity, tet_topology(cavity));
   std::vector<int> surface_index(deformed.nodes.size(), -1);
   for (const std::array<int, 3>& t : boundary.triangles)
     for (int a : t) surface_index[static_cast<std::size_t>(a)] = 0;
@@ -155,10 +186,12 @@ std::vector<std::size_t> smoothed_inner_nodes(const TetMesh& pulled_back, std::v
 
 // The old mesh in its deformed state, with what every refill attempt needs of it.
 struct OldMesh {
-  OldMesh(const TetMesh& reference_mesh, const std::vector<Eigen::Vector3d>& old_displacement)
+  OldMesh(const TetMesh& reference_mesh, const std::vector<Eigen::Vector3d>& old_displacement,
+          const RezoneOptions& options)
       : reference(reference_mesh), displacement(old_displacement), deformed(deformed_mesh(reference, displacement)),
         locator(deformed.nodes, deformed.tets), node_size(deformed_node_sizes(deformed)),
-        surface(deformed_boundary(deformed, surface_node)) {}
+        region(crushed_region(reference, deformed, options.volume_ratio, options.rings)),
+        surface(cavity_boundary(deformed, region, surface_node)) {}
   static TetMesh deformed_mesh(const TetMesh& reference, const std::vector<Eigen::Vector3d>& displacement) {
     TetMesh deformed = reference;
     for (std::size_t a = 0; a < deformed.nodes.size(); ++a) deformed.nodes[a] += displacement[a];
@@ -179,8 +212,9 @@ struct OldMesh {
   TetMesh deformed;
   TetLocator locator;
   std::vector<double> node_size;  // m, deformed_node_sizes
+  std::vector<char> region;       // per old tetrahedron: meshed anew (crushed_region)
   std::vector<int> surface_node;  // per node of `surface`: its old node
-  detail::SurfaceToFill surface;  // the deformed boundary, without sizes
+  detail::SurfaceToFill surface;  // the region's deformed boundary, without sizes
 };
 
 // Gmsh's Delaunay makes tetrahedra about 1/0.75 times the edge length asked for: this factor on the old mesh's edge
@@ -189,6 +223,49 @@ struct OldMesh {
 // of the old mapping (the surface layer sheared along a bevel by more than an element) comes back inverted, and a
 // slightly different Delaunay mesh usually has none.
 constexpr std::array<double, 3> kSizeFactors{0.75, 0.7, 0.8};
+
+// The refilled region `cavity` (its surface's old nodes first) joined to the old tetrahedra outside the region: the
+// old nodes still in use first, in their old order, then the region's new nodes.
+RezonedMesh with_the_rest(const OldMesh& old, RezonedMesh cavity) {
+  std::vector<int> index(old.reference.nodes.size(), -1);
+  for (std::size_t e = 0; e < old.reference.tets.size(); ++e)
+    if (!old.region[e])
+      for (int a : old.reference.tets[e]) index[static_cast<std::size_t>(a)] = 0;
+  for (int i = 0; i < cavity.kept_nodes; ++i) index[static_cast<std::size_t>(cavity.old_node[static_cast<std::size_t>(i)])] = 0;
+  RezonedMesh out;
+  out.mesh.layers = old.reference.layers;
+  for (std::size_t a = 0; a < index.size(); ++a) {
+    if (index[a] < 0) continue;
+    index[a] = static_cast<int>(out.mesh.nodes.size());
+    out.mesh.nodes.push_back(old.reference.nodes[a]);
+    out.displacement.push_back(old.displacement[a]);
+    out.old_node.push_back(static_cast<int>(a));
+  }
+  out.kept_nodes = static_cast<int>(out.mesh.nodes.size());
+  for (std::size_t e = 0; e < old.reference.tets.size(); ++e) {
+    if (old.region[e]) continue;
+    std::array<int, 4> t = old.reference.tets[e];
+    for (int& a : t) a = index[static_cast<std::size_t>(a)];
+    out.mesh.tets.push_back(t);
+    out.mesh.tet_layer.push_back(old.reference.tet_layer[e]);
+  }
+  const auto new_index = [&](int a) {
+    return a < cavity.kept_nodes ? index[static_cast<std::size_t>(cavity.old_node[static_cast<std::size_t>(a)])]
+                                 : out.kept_nodes + (a - cavity.kept_nodes);
+  };
+  for (std::size_t e = 0; e < cavity.mesh.tets.size(); ++e) {
+    std::array<int, 4> t = cavity.mesh.tets[e];
+    for (int& a : t) a = new_index(a);
+    out.mesh.tets.push_back(t);
+    out.mesh.tet_layer.push_back(cavity.mesh.tet_layer[e]);
+  }
+  for (std::size_t a = static_cast<std::size_t>(cavity.kept_nodes); a < cavity.mesh.nodes.size(); ++a) {
+    out.mesh.nodes.push_back(cavity.mesh.nodes[a]);
+    out.displacement.push_back(cavity.displacement[a]);
+    out.old_node.push_back(-1);
+  }
+  return out;
+}
 
 // The deformed tissue refilled with `surface`'s sizes and carried back, or nothing (and `why`) when a new
 // tetrahedron comes back inverted or degenerate. Gmsh's failures throw.
@@ -246,7 +323,7 @@ std::optional<RezonedMesh> refilled(const OldMesh& old, const detail::SurfaceToF
     out.mesh.tet_layer[e] = old.reference.tet_layer[static_cast<std::size_t>(old.locator.locate(centroid).tet)];
   }
   const TetMeshCheck check = tet_mesh_check(out.mesh, {}, "rezoned tissue");
-  if (check.valid()) return out;
+  if (check.valid()) return with_the_rest(old, std::move(out));
   why = fmt::format("rezoning: {} of the {} new tetrahedra are inverted and {} degenerate when carried back to the "
                     "reference configuration (the old mapping bends sharply inside them)",
                     check.inverted.size(), out.mesh.tets.size(), check.degenerate.size());
@@ -260,7 +337,7 @@ RezonedMesh rezoned_mesh(const TetMesh& reference, const std::vector<Eigen::Vect
   if (displacement.size() != reference.nodes.size())
     throw InvalidInput(fmt::format("rezoning: {} displacements for {} nodes", displacement.size(),
                                    reference.nodes.size()));
-  const OldMesh old(reference, displacement);
+  const OldMesh old(reference, displacement, options);
   std::string why;
   for (double factor : kSizeFactors) {
     detail::SurfaceToFill surface = old.surface;

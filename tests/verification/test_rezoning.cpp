@@ -2,6 +2,7 @@
 // deformation exactly and keeps the body's boundary, and a run that rezones gives the forces of one that does not.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "needlekit/core/errors.hpp"
@@ -124,4 +125,37 @@ TEST(Rezoning, NeedsSurfaceContactAndLinearTetrahedra) {
   c = punch(true);
   c.solver.order = fem::ElementOrder::Quadratic;
   EXPECT_THROW(insertion::validate(c), InvalidInput);
+}
+
+TEST(RezonedMesh, KeepsTheTetrahedraOutsideTheCrushedRegion) {
+  // u_z = -z x / w for x > 0 (w the cube's width): J = 1 - x / w, below 0.9 where x > 0.1 mm. With no rings only
+  // the tetrahedra there are meshed anew; every other one is kept, node for node, with its displacement.
+  const mesh::TetMesh m = cube();
+  std::vector<Eigen::Vector3d> u;
+  for (const Eigen::Vector3d& x : m.nodes) u.emplace_back(0, 0, -x.z() * std::max(x.x(), 0.0) / 1e-3);
+  mesh::RezoneOptions options;
+  options.volume_ratio = 0.9;
+  options.rings = 0;
+  const mesh::RezonedMesh rezoned = mesh::rezoned_mesh(m, u, options);
+  EXPECT_TRUE(mesh::tet_mesh_check(rezoned.mesh).valid());
+  EXPECT_NEAR(volume(rezoned.mesh), volume(m), 1e-9 * volume(m));
+  std::size_t outside = 0;  // at x <= 0, undeformed
+  for (const std::array<int, 4>& t : m.tets)
+    outside += std::all_of(t.begin(), t.end(), [&](int a) { return m.nodes[static_cast<std::size_t>(a)].x() <= 0; });
+  // The kept tetrahedra come first, in order, on the kept nodes.
+  std::size_t kept = 0;
+  for (const std::array<int, 4>& t : rezoned.mesh.tets) {
+    bool old = true;
+    for (int a : t) old = old && a < rezoned.kept_nodes;
+    if (!old) break;
+    ++kept;
+  }
+  EXPECT_GE(kept, outside);
+  EXPECT_LT(kept, m.tets.size());
+  for (std::size_t a = 0; a < static_cast<std::size_t>(rezoned.kept_nodes); ++a) {
+    const std::size_t old = static_cast<std::size_t>(rezoned.old_node[a]);
+    ASSERT_EQ(rezoned.mesh.nodes[a], m.nodes[old]);
+    ASSERT_EQ(rezoned.displacement[a], u[old]);
+    if (a > 0) ASSERT_GT(old, static_cast<std::size_t>(rezoned.old_node[a - 1]));  // in their old order
+  }
 }

@@ -216,8 +216,8 @@ struct IndentationOptions {
   std::function<void(const IndentationStep&, const fem::QuasiStaticSolver&)> on_step;
   // Called after meshing with the tissue mesh that is solved (e.g. for its layer ids in output files), and again with
   // each rezoned mesh (SolverOptions::rezone) before the steps solved on it. A rezoned mesh has the earlier mesh's
-  // boundary: its boundary nodes are the earlier mesh's, at the same reference positions, numbered first and in the
-  // same order (mesh/rezoned_mesh.hpp).
+  // boundary: its boundary nodes are the earlier mesh's, at the same reference positions and in the same order
+  // (mesh/rezoned_mesh.hpp).
   std::function<void(const mesh::TetMesh&)> on_mesh;
   // Warm start: the step displacements of an earlier run of the same case on the same mesh (its
   // IndentationResult::displacements), e.g. at slightly different material parameters. A load step at a depth found
