@@ -140,7 +140,7 @@ void run_indent(const IndentArguments& arguments) {
                  p.linear_iterations, p.contact_set_changed ? ", contact changed" : "");
     };
   }
-  print_warnings(io::indentation_scale_warnings(indentation_case));
+  if (fem::process_rank() == 0) print_warnings(io::indentation_scale_warnings(indentation_case));  // once under mpirun
 
   std::optional<io::IndentationWriter> writer;
   // Under mpirun every rank runs the case; rank 0 alone writes the files.

@@ -38,6 +38,12 @@ void validate_tissue_mesh(const mesh::TetMesh& mesh) {
           "tissue layer \"" + L.name + "\": poisson_ratio = " + str(L.poisson_ratio) + ", expected (-1, 0.5)");
   }
   const int n0 = static_cast<int>(mesh.nodes.size());
+  std::vector<const Eigen::Matrix3d*> own(mesh.tets.size(), nullptr);
+  for (const mesh::OwnReference& r : mesh.own_reference) {
+    check(r.tet >= 0 && r.tet < static_cast<int>(mesh.tets.size()),
+          "tissue mesh: an own reference names tetrahedron " + str(r.tet) + " of " + str(mesh.tets.size()));
+    own[static_cast<size_t>(r.tet)] = &r.edges;
+  }
   for (size_t e = 0; e < mesh.tets.size(); ++e) {
     const auto& t = mesh.tets[e];
     // (Messages are built only on failure: building them for every element took 2 s at 300k tetrahedra.)
@@ -48,11 +54,14 @@ void validate_tissue_mesh(const mesh::TetMesh& mesh) {
     if (mesh.tet_layer[e] < 0 || mesh.tet_layer[e] >= static_cast<int>(mesh.layers.size()))
       throw InvalidInput("tissue mesh: tetrahedron " + str(e) + " has layer " + str(mesh.tet_layer[e]) +
                          " but the mesh has " + str(mesh.layers.size()) + " layers");
-    const auto& p = mesh.nodes;
-    const double v = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).dot(p[t[3]] - p[t[0]]) / 6;
+    // The corners of its reference shape: its nodes', or its own edges from the origin.
+    std::array<Eigen::Vector3d, 4> p;
+    for (int i = 0; i < 4; ++i)
+      p[i] = own[e] ? (i == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(own[e]->col(i - 1))) : mesh.nodes[t[i]];
+    const double v = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6;
     double lmax = 0;
     for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) lmax = std::max(lmax, (p[t[i]] - p[t[j]]).norm());
+      for (int j = i + 1; j < 4; ++j) lmax = std::max(lmax, (p[i] - p[j]).norm());
     if (!(v > 1e-10 * lmax * lmax * lmax))
       throw InvalidInput("tissue mesh: tetrahedron " + str(e) + " is " + (v < 0 ? "inverted" : "degenerate") +
                          " (volume " + str(v) + " m^3, longest edge " + str(lmax) + " m)");
@@ -105,10 +114,22 @@ void element_data(const mesh::TetMesh& mesh, FunctionSpace& fs) {
   fs.weights.resize(ne * nq);
   fs.node_youngs_modulus.assign(fs.nodes.size(), 0.0);
   double vol_sum = 0, e_sum = 0;
+  if (!mesh.own_reference.empty()) fs.initial_gradient.assign(ne, Eigen::Matrix3d::Identity());
+  for (const mesh::OwnReference& r : mesh.own_reference) {
+    // F_r = [the nodes' edges] * edges^-1: F = F_r + u ∇N^T is then the deformed edges times edges^-1.
+    const std::array<int, 4>& t = mesh.tets[static_cast<size_t>(r.tet)];
+    Eigen::Matrix3d nodal;
+    for (int i = 0; i < 3; ++i) nodal.col(i) = mesh.nodes[t[i + 1]] - mesh.nodes[t[0]];
+    fs.initial_gradient[static_cast<size_t>(r.tet)] = nodal * r.edges.inverse();
+  }
+  std::vector<const Eigen::Matrix3d*> own(ne, nullptr);
+  for (const mesh::OwnReference& r : mesh.own_reference) own[static_cast<size_t>(r.tet)] = &r.edges;
   for (size_t e = 0; e < ne; ++e) {
     std::vector<Eigen::Vector3d> x(static_cast<size_t>(nn));
     fs.elements[e].assign(fs.connectivity.begin() + e * nn, fs.connectivity.begin() + (e + 1) * nn);
-    for (int a = 0; a < nn; ++a) x[a] = fs.nodes[fs.connectivity[e * nn + a]];
+    for (int a = 0; a < nn; ++a)
+      x[a] = own[e] ? (a == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(own[e]->col(a - 1)))
+                    : fs.nodes[fs.connectivity[e * nn + a]];
     const auto geo = element_geometry(x);
     for (int q = 0; q < nq; ++q) {
       fs.weights[e * nq + q] = geo.weights[q];
@@ -142,6 +163,7 @@ void assembly_order(FunctionSpace& fs) {
     append(fs.assembly.connectivity, fs.connectivity, e, static_cast<size_t>(nn));
     append(fs.assembly.gradients, fs.gradients, e, gradients_per_element);
     append(fs.assembly.weights, fs.weights, e, static_cast<size_t>(fs.points));
+    if (!fs.initial_gradient.empty()) fs.assembly.initial_gradient.push_back(fs.initial_gradient[e]);
   }
 }
 
@@ -156,6 +178,8 @@ FunctionSpace function_space(const mesh::TetMesh& mesh, ElementOrder order) {
     fs.box_min = fs.box_min.cwiseMin(p);
     fs.box_max = fs.box_max.cwiseMax(p);
   }
+  if (nn == 10 && !mesh.own_reference.empty())
+    throw InvalidInput("tissue mesh: tetrahedra with their own reference shape (a rezoned mesh) need linear elements");
   fs.nodes = mesh.nodes;
   const size_t ne = mesh.tets.size();
   fs.connectivity.resize(ne * nn);

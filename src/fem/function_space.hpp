@@ -23,6 +23,13 @@ struct FunctionSpace {
   std::vector<double> gradients;            // flat, points * 3 * nodes_per_element per element (column-major 3 x n)
   std::vector<double> weights;              // points per element: quadrature weight * det(J0), m^3
   std::vector<double> volumes;              // per element, reference volume, m^3
+  // Per element F_r, the deformation gradient at zero displacement: I, except for a tetrahedron with its own
+  // reference shape (mesh::OwnReference), whose gradients and volume are its own and F = F_r + u ∇N^T. Empty when
+  // no element has one.
+  std::vector<Eigen::Matrix3d> initial_gradient;
+  Eigen::Matrix3d initial(size_t element) const {
+    return initial_gradient.empty() ? Eigen::Matrix3d::Identity() : initial_gradient[element];
+  }
   std::vector<LameConstants> lame;          // per element
   ElementColouring colouring;               // blocks of elements for threaded assembly (element_colouring.hpp)
   // The geometry the assembly reads per element, copied into its order (colouring.elements): it streams them front
@@ -32,6 +39,7 @@ struct FunctionSpace {
     std::vector<int> connectivity;
     std::vector<double> gradients;
     std::vector<double> weights;
+    std::vector<Eigen::Matrix3d> initial_gradient;  // empty when initial_gradient is
   } assembly;
   std::vector<double> node_youngs_modulus;  // per node, the stiffest adjacent layer's E, Pa
   mesh::CoarseLevel corners;                // quadratic: the corner nodes as the two-grid solver's coarse level
@@ -41,7 +49,8 @@ struct FunctionSpace {
 };
 
 // Throws InvalidInput for an empty mesh, a layer index or node index out of range, E <= 0, nu outside (-1, 0.5),
-// inverted or degenerate tetrahedra (naming the tetrahedron).
+// inverted or degenerate tetrahedra (naming the tetrahedron; for one with its own reference, its own edges), an own
+// reference of a tetrahedron out of range or with quadratic elements.
 void validate_tissue_mesh(const mesh::TetMesh& mesh);
 
 // The function space of a valid mesh (validate_tissue_mesh first).

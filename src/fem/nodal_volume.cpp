@@ -116,7 +116,7 @@ bool NodalVolumeAverage::update(const Eigen::VectorXd& u, bool with_tangent, dou
         const Eigen::Map<const Eigen::Matrix<double, 3, 4>> g(&space_.gradients[12 * e]);
         Eigen::Matrix<double, 3, 4> ue;
         for (int a = 0; a < 4; ++a) ue.col(a) = u.segment<3>(3 * space_.connectivity[4 * e + a]);
-        const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g.transpose();
+        const Eigen::Matrix3d f = space_.initial(e) + ue * g.transpose();
         const double j = f.determinant();
         element_j_[e] = j;
         if (!(j > 0)) {

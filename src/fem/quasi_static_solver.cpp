@@ -56,10 +56,11 @@ void add_prescribed_coupling(const int* c, const std::vector<int>& free_index,
 // An element's strain energy alone (no force, no tangent) added to `energy`; false if it is inverted.
 template <int N>
 bool add_element_energy(MaterialLaw law, const LameConstants& lame, const Eigen::Matrix<double, 3, N>& ue,
-                        const detail::Grad<N>* g, const double* w, int nq, double& energy) {
+                        const detail::Grad<N>* g, const double* w, int nq, const Eigen::Matrix3d& initial_gradient,
+                        double& energy) {
   bool valid = true;
   for (int q = 0; q < nq; ++q) {
-    const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g[q].transpose();
+    const Eigen::Matrix3d f = initial_gradient + ue * g[q].transpose();
     const auto s = stress_response(law, lame, f, false);
     if (!s.valid) valid = false;
     else energy += w[q] * s.energy_density;
@@ -109,13 +110,15 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::element_pass(const Eigen:
           const auto* g =
               reinterpret_cast<const detail::Grad<N>*>(&space.assembly.gradients[at * static_cast<size_t>(nq * 3 * N)]);
           const double* w = &space.assembly.weights[at * static_cast<size_t>(nq)];
+          const Eigen::Matrix3d f0 = space.assembly.initial_gradient.empty() ? Eigen::Matrix3d::Identity()
+                                                                             : space.assembly.initial_gradient[at];
           if (!want_force) {  // energy only
-            if (!add_element_energy<N>(opt.law, space.lame[e], ue, g, w, nq, en)) record_inverted(e);
+            if (!add_element_energy<N>(opt.law, space.lame[e], ue, g, w, nq, f0, en)) record_inverted(e);
             continue;
           }
           double we;
           const bool ok = detail::tet_kernel<N>(g, w, nq, opt.law, space.lame[e], ue, we, fe,
-                                                want_tangent ? &ke : nullptr);
+                                                want_tangent ? &ke : nullptr, f0);
           if (!ok) {
             record_inverted(e);
             continue;
@@ -288,7 +291,7 @@ double QuasiStaticSolver::Impl::smallest_volume_ratio() const {
     for (int q = 0; q < nq; ++q) {
       const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> g(&space.gradients[(e * nq + q) * 3 * nn], 3,
                                                                           nn);
-      smallest = std::min(smallest, (Eigen::Matrix3d::Identity() + ue * g.transpose()).determinant());
+      smallest = std::min(smallest, (space.initial(e) + ue * g.transpose()).determinant());
     }
   }
   return smallest;
@@ -495,7 +498,7 @@ ElementFields QuasiStaticSolver::element_fields() const {
     double w_sum = 0, energy = 0, jac = 0;
     for (int q = 0; q < nq; ++q) {
       const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> g(&sp.gradients[(e * nq + q) * 3 * nn], 3, nn);
-      const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + ue * g.transpose();
+      const Eigen::Matrix3d f = sp.initial(e) + ue * g.transpose();
       const auto s = stress_response(m.opt.law, sp.lame[e], f, false);
       const double w = sp.weights[e * nq + q];
       w_sum += w;

@@ -43,10 +43,12 @@ template <int N>
 using Grad = Eigen::Matrix<double, 3, N>;
 
 // Energy, internal force (3 x N, column per node) and tangent (3N x 3N, dof 3a+i) at displacement u (3 x N).
+// `initial_gradient`: F at u = 0 (FunctionSpace::initial_gradient; I for every element but a rezoned one's).
 template <int N>
 bool tet_kernel(const Grad<N>* gradients, const double* weights, int points, MaterialLaw law, const LameConstants& lame,
                 const Eigen::Matrix<double, 3, N>& u, double& energy, Eigen::Matrix<double, 3, N>& force,
-                Eigen::Matrix<double, 3 * N, 3 * N>* tangent) {
+                Eigen::Matrix<double, 3 * N, 3 * N>* tangent,
+                const Eigen::Matrix3d& initial_gradient = Eigen::Matrix3d::Identity()) {
   energy = 0;
   force.setZero();
   if (tangent) tangent->setZero();
@@ -54,7 +56,7 @@ bool tet_kernel(const Grad<N>* gradients, const double* weights, int points, Mat
   for (int q = 0; q < points; ++q) {
     const Grad<N>& g = gradients[q];
     const double w = weights[q];
-    const Eigen::Matrix3d f = Eigen::Matrix3d::Identity() + u * g.transpose();  // F_iJ = δ_iJ + u_ia N_a,J
+    const Eigen::Matrix3d f = initial_gradient + u * g.transpose();  // F_iJ = δ_iJ + u_ia N_a,J (F_r for δ)
     const StressResponse r = stress_response(law, lame, f, tangent != nullptr);
     if (!r.valid) valid = false;  // inverted: the caller rejects the state
     if (!std::isfinite(r.energy_density)) continue;

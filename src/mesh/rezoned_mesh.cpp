@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <optional>
 #include <set>
@@ -186,16 +188,32 @@ std::vector<std::size_t> smoothed_inner_nodes(const TetMesh& pulled_back, std::v
 
 // The old mesh in its deformed state, with what every refill attempt needs of it.
 struct OldMesh {
-  OldMesh(const TetMesh& reference_mesh, const std::vector<Eigen::Vector3d>& old_displacement,
-          const RezoneOptions& options)
+  OldMesh(const TetMesh& reference_mesh, const std::vector<Eigen::Vector3d>& old_displacement)
       : reference(reference_mesh), displacement(old_displacement), deformed(deformed_mesh(reference, displacement)),
-        locator(deformed.nodes, deformed.tets), node_size(deformed_node_sizes(deformed)),
-        region(crushed_region(reference, deformed, options.volume_ratio, options.rings)),
-        surface(cavity_boundary(deformed, region, surface_node)) {}
+        locator(deformed.nodes, deformed.tets), node_size(deformed_node_sizes(deformed)) {}
+  // The region of crushed_region and its boundary (cavity_boundary) for this attempt.
+  void take_out(const RezoneOptions& options, int rings) {
+    region = crushed_region(reference, deformed, options.volume_ratio, rings);
+    surface_node.clear();
+    surface = cavity_boundary(deformed, region, surface_node);
+  }
   static TetMesh deformed_mesh(const TetMesh& reference, const std::vector<Eigen::Vector3d>& displacement) {
     TetMesh deformed = reference;
     for (std::size_t a = 0; a < deformed.nodes.size(); ++a) deformed.nodes[a] += displacement[a];
     return deformed;
+  }
+  // The old tetrahedron k's deformation gradient: its deformed edges times its reference edges' inverse (its own
+  // reference's, if it has one).
+  Eigen::Matrix3d deformation_gradient(int k) const {
+    const std::array<int, 4>& t = reference.tets[static_cast<std::size_t>(k)];
+    Eigen::Matrix3d from, to;
+    for (int i = 0; i < 3; ++i) {
+      from.col(i) = reference.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i) + 1])] - reference.nodes[static_cast<std::size_t>(t[0])];
+      to.col(i) = deformed.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i) + 1])] - deformed.nodes[static_cast<std::size_t>(t[0])];
+    }
+    for (const OwnReference& r : reference.own_reference)
+      if (r.tet == k) from = r.edges;
+    return to * from.inverse();
   }
   // m: the mean edge length of the old tetrahedra at x, interpolated from their nodes.
   double size_at(const Eigen::Vector3d& x) const {
@@ -219,10 +237,12 @@ struct OldMesh {
 
 // Gmsh's Delaunay makes tetrahedra about 1/0.75 times the edge length asked for: this factor on the old mesh's edge
 // lengths keeps the element count (measured on the 5.5 um sharp bevel: 58,179 -> 59,421 -> 60,327 -> 61,519
-// tetrahedra over three rezonings). The other factors are the retries: a new tetrahedron that straddles a sharp bend
-// of the old mapping (the surface layer sheared along a bevel by more than an element) comes back inverted, and a
-// slightly different Delaunay mesh usually has none.
+// tetrahedra over three rezonings of the whole tissue). The other factors are the retries: a new tetrahedron that
+// straddles a sharp bend of the old mapping (the surface layer sheared along a bevel by more than an element) comes
+// back inverted, and a slightly different Delaunay mesh often has none.
 constexpr std::array<double, 3> kSizeFactors{0.75, 0.7, 0.8};
+// Then the same with a region grown by this many more rings (another boundary, so another Delaunay mesh).
+constexpr int kMoreRings = 2;
 
 // The refilled region `cavity` (its surface's old nodes first) joined to the old tetrahedra outside the region: the
 // old nodes still in use first, in their old order, then the region's new nodes.
@@ -242,13 +262,19 @@ RezonedMesh with_the_rest(const OldMesh& old, RezonedMesh cavity) {
     out.old_node.push_back(static_cast<int>(a));
   }
   out.kept_nodes = static_cast<int>(out.mesh.nodes.size());
+  std::vector<int> kept_tet(old.reference.tets.size(), -1);
   for (std::size_t e = 0; e < old.reference.tets.size(); ++e) {
     if (old.region[e]) continue;
     std::array<int, 4> t = old.reference.tets[e];
     for (int& a : t) a = index[static_cast<std::size_t>(a)];
+    kept_tet[e] = static_cast<int>(out.mesh.tets.size());
     out.mesh.tets.push_back(t);
     out.mesh.tet_layer.push_back(old.reference.tet_layer[e]);
   }
+  for (const OwnReference& r : old.reference.own_reference)
+    if (kept_tet[static_cast<std::size_t>(r.tet)] >= 0) out.mesh.own_reference.push_back({kept_tet[static_cast<std::size_t>(r.tet)], r.edges});
+  const int first_new_tet = static_cast<int>(out.mesh.tets.size());
+  for (const OwnReference& r : cavity.mesh.own_reference) out.mesh.own_reference.push_back({first_new_tet + r.tet, r.edges});
   const auto new_index = [&](int a) {
     return a < cavity.kept_nodes ? index[static_cast<std::size_t>(cavity.old_node[static_cast<std::size_t>(a)])]
                                  : out.kept_nodes + (a - cavity.kept_nodes);
@@ -267,8 +293,38 @@ RezonedMesh with_the_rest(const OldMesh& old, RezonedMesh cavity) {
   return out;
 }
 
-// The deformed tissue refilled with `surface`'s sizes and carried back, or nothing (and `why`) when a new
-// tetrahedron comes back inverted or degenerate. Gmsh's failures throw.
+// What smoothing leaves inverted or degenerate in `out` (the cavity's new mesh; `filled` its deformed state) takes its
+// own reference shape from the old deformation gradient at its deformed centroid: its F at the transfer is then the
+// old element's (mesh::OwnReference). False (and `why`) when that gradient gives no shape either.
+bool give_own_references(const OldMesh& old, const TetMesh& filled, RezonedMesh& out, std::string& why) {
+  const TetMeshCheck check = tet_mesh_check(out.mesh, {}, "rezoned tissue");
+  std::vector<int> bad = check.inverted;
+  bad.insert(bad.end(), check.degenerate.begin(), check.degenerate.end());
+  std::sort(bad.begin(), bad.end());
+  bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+  for (int e : bad) {
+    const std::array<int, 4>& t = filled.tets[static_cast<std::size_t>(e)];
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d deformed_edges;
+    for (int i = 0; i < 4; ++i) centroid += 0.25 * filled.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])];
+    for (int i = 0; i < 3; ++i)
+      deformed_edges.col(i) = filled.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i) + 1])] - filled.nodes[static_cast<std::size_t>(t[0])];
+    const Eigen::Matrix3d old_gradient = old.deformation_gradient(old.locator.locate(centroid).tet);
+    const Eigen::Matrix3d edges = old_gradient.inverse() * deformed_edges;
+    if (!(old_gradient.determinant() > 0) ||
+        tet_quality(Eigen::Vector3d::Zero(), edges.col(0), edges.col(1), edges.col(2)) < kWorstReferenceQuality) {
+      why = fmt::format("rezoning: a new tetrahedron of {} is inverted when carried back to the reference "
+                        "configuration, and the old deformation gradient there does not give it a shape either",
+                        out.mesh.tets.size());
+      return false;
+    }
+    out.mesh.own_reference.push_back({e, edges});
+  }
+  return true;
+}
+
+// The deformed tissue refilled with `surface`'s sizes and carried back, or nothing (and `why`) when Gmsh cannot fill
+// it or a new tetrahedron comes back inverted or degenerate.
 std::optional<RezonedMesh> refilled(const OldMesh& old, const detail::SurfaceToFill& surface, std::string& why) {
   RezonedMesh out;
   out.old_node = old.surface_node;
@@ -279,7 +335,10 @@ std::optional<RezonedMesh> refilled(const OldMesh& old, const detail::SurfaceToF
     const std::lock_guard<std::mutex> lock(detail::gmsh_call_mutex());
     filled = detail::gmsh_module().refill(surface, error);
   }
-  detail::throw_if_failed(error);
+  if (error.kind != detail::GmshErrorKind::None) {  // e.g. a deformed boundary that touches itself
+    why = error.message;
+    return std::nullopt;
+  }
   for (std::size_t a = 0; a < static_cast<std::size_t>(out.kept_nodes); ++a) {  // back from Gmsh's units exactly
     if ((filled.nodes[a] - surface.nodes[a]).norm() > 1e-9 * surface.nodes[a].norm() + 1e-15)
       throw std::logic_error("rezoning: Gmsh renumbered the kept boundary nodes");
@@ -322,12 +381,8 @@ std::optional<RezonedMesh> refilled(const OldMesh& old, const detail::SurfaceToF
     for (int a : filled.tets[e]) centroid += 0.25 * filled.nodes[static_cast<std::size_t>(a)];
     out.mesh.tet_layer[e] = old.reference.tet_layer[static_cast<std::size_t>(old.locator.locate(centroid).tet)];
   }
-  const TetMeshCheck check = tet_mesh_check(out.mesh, {}, "rezoned tissue");
-  if (check.valid()) return with_the_rest(old, std::move(out));
-  why = fmt::format("rezoning: {} of the {} new tetrahedra are inverted and {} degenerate when carried back to the "
-                    "reference configuration (the old mapping bends sharply inside them)",
-                    check.inverted.size(), out.mesh.tets.size(), check.degenerate.size());
-  return std::nullopt;
+  if (!give_own_references(old, filled, out, why)) return std::nullopt;
+  return with_the_rest(old, std::move(out));
 }
 
 }  // namespace
@@ -337,14 +392,17 @@ RezonedMesh rezoned_mesh(const TetMesh& reference, const std::vector<Eigen::Vect
   if (displacement.size() != reference.nodes.size())
     throw InvalidInput(fmt::format("rezoning: {} displacements for {} nodes", displacement.size(),
                                    reference.nodes.size()));
-  const OldMesh old(reference, displacement, options);
+  OldMesh old(reference, displacement);
   std::string why;
-  for (double factor : kSizeFactors) {
-    detail::SurfaceToFill surface = old.surface;
-    surface.size = options.size ? options.size : [&](const Eigen::Vector3d& x) { return factor * old.size_at(x); };
-    std::optional<RezonedMesh> rezoned = refilled(old, surface, why);
-    if (rezoned) return std::move(*rezoned);
-    if (options.size) break;  // the same sizes would give the same mesh
+  for (int rings : {options.rings, options.rings + kMoreRings}) {
+    old.take_out(options, rings);
+    for (double factor : kSizeFactors) {
+      detail::SurfaceToFill surface = old.surface;
+      surface.size = options.size ? options.size : [&](const Eigen::Vector3d& x) { return factor * old.size_at(x); };
+      std::optional<RezonedMesh> rezoned = refilled(old, surface, why);
+      if (rezoned) return std::move(*rezoned);
+      if (options.size) break;  // the same sizes would give the same mesh
+    }
   }
   throw std::runtime_error(why);
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <Eigen/LU>
 #include <cmath>
 
 #include "needlekit/core/errors.hpp"
@@ -157,5 +158,82 @@ TEST(RezonedMesh, KeepsTheTetrahedraOutsideTheCrushedRegion) {
     ASSERT_EQ(rezoned.mesh.nodes[a], m.nodes[old]);
     ASSERT_EQ(rezoned.displacement[a], u[old]);
     if (a > 0) ASSERT_GT(old, static_cast<std::size_t>(rezoned.old_node[a - 1]));  // in their old order
+  }
+}
+
+namespace {
+
+// A 0.4 mm cube of 2 x 2 x 2 hexes, nu = 0.49 (the nodal-averaged volume), its bottom fixed.
+mesh::TetMesh small_cube() {
+  mesh::StructuredBlockOptions options;
+  options.width = options.length = options.height = 0.4e-3;
+  options.nx = options.ny = options.nz = 2;
+  options.material = {"gel", 0, 0.2e6, 0.49};
+  return mesh::structured_block_mesh(options);
+}
+
+fem::SolverOptions nodal_average_options() {
+  fem::SolverOptions o;
+  o.law = fem::MaterialLaw::NeoHookean;
+  o.boundary = fem::BoundaryCondition::BottomFixed;
+  o.contact = fem::ContactModel::Surface;  // the plate is out of reach: no contact force
+  return o;
+}
+
+std::vector<fem::Indenter> plate_above() {
+  geometry::TriangleMesh box;
+  const double lo = -1e-3, hi = 1e-3, z0 = 0.5e-3, z1 = 1e-3;
+  box.vertices = {{lo, lo, z0}, {hi, lo, z0}, {hi, hi, z0}, {lo, hi, z0},
+                  {lo, lo, z1}, {hi, lo, z1}, {hi, hi, z1}, {lo, hi, z1}};
+  box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                   {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  return {{box, {0, 0, -1}}};
+}
+
+}  // namespace
+
+TEST(OwnReference, MeasuresTheDeformationFromTheTetrahedronsOwnShape) {
+  // Every tetrahedron's own reference is F0^-1 times its nodes' edges: the mesh is then the block F0^-1 X deformed by
+  // F0, so at any displacement u its energy and forces are those of the plain mesh with nodes F0^-1 X displaced to
+  // the same places, X + u. F0 is diagonal so that both meshes fix the same bottom nodes.
+  const mesh::TetMesh plain_nodes = small_cube();
+  const Eigen::Matrix3d f0 = Eigen::Vector3d(1.2, 0.9, 0.8).asDiagonal();
+  mesh::TetMesh own = plain_nodes, plain = plain_nodes;
+  for (std::size_t e = 0; e < own.tets.size(); ++e) {
+    Eigen::Matrix3d edges;
+    for (int i = 0; i < 3; ++i) edges.col(i) = own.nodes[static_cast<std::size_t>(own.tets[e][static_cast<std::size_t>(i) + 1])] - own.nodes[static_cast<std::size_t>(own.tets[e][0])];
+    own.own_reference.push_back({static_cast<int>(e), f0.inverse() * edges});
+  }
+  for (Eigen::Vector3d& x : plain.nodes) x = f0.inverse() * x;
+  fem::QuasiStaticSolver with_own(own, plate_above(), nodal_average_options());
+  fem::QuasiStaticSolver with_plain(plain, plate_above(), nodal_average_options());
+  std::vector<Eigen::Vector3d> u, u_plain;
+  for (std::size_t a = 0; a < own.nodes.size(); ++a) {
+    const Eigen::Vector3d& x = own.nodes[a];
+    const bool bottom = x.z() < -0.4e-3 + 1e-12;
+    u.push_back(bottom ? Eigen::Vector3d::Zero()
+                       : Eigen::Vector3d(2e-5 * std::sin(4e3 * x.y()), 1e-5 * x.z() / 0.4e-3, -3e-5 * (1 + x.x() / 0.4e-3)));
+    u_plain.push_back(own.nodes[a] + u.back() - plain.nodes[a]);
+  }
+  const auto a = with_own.linearization(u, 0), b = with_plain.linearization(u_plain, 0);
+  ASSERT_TRUE(a.valid && b.valid);
+  EXPECT_NEAR(a.energy, b.energy, 1e-10 * std::abs(b.energy));
+  ASSERT_EQ(a.gradient.size(), b.gradient.size());
+  EXPECT_LT((a.gradient - b.gradient).norm(), 1e-9 * b.gradient.norm());
+  EXPECT_LT((a.tangent - b.tangent).norm(), 1e-9 * b.tangent.norm());
+  // And the tangent is the central difference of the forces (a few dofs).
+  const double h = 1e-9;
+  for (std::size_t node : {13u, 20u}) {
+    for (int i = 0; i < 3; ++i) {
+      if (own.nodes[node].z() < -0.4e-3 + 1e-12) continue;
+      auto up = u, down = u;
+      up[node][i] += h;
+      down[node][i] -= h;
+      const Eigen::VectorXd column = (with_own.linearization(up, 0).gradient - with_own.linearization(down, 0).gradient) / (2 * h);
+      Eigen::Index k = 0;  // the free dof's column: free dofs in ascending dof order
+      for (std::size_t n = 0; n < node; ++n) k += own.nodes[n].z() < -0.4e-3 + 1e-12 ? 0 : 3;
+      k += i;
+      EXPECT_LT((column - a.tangent.col(k)).norm(), 1e-6 * a.tangent.col(k).norm()) << node << " " << i;
+    }
   }
 }

@@ -15,7 +15,8 @@
 //    is sheared along a bevel by more than an element), the carried-back tetrahedron can be flat or inverted:
 //     - a tetrahedron of four boundary nodes across a bend of the surface is split along its chord under the bend;
 //     - the inner nodes of the others are smoothed in the deformed state and carried back again;
-//     - what remains is retried with a slightly different Delaunay mesh (other sizes), and failing that refused.
+//     - what remains takes its own reference shape (OwnReference) from the old deformation gradient at its
+//       deformed centroid, so that its F at the transfer is the old element's.
 // 3. Each new tetrahedron takes the layer of the old tetrahedron that contains its deformed centroid. A layer
 //    interface is therefore resolved to the new elements' size, not kept as a surface.
 //
@@ -49,9 +50,9 @@ struct RezonedMesh {
                                               // numbered first and in their old order
 };
 
-// Throws InvalidInput when `displacement` does not have one vector per node, and std::runtime_error when Gmsh cannot
-// fill the deformed boundary (it intersects itself) or, with every size tried, a new tetrahedron is inverted or
-// degenerate once carried back to the reference configuration.
+// Throws InvalidInput when `displacement` does not have one vector per node, and std::runtime_error when, with every
+// size and region tried, Gmsh cannot fill the deformed boundary (it touches itself) or a new tetrahedron has no
+// shape (inverted carried back, and the old deformation gradient where it is inverted too).
 RezonedMesh rezoned_mesh(const TetMesh& reference, const std::vector<Eigen::Vector3d>& displacement,
                          const RezoneOptions& options = {});
 
