@@ -370,64 +370,6 @@ fem::SolverOptions solver_options_of(const IndentationCase& c, const Indentation
   return solver_options;
 }
 
-// The tissue as the solver uses it (SolverOptions::rezone): the mesh meshed for the run, or its latest rezoning.
-class RezonableTissue {
-public:
-  RezonableTissue(const IndentationCase& m, const fem::SolverOptions& options, const mesh::TetMesh& meshed)
-      : m_(m), options_(options), meshed_(meshed) {}
-
-  // After load step k failed with `why`, the solver's last converged state `depth` below the surface: rezones it,
-  // if rezoning is on and has remeshes left. Returns whether the step can be tried again on a new mesh.
-  bool rezoned_after_failure(fem::QuasiStaticSolver& solver, int k, double depth, const std::string& why,
-                             const IndentationOptions& options, IndentationResult& result) {
-    if (!allowed(result)) return false;
-    const IndentationStep* last = result.steps.empty() ? nullptr : &result.steps.back();
-    return rezone(solver, k - 1, depth, last ? last->force : 0, last ? last->min_volume_ratio : 1,
-                  fmt::format("load step {} failed: {}", k, why), options, result);
-  }
-
-  // After converged load step k (not the last), the last of result.steps: rezones when its smallest J fell below
-  // rezone_volume_ratio.
-  void rezone_if_crushed(fem::QuasiStaticSolver& solver, int k, const IndentationOptions& options,
-                         IndentationResult& result) {
-    const IndentationStep& step = result.steps.back();
-    if (!allowed(result) || step.min_volume_ratio >= options_.rezone_volume_ratio) return;
-    rezone(solver, k, step.depth, step.force, step.min_volume_ratio,
-           fmt::format("the smallest J = det F fell to {:.3g} (below rezone_volume_ratio {:.3g})",
-                       step.min_volume_ratio, options_.rezone_volume_ratio),
-           options, result);
-  }
-
-private:
-  bool allowed(const IndentationResult& result) const {
-    return options_.rezone && static_cast<int>(result.remeshes.size()) < options_.max_remeshes;
-  }
-
-  // Rezones the solver's last converged state (at load step `step`, `depth` below the surface, with the total
-  // `force` and smallest J `min_volume_ratio`) and, if that works, replaces the solver. The attempt is recorded in
-  // result.remeshes either way; returns whether the solver was replaced.
-  bool rezone(fem::QuasiStaticSolver& solver, int step, double depth, double force, double min_volume_ratio,
-              std::string reason, const IndentationOptions& options, IndentationResult& result) {
-    detail::Rezoning rezoning =
-        detail::rezoned(current(), solver, placed_indenters(m_), options_, force, min_volume_ratio);
-    rezoning.record.step = step;
-    rezoning.record.depth = depth;
-    rezoning.record.reason = std::move(reason);
-    rezoning.record.failure = rezoning.failure;
-    result.remeshes.push_back(rezoning.record);
-    if (!rezoning.solver) return false;
-    rezoned_ = std::move(rezoning.tissue);
-    solver = std::move(*rezoning.solver);
-    if (options.on_mesh) options.on_mesh(*rezoned_);
-    return true;
-  }
-
-  const mesh::TetMesh& current() const { return rezoned_ ? *rezoned_ : meshed_; }
-  const IndentationCase& m_;
-  const fem::SolverOptions& options_;
-  const mesh::TetMesh& meshed_;
-  std::optional<mesh::TetMesh> rezoned_;
-};
 
 }  // namespace
 
@@ -453,7 +395,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
 
   std::vector<PunctureSample> samples;
   detail::NeedleRecorder needles(c);
-  RezonableTissue tissue(m, solver_options, meshed.tissue);
+  detail::RezonableTissue tissue(m, solver_options, meshed.tissue);
   bool failed = false;
   for (int k = 1; k <= c.steps; ++k) {
     const double depth = c.depth * k / c.steps;

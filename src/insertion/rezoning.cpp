@@ -1,5 +1,7 @@
 #include "rezoning.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <exception>
 #include <numeric>
@@ -36,6 +38,45 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
   }
   out.record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+bool RezonableTissue::rezoned_after_failure(fem::QuasiStaticSolver& solver, int k, double depth,
+                                            const std::string& why, const IndentationOptions& options,
+                                            IndentationResult& result) {
+  if (!allowed(result)) return false;
+  const IndentationStep* last = result.steps.empty() ? nullptr : &result.steps.back();
+  return rezone(solver, k - 1, depth, last ? last->force : 0, last ? last->min_volume_ratio : 1,
+                fmt::format("load step {} failed: {}", k, why), options, result);
+}
+
+void RezonableTissue::rezone_if_crushed(fem::QuasiStaticSolver& solver, int k, const IndentationOptions& options,
+                                        IndentationResult& result) {
+  const IndentationStep& step = result.steps.back();
+  if (!allowed(result) || step.min_volume_ratio >= options_.rezone_volume_ratio) return;
+  rezone(solver, k, step.depth, step.force, step.min_volume_ratio,
+         fmt::format("the smallest J = det F fell to {:.3g} (below rezone_volume_ratio {:.3g})",
+                     step.min_volume_ratio, options_.rezone_volume_ratio),
+         options, result);
+}
+
+bool RezonableTissue::allowed(const IndentationResult& result) const {
+  return options_.rezone && static_cast<int>(result.remeshes.size()) < options_.max_remeshes;
+}
+
+bool RezonableTissue::rezone(fem::QuasiStaticSolver& solver, int step, double depth, double force,
+                             double min_volume_ratio, std::string reason, const IndentationOptions& options,
+                             IndentationResult& result) {
+  Rezoning rezoning = rezoned(current(), solver, placed_indenters(m_), options_, force, min_volume_ratio);
+  rezoning.record.step = step;
+  rezoning.record.depth = depth;
+  rezoning.record.reason = std::move(reason);
+  rezoning.record.failure = rezoning.failure;
+  result.remeshes.push_back(rezoning.record);
+  if (!rezoning.solver) return false;
+  rezoned_ = std::move(rezoning.tissue);
+  solver = std::move(*rezoning.solver);
+  if (options.on_mesh) options.on_mesh(*rezoned_);
+  return true;
 }
 
 }  // namespace needlekit::insertion::detail
