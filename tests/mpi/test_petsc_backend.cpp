@@ -10,6 +10,8 @@
 #include "needlekit/core/errors.hpp"
 #include "needlekit/fem/parallel_session.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
+#include "needlekit/insertion/indentation.hpp"
+#include "needlekit/needle/needle_surface_mesh.hpp"
 
 namespace needlekit::fem {
 namespace {
@@ -69,6 +71,47 @@ TEST(PetscBackend, GivesTheBuiltInForcesWithTheNodalAveragedVolume) {
   SolverOptions options;  // neo-Hookean at nu = 0.49: the nodal average's two-ring tangent
   options.law = MaterialLaw::NeoHookean;
   expect_same_forces(options, 0.49);
+}
+
+// A 230 um flat punch 40 um into a coarse silicone block under surface contact, rezoned after its first step.
+insertion::IndentationResult rezoned_punch(SolverBackend backend) {
+  insertion::IndentationCase c;
+  const needle::NeedleGeometry cylinder{needle::Shape::Cylinder, 230e-6, 230e-6, 0, 1000e-6};
+  c.geometry = cylinder;
+  c.needle = needle::needle_surface_mesh(cylinder, {24, 4});
+  c.block.width = c.block.length = 2000e-6;
+  c.block.layers = {{"silicone rubber", 1000e-6, 0.2e6, 0.49}};
+  c.block.size_at_site = 60e-6;
+  c.block.refinement_radius = 200e-6;
+  c.block.size_far = 600e-6;
+  c.block.threads = 1;
+  c.depth = 40e-6;
+  c.steps = 2;
+  c.solver.law = MaterialLaw::NeoHookean;
+  c.solver.contact = ContactModel::Surface;
+  c.solver.backend = backend;
+  c.solver.threads = 1;
+  c.solver.residual_tolerance = 1e-9;
+  c.solver.rezone = true;
+  c.solver.rezone_volume_ratio = 0.999;  // after the first step
+  c.solver.max_remeshes = 1;
+  return insertion::run_indentation(c);
+}
+
+TEST(PetscBackend, RezonesAsTheBuiltInBackendOnEveryRank) {
+  // Every rank meshes the crushed region anew on its own (Gmsh's Delaunay on one thread is deterministic): the ranks'
+  // meshes must be the same, or the distributed solve would not be the built-in one's.
+  const insertion::IndentationResult builtin = rezoned_punch(SolverBackend::Builtin);
+  const insertion::IndentationResult petsc = rezoned_punch(SolverBackend::Petsc);
+  ASSERT_EQ(petsc.status, insertion::IndentationStatus::ReachedDepth) << petsc.reason;
+  ASSERT_EQ(builtin.remeshes.size(), 1u);
+  ASSERT_EQ(petsc.remeshes.size(), 1u);
+  EXPECT_TRUE(petsc.remeshes[0].failure.empty()) << petsc.remeshes[0].failure;
+  EXPECT_EQ(petsc.remeshes[0].elements_after, builtin.remeshes[0].elements_after);
+  EXPECT_NEAR(petsc.remeshes[0].force_after, builtin.remeshes[0].force_after, 1e-6 * builtin.remeshes[0].force_after);
+  ASSERT_EQ(petsc.steps.size(), 2u);
+  EXPECT_NEAR(petsc.steps[1].force, builtin.steps[1].force, 1e-6 * builtin.steps[1].force)
+      << "on " << process_count() << " rank(s)";
 }
 
 TEST(PetscBackend, IsCompiledIn) {
