@@ -39,14 +39,18 @@ std::vector<double> deformed_node_sizes(const TetMesh& deformed) {
 // (tetrahedra sharing a node); all of them when none is below it (or volume_ratio is 0).
 std::vector<char> crushed_region(const TetMesh& reference, const TetMesh& deformed, double volume_ratio, int rings) {
   std::vector<char> region(reference.tets.size(), 0);
+  std::vector<double> reference_volume(reference.tets.size(), 0.0);
+  for (std::size_t e = 0; e < reference.tets.size(); ++e) {
+    const std::array<int, 4>& t = reference.tets[e];
+    const auto p = [&](int i) -> const Eigen::Vector3d& { return reference.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
+    reference_volume[e] = signed_volume(p(0), p(1), p(2), p(3));
+  }
+  for (const OwnReference& r : reference.own_reference) reference_volume[static_cast<std::size_t>(r.tet)] = r.edges.determinant() / 6;
   bool any = false;
   for (std::size_t e = 0; e < reference.tets.size(); ++e) {
     const std::array<int, 4>& t = reference.tets[e];
-    const auto volume = [&](const TetMesh& m) {
-      const auto p = [&](int i) -> const Eigen::Vector3d& { return m.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
-      return signed_volume(p(0), p(1), p(2), p(3));
-    };
-    if (volume(deformed) < volume_ratio * volume(reference)) region[e] = 1, any = true;
+    const auto p = [&](int i) -> const Eigen::Vector3d& { return deformed.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
+    if (signed_volume(p(0), p(1), p(2), p(3)) < volume_ratio * reference_volume[e]) region[e] = 1, any = true;
   }
   if (!any) return std::vector<char>(reference.tets.size(), 1);
   for (int ring = 0; ring < rings; ++ring) {
@@ -144,9 +148,9 @@ void split_chords(TetMesh& deformed, const std::vector<std::array<int, 3>>& boun
 }
 
 // A new tetrahedron that comes back inverted or degenerate spans a place where the old mapping bends sharply. Its
-// inner nodes (never a kept boundary node) are moved in the deformed state `moved` halfway to the centroid of their neighbours there
-// (one Laplacian smoothing step, Field 1988) where every tetrahedron round the node stays right-handed there. The
-// caller carries them back again. Returns the nodes moved.
+// inner nodes (never a kept node) are moved in the deformed state `moved` halfway to the centroid of their
+// neighbours (one Laplacian smoothing step, Field 1988), where every tetrahedron round the node stays right-handed.
+// The caller carries them back again. Returns the nodes moved.
 std::vector<std::size_t> smoothed_inner_nodes(const TetMesh& pulled_back, std::vector<Eigen::Vector3d>& moved,
                                               const std::vector<std::array<int, 4>>& tets, int kept_nodes) {
   std::vector<char> bad_node(moved.size(), 0);
