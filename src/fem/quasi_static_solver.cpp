@@ -438,6 +438,33 @@ double QuasiStaticSolver::indenter_displacement() const { return impl_->d; }
 const std::vector<Eigen::Vector3d>& QuasiStaticSolver::nodes() const { return impl_->space.nodes; }
 const std::vector<Eigen::Vector3d>& QuasiStaticSolver::displacement() const { return impl_->u_nodes; }
 const std::vector<std::vector<int>>& QuasiStaticSolver::elements() const { return impl_->space.elements; }
+// The top-surface nodes' contact multipliers and friction states (the needles' edge multipliers of the second pass
+// are per tissue face, whose numbering a rezoning changes: they start again from zero).
+struct QuasiStaticSolver::ContactHistory {
+  std::vector<Eigen::Vector3d> top_nodes;  // m, reference positions, in the order of the history's vectors
+  detail::SurfaceContact::Multipliers multipliers;
+};
+
+std::shared_ptr<const QuasiStaticSolver::ContactHistory> QuasiStaticSolver::contact_history() const {
+  if (!impl_->contact) return nullptr;
+  auto history = std::make_shared<ContactHistory>();
+  for (int n : impl_->top.nodes) history->top_nodes.push_back(impl_->space.nodes[static_cast<size_t>(n)]);
+  history->multipliers = impl_->contact->multipliers();
+  return history;
+}
+
+bool QuasiStaticSolver::set_contact_history(const ContactHistory& history) {
+  if (!impl_->contact || history.top_nodes.size() != impl_->top.nodes.size()) return false;
+  for (size_t t = 0; t < history.top_nodes.size(); ++t)
+    if (history.top_nodes[t] != impl_->space.nodes[static_cast<size_t>(impl_->top.nodes[t])]) return false;
+  detail::SurfaceContact::Multipliers multipliers = impl_->contact->multipliers();
+  if (multipliers.nodes.size() != history.multipliers.nodes.size()) return false;
+  multipliers.nodes = history.multipliers.nodes;
+  multipliers.friction = history.multipliers.friction;
+  impl_->contact->set_multipliers(multipliers);
+  return true;
+}
+
 const std::vector<int>& QuasiStaticSolver::contact_flag() const { return impl_->contact_flag; }
 const std::vector<double>& QuasiStaticSolver::contact_pressure() const { return impl_->contact_pressure; }
 const std::vector<double>& QuasiStaticSolver::top_node_area() const { return impl_->top.node_area; }

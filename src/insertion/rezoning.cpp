@@ -23,6 +23,7 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
     rezone.volume_ratio = options.rezone_volume_ratio;  // only the crushed neighbourhoods (a failed step: all if none)
     mesh::RezonedMesh rezoned = mesh::rezoned_mesh(tissue, solver.displacement(), rezone);
     auto next = std::make_unique<fem::QuasiStaticSolver>(rezoned.mesh, std::move(indenters), options);
+    if (const auto history = solver.contact_history()) next->set_contact_history(*history);
     const fem::StepResult balanced = next->advance_to(solver.indenter_displacement(), rezoned.displacement);
     if (!balanced.converged) {
       out.failure = "the new mesh did not come to equilibrium: " + balanced.reason;

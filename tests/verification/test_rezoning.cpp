@@ -119,6 +119,20 @@ TEST(Rezoning, AFlatPunchsForceJumpsLessThanTwoPercent) {
   EXPECT_NEAR(rezoned.steps[1].force / plain.steps[1].force, 1.0, 0.02);
 }
 
+TEST(Rezoning, AFrictionalPunchKeepsItsContactHistory) {
+  // With friction (mu = 0.3) the new mesh takes the old top surface's multipliers and stick-slip states
+  // (QuasiStaticSolver::set_contact_history): the step after the rezoning gives the run without its force.
+  insertion::IndentationCase plain_case = punch(false), rezoned_case = punch(true);
+  plain_case.solver.friction = rezoned_case.solver.friction = 0.3;
+  const insertion::IndentationResult plain = insertion::run_indentation(plain_case);
+  const insertion::IndentationResult rezoned = insertion::run_indentation(rezoned_case);
+  ASSERT_EQ(rezoned.status, insertion::IndentationStatus::ReachedDepth) << rezoned.reason;
+  ASSERT_EQ(rezoned.remeshes.size(), 1u);
+  EXPECT_TRUE(rezoned.remeshes.front().failure.empty()) << rezoned.remeshes.front().failure;
+  EXPECT_LT(std::abs(rezoned.remeshes.front().force_jump()), 0.02);
+  EXPECT_NEAR(rezoned.steps[1].force / plain.steps[1].force, 1.0, 0.02);
+}
+
 TEST(Rezoning, NeedsSurfaceContactAndLinearTetrahedra) {
   insertion::IndentationCase c = punch(true);
   c.solver.contact = fem::ContactModel::TipNodes;

@@ -153,6 +153,15 @@ public:
   };
   Linearization linearization(const std::vector<Eigen::Vector3d>& u, double indenter_displacement);
 
+  // Surface contact's history at the last converged state: the augmented-Lagrangian multipliers and the friction
+  // states of the top-surface nodes (opaque). For a solver on a rezoned mesh of the same tissue, whose top-surface
+  // nodes are these, in the same order (mesh/rezoned_mesh.hpp): set_contact_history gives them the history, so that
+  // the rezoning neither loses the multipliers nor restarts stick and slip. set_contact_history returns false (and
+  // changes nothing) for a history of another top surface or needle count, or without surface contact.
+  struct ContactHistory;
+  std::shared_ptr<const ContactHistory> contact_history() const;
+  bool set_contact_history(const ContactHistory& history);
+
   // Of the Cholesky factor in use (TwoGrid: the coarse level's): its entries (about 8 bytes each) and the
   // floating-point operations of one numeric factorization.
   double factor_nonzeros() const;
