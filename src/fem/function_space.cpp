@@ -26,6 +26,27 @@ void check(bool ok, const std::string& message) {
 
 }  // namespace
 
+namespace {
+
+// Per tetrahedron its own reference edges (mesh::OwnReference), or null: it is shaped by its nodes.
+std::vector<const Eigen::Matrix3d*> own_edges(const mesh::TetMesh& mesh) {
+  std::vector<const Eigen::Matrix3d*> own(mesh.tets.size(), nullptr);
+  for (const mesh::OwnReference& r : mesh.own_reference) {
+    check(r.tet >= 0 && r.tet < static_cast<int>(mesh.tets.size()),
+          "tissue mesh: an own reference names tetrahedron " + str(r.tet) + " of " + str(mesh.tets.size()));
+    own[static_cast<size_t>(r.tet)] = &r.edges;
+  }
+  return own;
+}
+
+// Corner i of a tetrahedron's reference shape: its node `node`'s position, or with its own edges, 0 and the edges.
+Eigen::Vector3d reference_corner(const Eigen::Matrix3d* own, int i, const Eigen::Vector3d& node) {
+  if (!own) return node;
+  return i == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(own->col(i - 1));
+}
+
+}  // namespace
+
 void validate_tissue_mesh(const mesh::TetMesh& mesh) {
   check(!mesh.nodes.empty() && !mesh.tets.empty(), "tissue mesh: no nodes or no tetrahedra");
   check(mesh.tet_layer.size() == mesh.tets.size(), "tissue mesh: tet_layer has " + str(mesh.tet_layer.size()) +
@@ -38,12 +59,7 @@ void validate_tissue_mesh(const mesh::TetMesh& mesh) {
           "tissue layer \"" + L.name + "\": poisson_ratio = " + str(L.poisson_ratio) + ", expected (-1, 0.5)");
   }
   const int n0 = static_cast<int>(mesh.nodes.size());
-  std::vector<const Eigen::Matrix3d*> own(mesh.tets.size(), nullptr);
-  for (const mesh::OwnReference& r : mesh.own_reference) {
-    check(r.tet >= 0 && r.tet < static_cast<int>(mesh.tets.size()),
-          "tissue mesh: an own reference names tetrahedron " + str(r.tet) + " of " + str(mesh.tets.size()));
-    own[static_cast<size_t>(r.tet)] = &r.edges;
-  }
+  const std::vector<const Eigen::Matrix3d*> own = own_edges(mesh);
   for (size_t e = 0; e < mesh.tets.size(); ++e) {
     const auto& t = mesh.tets[e];
     // (Messages are built only on failure: building them for every element took 2 s at 300k tetrahedra.)
@@ -56,8 +72,7 @@ void validate_tissue_mesh(const mesh::TetMesh& mesh) {
                          " but the mesh has " + str(mesh.layers.size()) + " layers");
     // The corners of its reference shape: its nodes', or its own edges from the origin.
     std::array<Eigen::Vector3d, 4> p;
-    for (int i = 0; i < 4; ++i)
-      p[i] = own[e] ? (i == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(own[e]->col(i - 1))) : mesh.nodes[t[i]];
+    for (int i = 0; i < 4; ++i) p[i] = reference_corner(own[e], i, mesh.nodes[t[i]]);
     const double v = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6;
     double lmax = 0;
     for (int i = 0; i < 4; ++i)
@@ -114,22 +129,17 @@ void element_data(const mesh::TetMesh& mesh, FunctionSpace& fs) {
   fs.weights.resize(ne * nq);
   fs.node_youngs_modulus.assign(fs.nodes.size(), 0.0);
   double vol_sum = 0, e_sum = 0;
+  const std::vector<const Eigen::Matrix3d*> own = own_edges(mesh);
   if (!mesh.own_reference.empty()) fs.initial_gradient.assign(ne, Eigen::Matrix3d::Identity());
-  for (const mesh::OwnReference& r : mesh.own_reference) {
-    // F_r = [the nodes' edges] * edges^-1: F = F_r + u ∇N^T is then the deformed edges times edges^-1.
-    const std::array<int, 4>& t = mesh.tets[static_cast<size_t>(r.tet)];
-    Eigen::Matrix3d nodal;
-    for (int i = 0; i < 3; ++i) nodal.col(i) = mesh.nodes[t[i + 1]] - mesh.nodes[t[0]];
-    fs.initial_gradient[static_cast<size_t>(r.tet)] = nodal * r.edges.inverse();
-  }
-  std::vector<const Eigen::Matrix3d*> own(ne, nullptr);
-  for (const mesh::OwnReference& r : mesh.own_reference) own[static_cast<size_t>(r.tet)] = &r.edges;
   for (size_t e = 0; e < ne; ++e) {
     std::vector<Eigen::Vector3d> x(static_cast<size_t>(nn));
     fs.elements[e].assign(fs.connectivity.begin() + e * nn, fs.connectivity.begin() + (e + 1) * nn);
-    for (int a = 0; a < nn; ++a)
-      x[a] = own[e] ? (a == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(own[e]->col(a - 1)))
-                    : fs.nodes[fs.connectivity[e * nn + a]];
+    for (int a = 0; a < nn; ++a) x[a] = reference_corner(own[e], a, fs.nodes[fs.connectivity[e * nn + a]]);
+    if (own[e]) {  // F_r = [the nodes' edges] * edges^-1: F = F_r + u ∇N^T is then the deformed edges times edges^-1
+      Eigen::Matrix3d nodal;
+      for (int i = 0; i < 3; ++i) nodal.col(i) = fs.nodes[fs.connectivity[e * nn + i + 1]] - fs.nodes[fs.connectivity[e * nn]];
+      fs.initial_gradient[e] = nodal * own[e]->inverse();
+    }
     const auto geo = element_geometry(x);
     for (int q = 0; q < nq; ++q) {
       fs.weights[e * nq + q] = geo.weights[q];

@@ -370,7 +370,6 @@ fem::SolverOptions solver_options_of(const IndentationCase& c, const Indentation
   return solver_options;
 }
 
-
 }  // namespace
 
 IndentationResult run_indentation(const IndentationCase& c, const IndentationOptions& options) {

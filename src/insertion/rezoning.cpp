@@ -26,7 +26,7 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
     if (const auto history = solver.contact_history()) next->set_contact_history(*history);
     const fem::StepResult balanced = next->advance_to(solver.indenter_displacement(), rezoned.displacement);
     if (!balanced.converged) {
-      out.failure = "the new mesh did not come to equilibrium: " + balanced.reason;
+      out.record.failure = "the new mesh did not come to equilibrium: " + balanced.reason;
       return out;
     }
     out.record.elements_after = static_cast<int>(rezoned.mesh.tets.size());
@@ -35,7 +35,7 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
     out.tissue = std::move(rezoned.mesh);
     out.solver = std::move(next);
   } catch (const std::exception& e) {
-    out.failure = e.what();
+    out.record.failure = e.what();
   }
   out.record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -71,7 +71,6 @@ bool RezonableTissue::rezone(fem::QuasiStaticSolver& solver, int step, double de
   rezoning.record.step = step;
   rezoning.record.depth = depth;
   rezoning.record.reason = std::move(reason);
-  rezoning.record.failure = rezoning.failure;
   result.remeshes.push_back(rezoning.record);
   if (!rezoning.solver) return false;
   rezoned_ = std::move(rezoning.tissue);

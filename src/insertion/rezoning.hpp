@@ -15,10 +15,9 @@
 namespace needlekit::insertion::detail {
 
 struct Rezoning {
-  std::unique_ptr<fem::QuasiStaticSolver> solver;  // null: the rezoning failed, `failure` says why
+  std::unique_ptr<fem::QuasiStaticSolver> solver;  // null: the rezoning failed, record.failure says why
   mesh::TetMesh tissue;                            // the new reference mesh
-  Remesh record;                                   // step, depth, reason and failure are the caller's
-  std::string failure;
+  Remesh record;                                   // step, depth and reason are the caller's
 };
 
 // `tissue`: the reference mesh `solver` was built on; the solver's last converged state is rezoned. `step_force` and

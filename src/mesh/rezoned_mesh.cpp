@@ -35,23 +35,24 @@ std::vector<double> deformed_node_sizes(const TetMesh& deformed) {
   return sum;
 }
 
-// The tetrahedra to mesh anew: those with J = det F below `volume_ratio`, grown by `rings` rings of neighbours
-// (tetrahedra sharing a node); all of them when none is below it (or volume_ratio is 0).
-std::vector<char> crushed_region(const TetMesh& reference, const TetMesh& deformed, double volume_ratio, int rings) {
+// The edges [X1 - X0, X2 - X0, X3 - X0] of tetrahedron k of `mesh` from its nodes, m.
+Eigen::Matrix3d nodal_edges(const TetMesh& mesh, std::size_t k) {
+  const std::array<int, 4>& t = mesh.tets[k];
+  Eigen::Matrix3d edges;
+  for (std::size_t i = 0; i < 3; ++i)
+    edges.col(static_cast<Eigen::Index>(i)) = mesh.nodes[static_cast<std::size_t>(t[i + 1])] - mesh.nodes[static_cast<std::size_t>(t[0])];
+  return edges;
+}
+
+// The tetrahedra to mesh anew: those whose J = det F (`volume_ratios`, per old tetrahedron) is below `volume_ratio`,
+// grown by `rings` rings of neighbours (tetrahedra sharing a node); all of them when none is below it (or
+// volume_ratio is 0).
+std::vector<char> crushed_region(const TetMesh& reference, const std::vector<double>& volume_ratios,
+                                 double volume_ratio, int rings) {
   std::vector<char> region(reference.tets.size(), 0);
-  std::vector<double> reference_volume(reference.tets.size(), 0.0);
-  for (std::size_t e = 0; e < reference.tets.size(); ++e) {
-    const std::array<int, 4>& t = reference.tets[e];
-    const auto p = [&](int i) -> const Eigen::Vector3d& { return reference.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
-    reference_volume[e] = signed_volume(p(0), p(1), p(2), p(3));
-  }
-  for (const OwnReference& r : reference.own_reference) reference_volume[static_cast<std::size_t>(r.tet)] = r.edges.determinant() / 6;
   bool any = false;
-  for (std::size_t e = 0; e < reference.tets.size(); ++e) {
-    const std::array<int, 4>& t = reference.tets[e];
-    const auto p = [&](int i) -> const Eigen::Vector3d& { return deformed.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])]; };
-    if (signed_volume(p(0), p(1), p(2), p(3)) < volume_ratio * reference_volume[e]) region[e] = 1, any = true;
-  }
+  for (std::size_t e = 0; e < reference.tets.size(); ++e)
+    if (volume_ratios[e] < volume_ratio) region[e] = 1, any = true;
   if (!any) return std::vector<char>(reference.tets.size(), 1);
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<char> touched(reference.nodes.size(), 0);
@@ -194,10 +195,15 @@ std::vector<std::size_t> smoothed_inner_nodes(const TetMesh& pulled_back, std::v
 struct OldMesh {
   OldMesh(const TetMesh& reference_mesh, const std::vector<Eigen::Vector3d>& old_displacement)
       : reference(reference_mesh), displacement(old_displacement), deformed(deformed_mesh(reference, displacement)),
-        locator(deformed.nodes, deformed.tets), node_size(deformed_node_sizes(deformed)) {}
+        locator(deformed.nodes, deformed.tets), node_size(deformed_node_sizes(deformed)),
+        own(reference.tets.size(), nullptr) {
+    for (const OwnReference& r : reference.own_reference) own[static_cast<std::size_t>(r.tet)] = &r.edges;
+    for (std::size_t k = 0; k < reference.tets.size(); ++k)
+      volume_ratios.push_back(deformation_gradient(static_cast<int>(k)).determinant());
+  }
   // The region of crushed_region and its boundary (cavity_boundary) for this attempt.
   void take_out(const RezoneOptions& options, int rings) {
-    region = crushed_region(reference, deformed, options.volume_ratio, rings);
+    region = crushed_region(reference, volume_ratios, options.volume_ratio, rings);
     surface_node.clear();
     surface = cavity_boundary(deformed, region, surface_node);
   }
@@ -209,15 +215,8 @@ struct OldMesh {
   // The old tetrahedron k's deformation gradient: its deformed edges times its reference edges' inverse (its own
   // reference's, if it has one).
   Eigen::Matrix3d deformation_gradient(int k) const {
-    const std::array<int, 4>& t = reference.tets[static_cast<std::size_t>(k)];
-    Eigen::Matrix3d from, to;
-    for (int i = 0; i < 3; ++i) {
-      from.col(i) = reference.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i) + 1])] - reference.nodes[static_cast<std::size_t>(t[0])];
-      to.col(i) = deformed.nodes[static_cast<std::size_t>(t[static_cast<std::size_t>(i) + 1])] - deformed.nodes[static_cast<std::size_t>(t[0])];
-    }
-    for (const OwnReference& r : reference.own_reference)
-      if (r.tet == k) from = r.edges;
-    return to * from.inverse();
+    const std::size_t e = static_cast<std::size_t>(k);
+    return nodal_edges(deformed, e) * (own[e] ? *own[e] : nodal_edges(reference, e)).inverse();
   }
   // m: the mean edge length of the old tetrahedra at x, interpolated from their nodes.
   double size_at(const Eigen::Vector3d& x) const {
@@ -234,6 +233,8 @@ struct OldMesh {
   TetMesh deformed;
   TetLocator locator;
   std::vector<double> node_size;  // m, deformed_node_sizes
+  std::vector<const Eigen::Matrix3d*> own;  // per old tetrahedron: its own reference edges, or null
+  std::vector<double> volume_ratios;        // per old tetrahedron: J = det F
   std::vector<char> region;       // per old tetrahedron: meshed anew (crushed_region)
   std::vector<int> surface_node;  // per node of `surface`: its old node
   detail::SurfaceToFill surface;  // the region's deformed boundary, without sizes
