@@ -37,6 +37,7 @@ set(NEEDLEKIT_LIBRARY_SOURCES
   src/fem/linear_solve.cpp
   src/fem/morton_order.cpp
   src/fem/needle_edge_contact.cpp
+  src/fem/needle_embedding.cpp
   src/fem/newton_step.cpp
   src/fem/nodal_volume.cpp
   src/fem/nodal_volume_preconditioner.cpp
@@ -235,6 +236,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_layered_block_mesh.cpp
   tests/unit/test_line_search.cpp
   tests/unit/test_needle_array.cpp
+  tests/unit/test_needle_embedding.cpp
   tests/unit/test_optimizer_progress.cpp
   tests/unit/test_parameter_json.cpp
   tests/unit/test_parameter_tables.cpp

@@ -38,6 +38,13 @@ void ProgressBar::update(double fraction) {
   fmt::print(stderr, "{}: {}%\n", label_, quarter * 25);
 }
 
+void ProgressBar::break_line() {
+  if (!line_open_) return;
+  std::fputc('\n', stderr);
+  line_open_ = false;
+  shown_percent_ = -1;
+}
+
 void ProgressBar::finish() {
   update(1.0);
   if (line_open_) {

@@ -21,6 +21,8 @@ public:
   void update(double fraction);
   // Shows 100 % and ends the line; throws Interrupted as above.
   void finish();
+  // Ends the bar's line so that a message can be printed on its own; the next update draws the bar again.
+  void break_line();
 
 private:
   std::string label_;

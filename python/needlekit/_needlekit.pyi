@@ -1811,6 +1811,9 @@ class IndentationResult:
     @property
     def strain_energy(self) -> numpy.ndarray:
         """J"""
+    @property
+    def tip_embedded_depth(self) -> numpy.ndarray:
+        """m per step, how far the needles' tips lie inside the tissue past its top surface (surface contact)"""
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
     @property
@@ -1888,6 +1891,9 @@ class IndentationStep:
     @property
     def strain_energy(self) -> float:
         """J"""
+    @property
+    def tip_embedded_depth(self) -> float:
+        """m, how far the needles' tips lie inside the tissue past its top surface (surface contact)"""
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
 

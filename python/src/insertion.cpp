@@ -129,6 +129,8 @@ void bind_indentation(py::module_& m) {
       .def_readonly("newton_iterations", &IndentationStep::newton_iterations)
       .def_readonly("min_volume_ratio", &IndentationStep::min_volume_ratio,
                     "the most compressed tetrahedron's J = det F (below 0.3: forces depend on the mesh)")
+      .def_readonly("tip_embedded_depth", &IndentationStep::tip_embedded_depth,
+                    "m, how far the needles' tips lie inside the tissue past its top surface (surface contact)")
       .def_readonly("step_seconds", &IndentationStep::step_seconds, "s")
       .def_readonly("lateral_force", &IndentationStep::lateral_force,
                     "N, the tissue's force on the needles across their axis, block axes (x, y, z)")
@@ -184,7 +186,11 @@ void bind_indentation(py::module_& m) {
       .def_property_readonly(
           "min_volume_ratio",
           [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::min_volume_ratio); },
-          "the most compressed tetrahedron's J = det F per step (below 0.3: forces depend on the mesh)");
+          "the most compressed tetrahedron's J = det F per step (below 0.3: forces depend on the mesh)")
+      .def_property_readonly(
+          "tip_embedded_depth",
+          [](const IndentationResult& r) { return step_column<double>(r, &IndentationStep::tip_embedded_depth); },
+          "m per step, how far the needles' tips lie inside the tissue past its top surface (surface contact)");
   m.def(
       "run_indentation",
       [](const IndentationCase& c, py::object progress, std::optional<std::string> output_directory) {
@@ -201,6 +207,7 @@ void bind_indentation(py::module_& m) {
           options.on_step = [&writer](const IndentationStep& s, const fem::QuasiStaticSolver& solver) {
             writer->write_step(s, solver);
           };
+          options.on_remesh = [&writer](const Remesh& remesh) { writer->add_remesh(remesh); };
         }
         IndentationResult result;
         try {

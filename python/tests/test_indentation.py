@@ -1,5 +1,6 @@
 """Tissue meshes and FE indentation from Python: progress callbacks, the GIL released, Ctrl-C stops the run with
 nothing half-written, and the insertion pieces (post-puncture loads, the insertion curve)."""
+import json
 import threading
 
 import numpy as np
@@ -57,7 +58,16 @@ def test_a_rezoned_run_reports_its_remesh_and_writes_every_step(tmp_path):
     case.solver.order = nk.ElementOrder.Linear
     case.solver.rezone = True
     case.solver.rezone_volume_ratio = 0.999  # after the first step, whatever its J
-    result = nk.run_indentation(case, output_directory=str(tmp_path))
+    written = []  # the rezonings in the incomplete result file while the run goes on
+
+    def watch(progress):
+        path = tmp_path / "flat_punch_result.json"
+        if path.exists():
+            partial = json.loads(path.read_text())
+            if partial["status"] == "incomplete":
+                written.append(partial["remeshes"])
+
+    result = nk.run_indentation(case, progress=watch, output_directory=str(tmp_path))
     assert result.status == nk.IndentationStatus.ReachedDepth, result.reason
     assert len(result.remeshes) == 1  # the last step is never followed by one
     remesh = result.remeshes[0]
@@ -66,6 +76,7 @@ def test_a_rezoned_run_reports_its_remesh_and_writes_every_step(tmp_path):
     assert remesh.force_before == pytest.approx(result.force[0])
     assert (tmp_path / "flat_punch_step_002.vtu").exists()  # the step solved on the new mesh
     assert nk.indentation_json(case, result)["remeshes"][0]["step"] == 1
+    assert written and written[-1] and written[-1][0]["step"] == 1  # written when it happened, before the end
 
 
 def test_ctrl_c_stops_the_run_cleanly(tmp_path):

@@ -358,6 +358,7 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
   const double strain_energy = evaluated ? m.converged_strain_energy : m.evaluate(m.u, m.d, true, false).strain_energy;
   m.measure(res);
   res.min_volume_ratio = m.smallest_volume_ratio();  // once per call: not in measure(), which every substep's probe runs
+  res.tip_embedded_depth = m.embedding ? m.embedding->deepest(m.space.nodes, m.u, m.d) : 0.0;
   res.converged = ok;
   if (ok) res.status = StepStatus::Converged;
   res.indenter_displacement = m.d;

@@ -398,6 +398,7 @@ QuasiStaticSolver::QuasiStaticSolver(const mesh::TetMesh& mesh, std::vector<Inde
     std::vector<Indenter> placed;
     for (const auto& nd : m.needles) placed.push_back(nd.indenter);
     m.contact = std::make_unique<detail::SurfaceContact>(m.top, m.space, placed, o);
+    m.embedding = std::make_unique<detail::NeedleEmbedding>(m.space, m.top, placed, m.contact->smallest_size() / 2);
   }
 
   // Degrees of freedom: boundary conditions (§3.4: sides and bottom fixed, top free) and tip nodes.

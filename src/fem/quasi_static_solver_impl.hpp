@@ -12,6 +12,7 @@
 #include "boundary_conditions.hpp"
 #include "function_space.hpp"
 #include "needlekit/fem/quasi_static_solver.hpp"
+#include "needle_embedding.hpp"
 #include "nodal_volume.hpp"
 #include "linear_solve.hpp"
 #include "surface_contact.hpp"
@@ -47,6 +48,7 @@ struct QuasiStaticSolver::Impl {
   detail::DofMap dofs;
   std::vector<Needle> needles;
   std::unique_ptr<detail::SurfaceContact> contact;  // Surface
+  std::unique_ptr<detail::NeedleEmbedding> embedding;  // Surface: StepResult::tip_embedded_depth
   std::unique_ptr<detail::NodalVolumeAverage> nodal;  // linear tetrahedra with the nodal-averaged volume
   tbb::task_arena arena;
   std::unique_ptr<detail::TangentMatrix> tangent;     // the assembled K

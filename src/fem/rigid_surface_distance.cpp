@@ -53,9 +53,6 @@ RigidSurfaceDistance::RigidSurfaceDistance(const geometry::TriangleMesh& mesh, c
     }
 }
 
-namespace {
-// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5), with the feature:
-// 0..2 vertex, 3..5 edge (k-3) = (k, k+1), 6 face.
 Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                     const Eigen::Vector3d& c, int& feature) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
@@ -80,7 +77,6 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
   feature = 6;
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
-}  // namespace
 
 RigidSurfaceDistance::Nearest RigidSurfaceDistance::nearest(const Eigen::Vector3d& q, double reach,
                                                            const std::vector<int>* subset) const {

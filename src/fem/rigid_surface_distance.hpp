@@ -9,6 +9,11 @@
 
 namespace needlekit::fem::detail {
 
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5), with the feature:
+// 0..2 vertex, 3..5 edge (k-3) = (k, k+1), 6 face.
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c, int& feature);
+
 struct SignedDistance {
   double distance = 0;      // m, negative inside
   Eigen::Vector3d normal;   // unit, outward: gradient of the signed distance

@@ -83,6 +83,7 @@ IndentationStep step_of(const fem::StepResult& solved, double depth, const detai
   step.cutbacks = solved.cutbacks;
   step.factorizations = solved.factorizations;
   step.min_volume_ratio = solved.min_volume_ratio;
+  step.tip_embedded_depth = solved.tip_embedded_depth;
   for (const fem::IterationRecord& iteration : solved.iterations) step.linear_iterations += iteration.linear_iterations;
   if (!solved.iterations.empty()) {
     step.max_residual = solved.iterations.front().residual_norm;

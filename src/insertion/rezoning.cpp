@@ -72,6 +72,7 @@ bool RezonableTissue::rezone(fem::QuasiStaticSolver& solver, int step, double de
   rezoning.record.depth = depth;
   rezoning.record.reason = std::move(reason);
   result.remeshes.push_back(rezoning.record);
+  if (options.on_remesh) options.on_remesh(result.remeshes.back());
   if (!rezoning.solver) return false;
   rezoned_ = std::move(rezoning.tissue);
   solver = std::move(*rezoning.solver);

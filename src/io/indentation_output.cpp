@@ -125,20 +125,36 @@ std::string force_depth_csv(const insertion::IndentationResult& result) {
   return out.str();
 }
 
-std::vector<std::string> indentation_result_notes(const insertion::IndentationResult& result) {
+std::string remesh_note(const insertion::Remesh& r) {
+  return r.failure.empty()
+             ? fmt::format("rezoned at {:g} um (after load step {}; {}): {} -> {} tetrahedra, force {:.4g} -> {:.4g} N "
+                           "({:+.2f} %), smallest J {:.3g} -> {:.3g}",
+                           r.depth * 1e6, r.step, r.reason, r.elements_before, r.elements_after, r.force_before,
+                           r.force_after, 100 * r.force_jump(), r.min_volume_ratio_before, r.min_volume_ratio_after)
+             : fmt::format("rezoning at {:g} um (after load step {}; {}) failed: {}", r.depth * 1e6, r.step, r.reason,
+                           r.failure);
+}
+
+std::vector<std::string> indentation_result_notes(const insertion::IndentationCase& c,
+                                                  const insertion::IndentationResult& result) {
   const auto crushed = std::find_if(result.steps.begin(), result.steps.end(), [](const insertion::IndentationStep& s) {
     return s.min_volume_ratio < insertion::kCrushedVolumeRatio;
   });
   std::vector<std::string> notes;
-  for (const insertion::Remesh& r : result.remeshes) {
-    notes.push_back(r.failure.empty()
-                        ? fmt::format("rezoned at {:g} um (after load step {}; {}): {} -> {} tetrahedra, force {:.4g} -> "
-                                      "{:.4g} N ({:+.2f} %), smallest J {:.3g} -> {:.3g}",
-                                      r.depth * 1e6, r.step, r.reason, r.elements_before, r.elements_after,
-                                      r.force_before, r.force_after, 100 * r.force_jump(), r.min_volume_ratio_before,
-                                      r.min_volume_ratio_after)
-                        : fmt::format("rezoning at {:g} um (after load step {}; {}) failed: {}", r.depth * 1e6, r.step,
-                                      r.reason, r.failure));
+  for (const insertion::Remesh& r : result.remeshes) notes.push_back(remesh_note(r));
+  const double element = c.block.size_at_site;  // the tissue's element size at the tips
+  const auto embedded = std::find_if(result.steps.begin(), result.steps.end(), [element](const auto& s) {
+    return s.tip_embedded_depth > element;
+  });
+  if (embedded != result.steps.end()) {
+    double deepest = 0;
+    for (const insertion::IndentationStep& s : result.steps) deepest = std::max(deepest, s.tip_embedded_depth);
+    notes.push_back(fmt::format(
+        "from {:g} um deep a needle's tip lies inside the tissue, up to {:.3g} um past its top surface (more than the "
+        "mesh's {:g} um at the tip): node-to-surface contact lets a tip narrower than a few elements cut between the "
+        "tissue's nodes, so the forces from there on are those of a partly embedded needle (frictionless, it can pass "
+        "through and the force fall to a few per cent); expected a finer [mesh] size_at_tip",
+        embedded->depth * 1e6, deepest * 1e6, element * 1e6));
   }
   if (crushed == result.steps.end()) return notes;
   double smallest = 1;
@@ -231,9 +247,10 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json.update(puncture_json(c, result));
   std::vector<double> depth, force, pressure, averaged, energy, work, lateral_x, lateral_y, moment;
   std::vector<int> iterations;
-  std::vector<double> volume_ratio;
+  std::vector<double> volume_ratio, embedded;
   for (const insertion::IndentationStep& s : result.steps) {
     volume_ratio.push_back(s.min_volume_ratio);
+    embedded.push_back(s.tip_embedded_depth * 1e6);
     depth.push_back(s.depth * 1e6);
     force.push_back(s.force);
     lateral_x.push_back(s.lateral_force.x());
@@ -259,6 +276,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["external_work_J"] = work;
   json["newton_iterations"] = iterations;
   json["min_volume_ratio"] = volume_ratio;  // the most compressed tetrahedron's J = det F
+  json["tip_embedded_um"] = embedded;       // how far the needles' tips lie inside the tissue (surface contact)
   json["elements"] = result.elements;
   json["nodes"] = result.nodes;
   json["dofs"] = result.dofs;
@@ -291,7 +309,7 @@ nlohmann::json indentation_json(const insertion::IndentationCase& c, const inser
   json["mesh_quality"] = quality;
   json["remeshes"] = remeshes_json(result);  // [solver] rezone
   std::vector<std::string> notes = indentation_scale_warnings(c);
-  for (std::string& note : indentation_result_notes(result)) notes.push_back(std::move(note));
+  for (std::string& note : indentation_result_notes(c, result)) notes.push_back(std::move(note));
   json["notes"] = notes;
   json["inputs"] = indentation_inputs_json(c);
   json["mesh_seconds"] = result.mesh_seconds;
@@ -344,10 +362,19 @@ void IndentationWriter::write_step(const insertion::IndentationStep& step, const
     }
     for (const std::filesystem::path& path : files.commit()) remember(path);
   }
-  // The curves so far, so that an interrupted run keeps them too, and a result that says they are incomplete until
-  // finish() replaces it.
+  // The curves and the result so far, so that an interrupted run keeps them too.
   partial_.steps.push_back(step);
   write_curves(partial_);
+  write_partial_result();
+}
+
+void IndentationWriter::add_remesh(const insertion::Remesh& remesh) {
+  partial_.remeshes.push_back(remesh);
+  write_partial_result();
+}
+
+// The result so far, which says it is incomplete until finish() replaces it.
+void IndentationWriter::write_partial_result() {
   nlohmann::json json = indentation_json(case_, partial_);
   json["status"] = "incomplete";
   json["reason"] = fmt::format("the run had completed {} of {} load steps when this was written; it stopped there "

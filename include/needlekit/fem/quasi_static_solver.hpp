@@ -75,6 +75,10 @@ struct StepResult {
   // The smallest volume ratio J = det F at any quadrature point: how far the most compressed tetrahedron is crushed
   // (the nodal-averaged volume lets single elements compress while their patch keeps its volume).
   double min_volume_ratio = 1;
+  // m, Surface contact: how far the needles' tips lie inside the tissue past its top surface (the deepest tip point
+  // inside a tetrahedron, by its distance to the deformed top surface; 0: none). Node-to-surface contact lets a tip
+  // narrower than a few elements cut between the tissue's nodes (docs/fem_solver.md, "Tunnelling").
+  double tip_embedded_depth = 0;
   double strain_energy = 0;              // J, stored in the tissue
   double external_work = 0;              // J, sum over needles of the trapezoidal integral of force over displacement
                                          // since the solver was built

@@ -188,6 +188,7 @@ struct IndentationStep {
   int factorizations = 0;            // fresh Cholesky factorizations of this step
   int linear_iterations = 0;         // CG iterations on a reused factorization, summed over the step's solves
   double min_volume_ratio = 1;       // the most compressed tetrahedron's J = det F (fem::StepResult's)
+  double tip_embedded_depth = 0;     // m, how far the needles' tips lie inside the tissue (fem::StepResult's)
   double max_residual = 0;           // N, residual norm at the first Newton iteration of the step
   double final_residual = 0;         // N, residual norm at the last Newton iteration of the step
   double assembly_seconds = 0;       // wall time of this step
@@ -209,6 +210,8 @@ struct StepDisplacement {
   std::vector<Eigen::Vector3d> displacement;
 };
 
+struct Remesh;
+
 struct IndentationOptions {
   // Called on the calling thread at each stage and after each converged step.
   std::function<void(const IndentationProgress&)> progress;
@@ -219,6 +222,9 @@ struct IndentationOptions {
   // boundary: its boundary nodes are the earlier mesh's, at the same reference positions and in the same order
   // (mesh/rezoned_mesh.hpp).
   std::function<void(const mesh::TetMesh&)> on_mesh;
+  // Called when a rezoning has been tried (SolverOptions::rezone), with its record as it will stand in
+  // IndentationResult::remeshes, whether it worked or not (e.g. to report it while the run goes on).
+  std::function<void(const Remesh&)> on_remesh;
   // Warm start: the step displacements of an earlier run of the same case on the same mesh (its
   // IndentationResult::displacements), e.g. at slightly different material parameters. A load step at a depth found
   // there starts Newton from that field (QuasiStaticSolver::advance_to(depth, start)); other steps run as usual.

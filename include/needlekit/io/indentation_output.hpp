@@ -51,13 +51,18 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 nlohmann::json indentation_inputs_json(const insertion::IndentationCase& indentation_case);
 
 // What the result says of its meshes: one note per rezoning (where, why, the force before and after, or why it
-// failed), and a note when a step crushed a tetrahedron below insertion::kCrushedVolumeRatio of its volume, naming
-// the first such depth and the smallest ratio.
-std::vector<std::string> indentation_result_notes(const insertion::IndentationResult& result);
+// failed), a note when a needle's tip lay inside the tissue by more than the mesh's size at the tip
+// (IndentationStep::tip_embedded_depth), naming the first such depth and the deepest, and a note when a step crushed
+// a tetrahedron below insertion::kCrushedVolumeRatio of its volume, naming the first such depth and the smallest
+// ratio.
+std::vector<std::string> indentation_result_notes(const insertion::IndentationCase& indentation_case,
+                                                  const insertion::IndentationResult& result);
+// The note of one rezoning, as indentation_result_notes gives it: where, why, and what it changed (or why it failed).
+std::string remesh_note(const insertion::Remesh& remesh);
 
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "averaged_pressure_MPa" (p̄_l per step, with the averaged-pressure law),
-// "strain_energy_J", "external_work_J", "newton_iterations", "min_volume_ratio" (arrays, one entry per converged
+// "strain_energy_J", "external_work_J", "newton_iterations", "min_volume_ratio", "tip_embedded_um" (arrays, one entry per converged
 // step), "elements", "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp:
 // needles_json), "array" (with an array: array_json), "layers", "mesh_quality", "remeshes" (one object per
 // rezoning: step, depth_um, reason, failure, elements and force_N before and after, force_jump_percent,
@@ -81,6 +86,8 @@ public:
   void write_view(const ViewerSources& sources, ViewOptions options = {});
   void set_mesh(const mesh::TetMesh& tissue);
   void write_step(const insertion::IndentationStep& step, const fem::QuasiStaticSolver& solver);
+  // A rezoning (IndentationOptions::on_remesh): NAME_result.json of the steps so far is written again with it.
+  void add_remesh(const insertion::Remesh& remesh);
   void finish(const insertion::IndentationResult& result);
   // Every file written so far.
   const std::vector<std::filesystem::path>& files() const { return files_; }
@@ -98,6 +105,7 @@ private:
   std::optional<IndentationView> view_;
   ViewerFiles viewer_files_;
   void write_curves(const insertion::IndentationResult& result);
+  void write_partial_result();
   void write_result(const nlohmann::json& json);
 };
 
