@@ -151,9 +151,9 @@ std::vector<std::string> indentation_result_notes(const insertion::IndentationCa
     for (const insertion::IndentationStep& s : result.steps) deepest = std::max(deepest, s.tip_embedded_depth);
     notes.push_back(fmt::format(
         "from {:g} um deep a needle's tip lies inside the tissue, up to {:.3g} um past its top surface (more than the "
-        "mesh's {:g} um at the tip): node-to-surface contact lets a tip narrower than a few elements cut between the "
-        "tissue's nodes, so the forces from there on are those of a partly embedded needle (frictionless, it can pass "
-        "through and the force fall to a few per cent); expected a finer [mesh] size_at_tip",
+        "mesh's {:g} um at the tip): node-to-surface contact lets the tip's edges cut between the tissue's nodes, so "
+        "the forces from there on are those of a partly embedded needle (frictionless, a narrow tip can pass through "
+        "and the force fall to a few per cent); expected a finer [mesh] size_at_tip",
         embedded->depth * 1e6, deepest * 1e6, element * 1e6));
   }
   if (crushed == result.steps.end()) return notes;

@@ -115,6 +115,29 @@ TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
   EXPECT_THAT(r.err, HasSubstr("from 30 um deep a tetrahedron is crushed"));
 }
 
+// The §6.2 sharp bevel (a 2.7 x 50 um tip face) under one-pass surface contact on a 28 um mesh: its tip cuts between
+// the tissue's nodes and lies about as deep inside the tissue as it was pushed (docs/indentation.md, "The tips
+// inside the tissue"); the run says so per step and in a note, on stderr and in the JSON.
+TEST_F(IndentCli, SaysHowFarTheTipLiesInsideTheTissue) {
+  std::ofstream(dir_ / "sharp.toml")
+      << "name = \"sharp\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"10 um\"\nbase_diameter = \"230 um\"\n"
+         "length = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nsize_at_tip = \"28 um\"\n"
+         "size_far = \"400 um\"\nrefinement_radius = \"60 um\"\n[loading]\ndepth = \"100 um\"\nsteps = 4\n"
+         "[model]\ncontact = \"surface\"\nelement = \"linear\"\n[solver]\ntwo_pass = false\n";
+  const CliRun r = run("indent sharp.toml --json");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json json = nlohmann::json::parse(r.out);
+  const auto embedded = json["tip_embedded_um"].get<std::vector<double>>();
+  ASSERT_EQ(embedded.size(), 4u);
+  for (size_t k = 0; k < embedded.size(); ++k) {
+    const double depth = 25.0 * static_cast<double>(k + 1);  // um
+    EXPECT_GT(embedded[k], 0.8 * depth) << "step " << k + 1;
+    EXPECT_LE(embedded[k], depth) << "step " << k + 1;  // never deeper than the needle went
+  }
+  EXPECT_THAT(json["notes"].dump(), HasSubstr("deep a needle's tip lies inside the tissue"));
+  EXPECT_THAT(r.err, HasSubstr("deep a needle's tip lies inside the tissue"));
+}
+
 TEST_F(IndentCli, BadInputExitsWithCode2AndWritesNothing) {
   std::ofstream(dir_ / "bad.toml") << "[needle]\nshape = \"cylinder\"\ntip_diameter = \"230 um\"\nlength = \"1 mm\"\n"
                                       "[tissue]\npreset = \"silicone-0.2mpa\"\n[loading]\ndepth = 200\n";
