@@ -25,6 +25,18 @@ protected:
   IndentCli() : CliTest("indent") {}
 };
 
+// A case "sharp" of the §6.2 phantom and a bevel needle 230 um across and 1000 um long, meshed with `size_at_tip`
+// within 60 um of the tip and `size_far` beyond, pushed `depth` in `steps`; `rest` holds the [model] table and
+// what follows it.
+std::string bevel_case(const std::string& tip_diameter, const std::string& size_at_tip, const std::string& size_far,
+                       const std::string& depth, int steps, const std::string& rest) {
+  return "name = \"sharp\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"" + tip_diameter +
+         "\"\nbase_diameter = \"230 um\"\nlength = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\n"
+         "size_at_tip = \"" + size_at_tip + "\"\nsize_far = \"" + size_far +
+         "\"\nrefinement_radius = \"60 um\"\n[loading]\ndepth = \"" + depth + "\"\nsteps = " +
+         std::to_string(steps) + "\n" + rest;
+}
+
 // Quick mode: a coarse mesh (50 um at the punch, a/2.3; 800 um far) and one 10 um step. Sneddon's half-space force
 // F = 2aEd/(1 - nu^2) = 0.605 mN; the quadratic tetrahedra come within 15 % on this mesh (the default 20 um mesh of
 // the example is closer, see docs/indentation.md); the 3000 um block with fixed sides and bottom is slightly stiffer
@@ -86,12 +98,9 @@ TEST_F(IndentCli, NumericalFailureExitsWithCode3AndNamesOnlyWrittenFiles) {
 // from the converged state (the linearised predictor) takes it on; it now stops at 146 um, where Newton no longer
 // converges in the crushed tissue under the tip.
 TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
-  std::ofstream(dir_ / "sharp.toml")
-      << "name = \"sharp\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"5 um\"\nbase_diameter = \"230 um\"\n"
-         "length = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nsize_at_tip = \"8 um\"\n"
-         "size_far = \"300 um\"\nrefinement_radius = \"60 um\"\n[loading]\ndepth = \"130 um\"\nsteps = 13\n"
-         "continue_after_puncture = true\n[model]\ncontact = \"tip-nodes\"\n[puncture]\n"
-         "critical_pressure = \"0.663 MPa\"\n";
+  std::ofstream(dir_ / "sharp.toml") << bevel_case("5 um", "8 um", "300 um", "130 um", 13,
+                                                 "continue_after_puncture = true\n[model]\ncontact = \"tip-nodes\"\n"
+                                                 "[puncture]\ncritical_pressure = \"0.663 MPa\"\n");
   const CliRun r = run("indent sharp.toml --json");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
@@ -119,11 +128,9 @@ TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
 // the tissue's nodes and lies about as deep inside the tissue as it was pushed (docs/indentation.md, "The tips
 // inside the tissue"); the run says so per step and in a note, on stderr and in the JSON.
 TEST_F(IndentCli, SaysHowFarTheTipLiesInsideTheTissue) {
-  std::ofstream(dir_ / "sharp.toml")
-      << "name = \"sharp\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"10 um\"\nbase_diameter = \"230 um\"\n"
-         "length = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\nsize_at_tip = \"28 um\"\n"
-         "size_far = \"400 um\"\nrefinement_radius = \"60 um\"\n[loading]\ndepth = \"100 um\"\nsteps = 4\n"
-         "[model]\ncontact = \"surface\"\nelement = \"linear\"\n[solver]\ntwo_pass = false\n";
+  std::ofstream(dir_ / "sharp.toml") << bevel_case("10 um", "28 um", "400 um", "100 um", 4,
+                                                 "[model]\ncontact = \"surface\"\nelement = \"linear\"\n"
+                                                 "[solver]\ntwo_pass = false\n");
   const CliRun r = run("indent sharp.toml --json");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
