@@ -395,7 +395,7 @@ IndentationResult run_indentation(const IndentationCase& c, const IndentationOpt
 
   std::vector<PunctureSample> samples;
   detail::NeedleRecorder needles(c);
-  detail::RezonableTissue tissue(m, solver_options, meshed.tissue);
+  detail::RezonableTissue tissue(m, solver_options, meshed.tissue, array_model.factor);
   bool failed = false;
   for (int k = 1; k <= c.steps; ++k) {
     const double depth = c.depth * k / c.steps;

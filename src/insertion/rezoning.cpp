@@ -12,7 +12,7 @@ namespace needlekit::insertion::detail {
 
 Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solver,
                  std::vector<fem::Indenter> indenters, const fem::SolverOptions& options, double step_force,
-                 double step_volume_ratio) {
+                 double step_volume_ratio, double force_factor) {
   const auto start = std::chrono::steady_clock::now();
   Rezoning out;
   out.record.elements_before = static_cast<int>(tissue.tets.size());
@@ -30,7 +30,8 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
       return out;
     }
     out.record.elements_after = static_cast<int>(rezoned.mesh.tets.size());
-    out.record.force_after = std::accumulate(balanced.indenter_force.begin(), balanced.indenter_force.end(), 0.0);
+    out.record.force_after =
+        force_factor * std::accumulate(balanced.indenter_force.begin(), balanced.indenter_force.end(), 0.0);
     out.record.min_volume_ratio_after = balanced.min_volume_ratio;
     out.tissue = std::move(rezoned.mesh);
     out.solver = std::move(next);
@@ -67,7 +68,8 @@ bool RezonableTissue::allowed(const IndentationResult& result) const {
 bool RezonableTissue::rezone(fem::QuasiStaticSolver& solver, int step, double depth, double force,
                              double min_volume_ratio, std::string reason, const IndentationOptions& options,
                              IndentationResult& result) {
-  Rezoning rezoning = rezoned(current(), solver, placed_indenters(m_), options_, force, min_volume_ratio);
+  Rezoning rezoning =
+      rezoned(current(), solver, placed_indenters(m_), options_, force, min_volume_ratio, force_factor_);
   rezoning.record.step = step;
   rezoning.record.depth = depth;
   rezoning.record.reason = std::move(reason);

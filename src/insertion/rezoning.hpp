@@ -21,19 +21,23 @@ struct Rezoning {
 };
 
 // `tissue`: the reference mesh `solver` was built on; the solver's last converged state is rezoned. `step_force` and
-// `step_volume_ratio`: that state's total force (N) and smallest J. Never throws for a numerical failure.
+// `step_volume_ratio`: that state's total force (N, the whole case's) and smallest J. `force_factor`: the whole
+// case's total force over the solved model's (ArrayModel::factor: 1, 2 or 4 with a symmetric array's reduced model),
+// so that the force after is the whole case's too. Never throws for a numerical failure.
 Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solver,
                  std::vector<fem::Indenter> indenters, const fem::SolverOptions& options, double step_force,
-                 double step_volume_ratio);
+                 double step_volume_ratio, double force_factor);
 
 // The tissue as run_indentation's solver uses it (SolverOptions::rezone): the mesh meshed for the run, or its latest
 // rezoning. Each rezoning is recorded in IndentationResult::remeshes, and IndentationOptions::on_mesh is called with
 // the new mesh.
 class RezonableTissue {
 public:
-  // `m`: the model solved; the three are kept by reference.
-  RezonableTissue(const IndentationCase& m, const fem::SolverOptions& options, const mesh::TetMesh& meshed)
-      : m_(m), options_(options), meshed_(meshed) {}
+  // `m`: the model solved; the three are kept by reference. `force_factor`: the whole case's total force over the
+  // solved model's (ArrayModel::factor).
+  RezonableTissue(const IndentationCase& m, const fem::SolverOptions& options, const mesh::TetMesh& meshed,
+                  double force_factor)
+      : m_(m), options_(options), meshed_(meshed), force_factor_(force_factor) {}
 
   // After load step k failed with `why`, the solver's last converged state `depth` below the surface: rezones it,
   // if rezoning is on and has remeshes left. Returns whether the step can be tried again on a new mesh.
@@ -56,6 +60,7 @@ private:
   const IndentationCase& m_;
   const fem::SolverOptions& options_;
   const mesh::TetMesh& meshed_;
+  double force_factor_;
   std::optional<mesh::TetMesh> rezoned_;
 };
 

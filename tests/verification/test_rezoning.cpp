@@ -8,6 +8,7 @@
 
 #include "needlekit/core/errors.hpp"
 #include "needlekit/insertion/indentation.hpp"
+#include "needlekit/insertion/needle_array.hpp"
 #include "needlekit/mesh/mesh_validation.hpp"
 #include "needlekit/mesh/rezoned_mesh.hpp"
 #include "needlekit/mesh/structured_block_mesh.hpp"
@@ -117,6 +118,26 @@ TEST(Rezoning, AFlatPunchsForceJumpsLessThanTwoPercent) {
   EXPECT_LT(std::abs(r.force_jump()), 0.02) << r.force_before << " -> " << r.force_after;
   // The step after the rezoning, on the new mesh, against the run on the old one.
   EXPECT_NEAR(rezoned.steps[1].force / plain.steps[1].force, 1.0, 0.02);
+}
+
+// A symmetric array's reduced model: the record's forces are the whole array's on both sides of the rezoning (the
+// force after was the quarter's alone, a jump of -75 %, before the twenty-second session).
+TEST(Rezoning, AQuarterModelReportsTheWholeArraysForceJump) {
+  insertion::IndentationCase c = punch(true);
+  c.array = insertion::NeedleArray{};
+  c.array->rows = c.array->columns = 2;
+  c.array->pitch = 600e-6;
+  c.array->symmetry = insertion::ArraySymmetry::Quarter;
+  c.needles.clear();
+  for (const Eigen::Vector2d& at : insertion::array_positions(*c.array)) c.needles.push_back({at, 0.0});
+  c.block.width = c.block.length = 2400e-6;
+  const insertion::IndentationResult rezoned = insertion::run_indentation(c);
+  ASSERT_EQ(rezoned.status, insertion::IndentationStatus::ReachedDepth) << rezoned.reason;
+  ASSERT_EQ(rezoned.remeshes.size(), 1u);
+  const insertion::Remesh& r = rezoned.remeshes.front();
+  EXPECT_TRUE(r.failure.empty()) << r.failure;
+  EXPECT_DOUBLE_EQ(r.force_before, rezoned.steps[0].force);
+  EXPECT_LT(std::abs(r.force_jump()), 0.05) << r.force_before << " -> " << r.force_after;
 }
 
 TEST(Rezoning, AFrictionalPunchKeepsItsContactHistory) {
