@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 
 #include "child_process.hpp"
@@ -153,14 +152,12 @@ void run_indent(const IndentArguments& arguments) {
   ProgressBar progress(fmt::format("indent {}", indentation_case.name));
   insertion::IndentationOptions options;
   options.progress = [&progress](const insertion::IndentationProgress& p) { progress.update(p.fraction); };
-  // Each rezoning is reported when it happens (a long run's only sign of it), once under mpirun.
-  std::set<std::string> reported;
-  options.on_remesh = [&writer, &reported, &progress](const insertion::Remesh& remesh) {
+  // Each rezoning is reported when it happens (a long run's only sign of it), once under mpirun; the other notes at
+  // the end.
+  options.on_remesh = [&writer, &progress](const insertion::Remesh& remesh) {
     if (fem::process_rank() != 0) return;
-    const std::string note = io::remesh_note(remesh);
     progress.break_line();
-    print_warnings({note});
-    reported.insert(note);
+    print_warnings({io::remesh_note(remesh)});
     if (writer) writer->add_remesh(remesh);
   };
   if (writer) {
@@ -171,11 +168,7 @@ void run_indent(const IndentArguments& arguments) {
   }
   const insertion::IndentationResult result = insertion::run_indentation(indentation_case, options);
   progress.finish();
-  if (fem::process_rank() == 0) {
-    std::vector<std::string> notes = io::indentation_result_notes(indentation_case, result);
-    std::erase_if(notes, [&reported](const std::string& note) { return reported.count(note) > 0; });
-    print_warnings(notes);
-  }
+  if (fem::process_rank() == 0) print_warnings(io::deformation_notes(indentation_case, result));
   if (writer) writer->finish(result);
   if (writer && result.array && !arguments.no_plot) {
     writer->remember(write_needle_map(arguments.out_dir, indentation_case));

@@ -137,7 +137,8 @@ void element_data(const mesh::TetMesh& mesh, FunctionSpace& fs) {
     for (int a = 0; a < nn; ++a) x[a] = reference_corner(own[e], a, fs.nodes[fs.connectivity[e * nn + a]]);
     if (own[e]) {  // F_r = [the nodes' edges] * edges^-1: F = F_r + u ∇N^T is then the deformed edges times edges^-1
       Eigen::Matrix3d nodal;
-      for (int i = 0; i < 3; ++i) nodal.col(i) = fs.nodes[fs.connectivity[e * nn + i + 1]] - fs.nodes[fs.connectivity[e * nn]];
+      const int* corner = &fs.connectivity[e * nn];
+      for (int i = 0; i < 3; ++i) nodal.col(i) = fs.nodes[corner[i + 1]] - fs.nodes[corner[0]];
       fs.initial_gradient[e] = nodal * own[e]->inverse();
     }
     const auto geo = element_geometry(x);

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include "needle_edge_contact.hpp"  // sharp_feature_points
@@ -11,9 +12,7 @@ namespace needlekit::fem::detail {
 
 NeedleEmbedding::NeedleEmbedding(const FunctionSpace& space, const TopSurface& top,
                                    const std::vector<Indenter>& needles, double spacing)
-    : top_(top) {
-  corners_.reserve(space.elements.size());
-  for (const auto& element : space.elements) corners_.push_back({element[0], element[1], element[2], element[3]});
+    : space_(space), top_(top) {
   for (const Indenter& needle : needles) {
     const Eigen::Vector3d direction = needle.direction.normalized();
     std::vector<Eigen::Vector3d> points = sharp_feature_points(needle.surface, spacing, 0.0);
@@ -42,11 +41,15 @@ double NeedleEmbedding::deepest(const std::vector<Eigen::Vector3d>& nodes, const
   for (const NeedlePoints& needle : needles_) {
     if (needle.points.empty()) continue;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const auto& p : needle.points) lo = lo.cwiseMin(p + d * needle.direction), hi = hi.cwiseMax(p + d * needle.direction);
-    for (const auto& tet : corners_) {
+    for (const auto& p : needle.points) {
+      lo = lo.cwiseMin(p + d * needle.direction);
+      hi = hi.cwiseMax(p + d * needle.direction);
+    }
+    for (size_t e = 0; e < space_.elements.size(); ++e) {
+      const int* corner = &space_.connectivity[e * static_cast<size_t>(space_.nodes_per_element)];
       std::array<Eigen::Vector3d, 4> x;
       Eigen::Vector3d tlo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), thi = -tlo;
-      for (int c = 0; c < 4; ++c) x[c] = position(tet[c]), tlo = tlo.cwiseMin(x[c]), thi = thi.cwiseMax(x[c]);
+      for (int c = 0; c < 4; ++c) x[c] = position(corner[c]), tlo = tlo.cwiseMin(x[c]), thi = thi.cwiseMax(x[c]);
       if ((thi.array() < lo.array()).any() || (tlo.array() > hi.array()).any()) continue;
       Eigen::Matrix3d edges;
       for (int c = 0; c < 3; ++c) edges.col(c) = x[c + 1] - x[0];

@@ -9,7 +9,6 @@
 // its distance to the deformed top surface; the measure is the largest such distance.
 #pragma once
 #include <Eigen/Core>
-#include <array>
 #include <vector>
 
 #include "boundary_conditions.hpp"
@@ -21,7 +20,7 @@ namespace needlekit::fem::detail {
 class NeedleEmbedding {
 public:
   // `spacing`: the largest distance between the needle's points along an edge, and the height of the tip above the
-  // needle's lowest point, m.
+  // needle's lowest point, m. `space` and `top` are kept by reference.
   NeedleEmbedding(const FunctionSpace& space, const TopSurface& top, const std::vector<Indenter>& needles,
                   double spacing);
 
@@ -34,7 +33,7 @@ private:
     Eigen::Vector3d direction;
     std::vector<Eigen::Vector3d> points;  // m, at zero displacement
   };
-  std::vector<std::array<int, 4>> corners_;  // per element, its four corner nodes
+  const FunctionSpace& space_;  // its elements' first four nodes are their corners
   const TopSurface& top_;
   std::vector<NeedlePoints> needles_;
 };

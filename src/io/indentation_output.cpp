@@ -137,11 +137,15 @@ std::string remesh_note(const insertion::Remesh& r) {
 
 std::vector<std::string> indentation_result_notes(const insertion::IndentationCase& c,
                                                   const insertion::IndentationResult& result) {
-  const auto crushed = std::find_if(result.steps.begin(), result.steps.end(), [](const insertion::IndentationStep& s) {
-    return s.min_volume_ratio < insertion::kCrushedVolumeRatio;
-  });
   std::vector<std::string> notes;
   for (const insertion::Remesh& r : result.remeshes) notes.push_back(remesh_note(r));
+  for (std::string& note : deformation_notes(c, result)) notes.push_back(std::move(note));
+  return notes;
+}
+
+std::vector<std::string> deformation_notes(const insertion::IndentationCase& c,
+                                           const insertion::IndentationResult& result) {
+  std::vector<std::string> notes;
   const double element = c.block.size_at_site;  // the tissue's element size at the tips
   const auto embedded = std::find_if(result.steps.begin(), result.steps.end(), [element](const auto& s) {
     return s.tip_embedded_depth > element;
@@ -156,6 +160,9 @@ std::vector<std::string> indentation_result_notes(const insertion::IndentationCa
         "and the force fall to a few per cent); expected a finer [mesh] size_at_tip",
         embedded->depth * 1e6, deepest * 1e6, element * 1e6));
   }
+  const auto crushed = std::find_if(result.steps.begin(), result.steps.end(), [](const insertion::IndentationStep& s) {
+    return s.min_volume_ratio < insertion::kCrushedVolumeRatio;
+  });
   if (crushed == result.steps.end()) return notes;
   double smallest = 1;
   for (const insertion::IndentationStep& s : result.steps) smallest = std::min(smallest, s.min_volume_ratio);

@@ -39,8 +39,9 @@ std::vector<double> deformed_node_sizes(const TetMesh& deformed) {
 Eigen::Matrix3d nodal_edges(const TetMesh& mesh, std::size_t k) {
   const std::array<int, 4>& t = mesh.tets[k];
   Eigen::Matrix3d edges;
+  const Eigen::Vector3d& x0 = mesh.nodes[static_cast<std::size_t>(t[0])];
   for (std::size_t i = 0; i < 3; ++i)
-    edges.col(static_cast<Eigen::Index>(i)) = mesh.nodes[static_cast<std::size_t>(t[i + 1])] - mesh.nodes[static_cast<std::size_t>(t[0])];
+    edges.col(static_cast<Eigen::Index>(i)) = mesh.nodes[static_cast<std::size_t>(t[i + 1])] - x0;
   return edges;
 }
 

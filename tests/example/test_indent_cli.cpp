@@ -23,19 +23,21 @@ namespace {
 class IndentCli : public needlekit::test::CliTest {
 protected:
   IndentCli() : CliTest("indent") {}
-};
 
-// A case "sharp" of the §6.2 phantom and a bevel needle 230 um across and 1000 um long, meshed with `size_at_tip`
-// within 60 um of the tip and `size_far` beyond, pushed `depth` in `steps`; `rest` holds the [model] table and
-// what follows it.
-std::string bevel_case(const std::string& tip_diameter, const std::string& size_at_tip, const std::string& size_far,
-                       const std::string& depth, int steps, const std::string& rest) {
-  return "name = \"sharp\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"" + tip_diameter +
-         "\"\nbase_diameter = \"230 um\"\nlength = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n[mesh]\n"
-         "size_at_tip = \"" + size_at_tip + "\"\nsize_far = \"" + size_far +
-         "\"\nrefinement_radius = \"60 um\"\n[loading]\ndepth = \"" + depth + "\"\nsteps = " +
-         std::to_string(steps) + "\n" + rest;
-}
+  // `indent sharp.toml --json` on a case "sharp" of the §6.2 phantom and a bevel needle 230 um across and 1000 um
+  // long, meshed with `size_at_tip` within 60 um of the tip and `size_far` beyond, pushed `depth` in `steps`;
+  // `rest` holds the [model] table and what follows it.
+  CliRun run_bevel_case(const std::string& tip_diameter, const std::string& size_at_tip, const std::string& size_far,
+                        const std::string& depth, int steps, const std::string& rest) {
+    std::ofstream(dir_ / "sharp.toml")
+        << "name = \"sharp\"\n[needle]\nshape = \"bevel\"\ntip_diameter = \"" + tip_diameter +
+               "\"\nbase_diameter = \"230 um\"\nlength = \"1000 um\"\n[tissue]\npreset = \"silicone-0.2mpa\"\n"
+               "[mesh]\nsize_at_tip = \"" + size_at_tip + "\"\nsize_far = \"" + size_far +
+               "\"\nrefinement_radius = \"60 um\"\n[loading]\ndepth = \"" + depth + "\"\nsteps = " +
+               std::to_string(steps) + "\n" + rest;
+    return run("indent sharp.toml --json");
+  }
+};
 
 // Quick mode: a coarse mesh (50 um at the punch, a/2.3; 800 um far) and one 10 um step. Sneddon's half-space force
 // F = 2aEd/(1 - nu^2) = 0.605 mN; the quadratic tetrahedra come within 15 % on this mesh (the default 20 um mesh of
@@ -98,10 +100,9 @@ TEST_F(IndentCli, NumericalFailureExitsWithCode3AndNamesOnlyWrittenFiles) {
 // from the converged state (the linearised predictor) takes it on; it now stops at 146 um, where Newton no longer
 // converges in the crushed tissue under the tip.
 TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
-  std::ofstream(dir_ / "sharp.toml") << bevel_case("5 um", "8 um", "300 um", "130 um", 13,
-                                                 "continue_after_puncture = true\n[model]\ncontact = \"tip-nodes\"\n"
-                                                 "[puncture]\ncritical_pressure = \"0.663 MPa\"\n");
-  const CliRun r = run("indent sharp.toml --json");
+  const CliRun r = run_bevel_case("5 um", "8 um", "300 um", "130 um", 13,
+                                  "continue_after_puncture = true\n[model]\ncontact = \"tip-nodes\"\n"
+                                  "[puncture]\ncritical_pressure = \"0.663 MPa\"\n");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["status"], "punctured") << json["reason"];
@@ -128,10 +129,8 @@ TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
 // the tissue's nodes and lies about as deep inside the tissue as it was pushed (docs/indentation.md, "The tips
 // inside the tissue"); the run says so per step and in a note, on stderr and in the JSON.
 TEST_F(IndentCli, SaysHowFarTheTipLiesInsideTheTissue) {
-  std::ofstream(dir_ / "sharp.toml") << bevel_case("10 um", "28 um", "400 um", "100 um", 4,
-                                                 "[model]\ncontact = \"surface\"\nelement = \"linear\"\n"
-                                                 "[solver]\ntwo_pass = false\n");
-  const CliRun r = run("indent sharp.toml --json");
+  const CliRun r = run_bevel_case("10 um", "28 um", "400 um", "100 um", 4,
+                                  "[model]\ncontact = \"surface\"\nelement = \"linear\"\n[solver]\ntwo_pass = false\n");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   const auto embedded = json["tip_embedded_um"].get<std::vector<double>>();

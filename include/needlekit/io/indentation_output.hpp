@@ -50,20 +50,22 @@ nlohmann::json puncture_json(const insertion::IndentationCase& indentation_case,
 // null, ...}}. What indentation_json writes under "inputs".
 nlohmann::json indentation_inputs_json(const insertion::IndentationCase& indentation_case);
 
-// What the result says of its meshes: one note per rezoning (where, why, the force before and after, or why it
-// failed), a note when a needle's tip lay inside the tissue by more than the mesh's size at the tip
-// (IndentationStep::tip_embedded_depth), naming the first such depth and the deepest, and a note when a step crushed
-// a tetrahedron below insertion::kCrushedVolumeRatio of its volume, naming the first such depth and the smallest
-// ratio.
+// What the result says of its meshes: one note per rezoning (remesh_note), then deformation_notes.
 std::vector<std::string> indentation_result_notes(const insertion::IndentationCase& indentation_case,
                                                   const insertion::IndentationResult& result);
+// What the steps say of the deformed mesh: a note when a needle's tip lay inside the tissue by more than the mesh's
+// size at the tip (IndentationStep::tip_embedded_depth), naming the first such depth and the deepest, and a note when
+// a step crushed a tetrahedron below insertion::kCrushedVolumeRatio of its volume, naming the first such depth and
+// the smallest ratio.
+std::vector<std::string> deformation_notes(const insertion::IndentationCase& indentation_case,
+                                           const insertion::IndentationResult& result);
 // The note of one rezoning, as indentation_result_notes gives it: where, why, and what it changed (or why it failed).
 std::string remesh_note(const insertion::Remesh& remesh);
 
 // Everything: "name", "status", "reason", the puncture_json keys, "depth_um", "force_N", "contact_pressure_MPa",
 // "averaged_pressure_MPa" (p̄_l per step, with the averaged-pressure law),
-// "strain_energy_J", "external_work_J", "newton_iterations", "min_volume_ratio", "tip_embedded_um" (arrays, one entry per converged
-// step), "elements", "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp:
+// "strain_energy_J", "external_work_J", "newton_iterations", "min_volume_ratio", "tip_embedded_um" (arrays, one
+// entry per converged step), "elements", "nodes", "dofs", "law", "element", "contact", "boundary", "needles" (io/array_output.hpp:
 // needles_json), "array" (with an array: array_json), "layers", "mesh_quality", "remeshes" (one object per
 // rezoning: step, depth_um, reason, failure, elements and force_N before and after, force_jump_percent,
 // min_volume_ratio before and after, seconds), "notes" (warnings:
