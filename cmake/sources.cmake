@@ -236,6 +236,7 @@ set(NEEDLEKIT_UNIT_TEST_SOURCES
   tests/unit/test_layered_block_mesh.cpp
   tests/unit/test_line_search.cpp
   tests/unit/test_needle_array.cpp
+  tests/unit/test_needle_edge_contact.cpp
   tests/unit/test_needle_embedding.cpp
   tests/unit/test_optimizer_progress.cpp
   tests/unit/test_parameter_json.cpp

@@ -1,11 +1,16 @@
 #include "needle_edge_contact.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <map>
+
+#include "rigid_surface_distance.hpp"
 
 namespace needlekit::fem::detail {
 
@@ -130,10 +135,22 @@ NeedleEdgeContact::NeedleEdgeContact(const TopSurface& top, const std::vector<do
     : top_(top), node_stiffness_(node_stiffness), points_(std::move(points)), direction_(direction.normalized()) {
   top_index_.assign(top.node_area.size(), -1);
   for (size_t k = 0; k < top.nodes.size(); ++k) top_index_[static_cast<size_t>(top.nodes[k])] = static_cast<int>(k);
-  lambda_.assign(points_.size(), 0.0);
-  force_now_.assign(points_.size(), 0.0);
   gap_now_.assign(points_.size(), std::numeric_limits<double>::infinity());
-  face_.assign(points_.size(), -1);
+  node_faces_.resize(top.nodes.size());
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  for (size_t f = 0; f < top.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = top.triangles[f][k], b = top.triangles[f][(k + 1) % 3];
+      node_faces_[static_cast<size_t>(top_index_[a])].push_back(static_cast<int>(f));
+      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
+    }
+  edge_neighbour_.assign(top.triangles.size(), {-1, -1, -1});
+  for (size_t f = 0; f < top.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = top.triangles[f][k], b = top.triangles[f][(k + 1) % 3];
+      for (int g : edge_faces.at({std::min(a, b), std::max(a, b)}))
+        if (g != static_cast<int>(f)) edge_neighbour_[f][static_cast<size_t>(k)] = g;
+    }
 }
 
 double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d,
@@ -142,10 +159,28 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
                                    std::vector<double>& values) {
   force_on_needle_.setZero();
   moment_on_needle_.setZero();
-  std::fill(force_now_.begin(), force_now_.end(), 0.0);
+  force_now_.clear();
   std::fill(gap_now_.begin(), gap_now_.end(), std::numeric_limits<double>::infinity());
-  if (points_.empty()) return 0;
+  if (points_.empty()) { if (std::getenv("NK_DEBUG")) std::fprintf(stderr, "edges: no points\n"); return 0; }
   const auto position = [&](int a) -> Eigen::Vector3d { return nodes[a] + u.segment<3>(3 * a); };
+  const auto face_normal = [&](int f) -> Eigen::Vector3d {
+    const auto& t = top_.triangles[static_cast<size_t>(f)];
+    const Eigen::Vector3d m = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
+    return m.norm() > 0 ? Eigen::Vector3d(m.normalized()) : Eigen::Vector3d::Zero();
+  };
+  // The outward normal at a vertex: its faces' normals weighted by their angles there, the angle-weighted
+  // pseudo-normal whose sign test against the closest point is exact (Baerentzen & Aanaes, IEEE TVCG 11, 2005).
+  const auto vertex_normal = [&](int node) -> Eigen::Vector3d {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int f : node_faces_[static_cast<size_t>(top_index_[node])]) {
+      const auto& t = top_.triangles[static_cast<size_t>(f)];
+      const int k = t[0] == node ? 0 : t[1] == node ? 1 : 2;
+      const Eigen::Vector3d e1 = (position(t[(k + 1) % 3]) - position(node)).normalized();
+      const Eigen::Vector3d e2 = (position(t[(k + 2) % 3]) - position(node)).normalized();
+      sum += std::acos(std::clamp(e1.dot(e2), -1.0, 1.0)) * face_normal(f);
+    }
+    return sum;
+  };
   // The triangles near the needle's points: deformed box within a triangle's reach (its reference size) of theirs.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& p : points_) lo = lo.cwiseMin(p + d * direction_), hi = hi.cwiseMax(p + d * direction_);
@@ -157,61 +192,84 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
   std::vector<Candidate> near;
   for (size_t f = 0; f < top_.triangles.size(); ++f) {
     const auto& tri = top_.triangles[f];
-    Candidate c{static_cast<int>(f), 0, position(tri[0]), position(tri[0])};
-    c.reach = std::min({top_.node_size[tri[0]], top_.node_size[tri[1]], top_.node_size[tri[2]]});
+    const double reach = std::min({top_.node_size[tri[0]], top_.node_size[tri[1]], top_.node_size[tri[2]]});
+    Candidate c{static_cast<int>(f), reach, position(tri[0]), position(tri[0])};
     for (int k = 1; k < 3; ++k) c.lo = c.lo.cwiseMin(position(tri[k])), c.hi = c.hi.cwiseMax(position(tri[k]));
-    c.lo.array() -= c.reach;
-    c.hi.array() += c.reach;
+    c.lo.array() -= reach;
+    c.hi.array() += reach;
     if ((c.hi.array() >= lo.array()).all() && (c.lo.array() <= hi.array()).all()) near.push_back(c);
   }
-  constexpr double kInside = 1e-12;  // barycentric slack: a point over a shared edge finds either triangle
   double energy = 0;
+  const size_t faces = top_.triangles.size();
   for (size_t i = 0; i < points_.size(); ++i) {
     const Eigen::Vector3d p = points_[i] + d * direction_;
-    int best = -1;
-    double best_gap = std::numeric_limits<double>::infinity();
-    if (!search_) {  // the face of the last search, its plane extended
-      best = face_[i];
-      if (best < 0) continue;
-      const auto& tri = top_.triangles[static_cast<size_t>(best)];
-      const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
-      if (!pr.valid) continue;
-      best_gap = pr.gap;
-    }
+    // Every face whose plane the point is near and whose interior (widened by kMargin) holds its projection: where
+    // the tissue's surface folds into a valley round the tip, the point is held by each face of the valley at once.
     for (const Candidate& c : near) {
-      if (!search_) break;
       if ((p.array() < c.lo.array()).any() || (p.array() > c.hi.array()).any()) continue;
       const auto& tri = top_.triangles[static_cast<size_t>(c.triangle)];
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
-      if (!pr.valid || pr.xi1 < -kInside || pr.xi2 < -kInside || pr.xi1 + pr.xi2 > 1 + kInside ||
-          std::abs(pr.gap) > c.reach || std::abs(pr.gap) >= std::abs(best_gap))
+      if (!pr.valid || pr.xi1 < -kMargin || pr.xi2 < -kMargin || pr.xi1 + pr.xi2 > 1 + kMargin ||
+          std::abs(pr.gap) > c.reach)
         continue;
-      best = c.triangle;
-      best_gap = pr.gap;
-    }
-    if (search_) face_[i] = best;
-    if (best < 0) continue;
-    const auto& tri = top_.triangles[static_cast<size_t>(best)];
-    const std::array<int, 3> corner{tri[0], tri[1], tri[2]};
-    const double k = (node_stiffness_[top_index_[corner[0]]] + node_stiffness_[top_index_[corner[1]]] +
-                      node_stiffness_[top_index_[corner[2]]]) / 3;
-    gap_now_[i] = best_gap;
-    const double pressure = lambda_[i] - k * best_gap;  // N
-    if (pressure <= 0) continue;
-    energy += pressure * pressure / (2 * k);
-    force_now_[i] = pressure;
-    const PlaneGap g = triangle_plane_gap(p, position(corner[0]), position(corner[1]), position(corner[2]));
-    force_on_needle_ += pressure * g.normal;
-    moment_on_needle_ += points_[i].cross(pressure * g.normal);
-    if (want_force)  // -dE/dx_i = P dg/dx_i
-      for (int a = 0; a < 3; ++a) force.segment<3>(3 * corner[a]) += pressure * g.gradient.segment<3>(3 * a);
-    if (want_tangent) {
-      const Eigen::Matrix<double, 9, 9> stiffness = k * g.gradient * g.gradient.transpose() - pressure * g.hessian;
-      add_node_block<3>(corner, stiffness, free_index, pattern, values);
+      const std::array<int, 3> corner{tri[0], tri[1], tri[2]};
+      const double k = (node_stiffness_[top_index_[corner[0]]] + node_stiffness_[top_index_[corner[1]]] +
+                        node_stiffness_[top_index_[corner[2]]]) / 3;
+      const size_t key = i * faces + static_cast<size_t>(c.triangle);
+      const auto held = lambda_.find(key);
+      const double pressure = (held == lambda_.end() ? 0.0 : held->second) - k * pr.gap;
+      gap_now_[i] = std::min(gap_now_[i], pr.gap);
+      if (pressure <= 0) continue;
+      const PlaneGap g = triangle_plane_gap(p, position(corner[0]), position(corner[1]), position(corner[2]));
+      energy += pressure * pressure / (2 * k);
+      force_now_[key] = pressure;
+      force_on_needle_ += pressure * g.normal;
+      moment_on_needle_ += points_[i].cross(pressure * g.normal);
+      if (want_force)  // -dE/dx_i = P dg/dx_i
+        for (int a = 0; a < 3; ++a) force.segment<3>(3 * corner[a]) += pressure * g.gradient.segment<3>(3 * a);
+      if (want_tangent) {  // the exact tangent k grad g grad g^T - P hess g
+        Eigen::Matrix<double, 9, 9> curvature = -pressure * 0.5 * (g.hessian + g.hessian.transpose());
+        if (positive_curvature_) {
+          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(curvature);
+          curvature = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                      eigen.eigenvectors().transpose();
+        }
+        add_node_block<3>(corner, Eigen::Matrix<double, 9, 9>(k * g.gradient * g.gradient.transpose() + curvature),
+                          free_index, pattern, values);
+      }
     }
   }
-  search_ = false;
+  if (std::getenv("NK_DEBUG")) {
+    int active = 0, found = 0; double mg = 1e9;
+    active = force_now_.size(); for (size_t i = 0; i < points_.size(); ++i) { found += std::isfinite(gap_now_[i]); if (std::isfinite(gap_now_[i])) mg = std::min(mg, gap_now_[i]); }
+    std::fprintf(stderr, "edges: d %.3g um points %zu near %zu found %d active %d min gap %.3g um F %.3g mN\n", d*1e6, points_.size(), near.size(), found, active, mg*1e6, -force_on_needle_.dot(direction_)*1e3);
+  }
   return energy;
+}
+
+std::array<int, 3> NeedleEdgeContact::face_corners(size_t face) const {
+  const auto& t = top_.triangles[face];
+  std::array<int, 3> corners{top_index_[t[0]], top_index_[t[1]], top_index_[t[2]]};
+  std::sort(corners.begin(), corners.end());
+  return corners;
+}
+
+std::vector<NeedleEdgeContact::HeldPair> NeedleEdgeContact::held_pairs() const {
+  std::vector<HeldPair> out;
+  const size_t faces = top_.triangles.size();
+  for (const auto& [key, multiplier] : lambda_) out.push_back({key / faces, face_corners(key % faces), multiplier});
+  return out;
+}
+
+void NeedleEdgeContact::set_held_pairs(const std::vector<HeldPair>& pairs) {
+  std::map<std::array<int, 3>, size_t> face_of;
+  const size_t faces = top_.triangles.size();
+  for (size_t f = 0; f < faces; ++f) face_of.emplace(face_corners(f), f);
+  lambda_.clear();
+  for (const HeldPair& pair : pairs) {
+    const auto face = face_of.find(pair.top_nodes);
+    if (face != face_of.end() && pair.point < points_.size()) lambda_[pair.point * faces + face->second] = pair.multiplier;
+  }
 }
 
 double NeedleEdgeContact::max_penetration() const {
@@ -222,8 +280,7 @@ double NeedleEdgeContact::max_penetration() const {
 }
 
 void NeedleEdgeContact::hash_active(size_t& hash) const {
-  for (size_t i = 0; i < points_.size(); ++i)
-    if (force_now_[i] > 0) hash = (hash ^ (~i)) * 1099511628211ull;  // ~i: apart from the first pass's indices
+  for (const auto& [key, pressure] : force_now_) hash = (hash ^ (~key)) * 1099511628211ull;  // ~: apart from the first pass
 }
 
 }  // namespace needlekit::fem::detail

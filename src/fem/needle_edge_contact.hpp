@@ -8,15 +8,20 @@
 // by the same penalty and augmented-Lagrangian multipliers as the first pass (Simo & Laursen 1992), frictionless.
 //
 // The gap of a point p against a triangle (x0, x1, x2) is its signed distance to the triangle's plane,
-// g = (p - x0) . n, n = (x1 - x0) x (x2 - x0) / |...| (Wriggers 2006 §4.1, node-to-segment), taken on the triangle
-// whose plane is nearest among those the point projects into. That face is searched at the first evaluation after
-// an augmentation, a converged step or a restore, and kept through the Newton solve (FEBio's segment updates): the
-// gap jumps where neighbouring faces meet at an angle, and a search at every iteration made Newton cycle. Energy (lambda - k g)^2 / (2 k) while positive; its
+// g = (p - x0) . n, n = (x1 - x0) x (x2 - x0) / |...| (Wriggers 2006 §4.1, node-to-segment). A point is held by
+// every face near it whose interior, widened by kMargin, holds its projection, each (point, face) pair with its own
+// multiplier: where the tissue's surface folds into a valley round the needle's tip, the tip is held by each face of
+// the valley at once, as a solid that is locally the union of the faces' half-spaces. (One face per point, frozen
+// through each Newton solve, let the §6.2 sharp bevel's apex slide off its face and through its neighbours: the tip
+// lay 80-100 % of its depth inside the tissue, docs/fem_solver.md; the closest point over the whole surface has a gap
+// whose direction turns on a ridge or in a valley by the point's lateral motion over its nanometre distance, and
+// Newton stalled.) The faces are searched at every evaluation. Energy (lambda - k g)^2 / (2 k) while positive; its
 // forces and its exact tangent k grad g grad g^T - P hess g (the second derivative of g in the triangle's nodes,
 // triangle_plane_gap) make the contact tangent consistent.
 #pragma once
 #include <Eigen/Core>
 #include <array>
+#include <map>
 #include <vector>
 
 #include "boundary_conditions.hpp"
@@ -42,6 +47,8 @@ PlaneGap triangle_plane_gap(const Eigen::Vector3d& p, const Eigen::Vector3d& x0,
 // whose faces meet at more than kSharpAngle (every `spacing` at most, ends included) and at each convex vertex whose
 // faces' normals spread by more than kSharpAngle. `edge_radius`: each point moves out along its feature's
 // pseudo-normal by it (the rounded needle of Indenter::edge_radius).
+// How far outside a face (in its barycentric coordinates) a point still counts as over it.
+inline constexpr double kMargin = 0.05;
 inline constexpr double kSharpAngle = 30.0 * 3.14159265358979323846 / 180;  // rad
 std::vector<Eigen::Vector3d> sharp_feature_points(const geometry::TriangleMesh& needle, double spacing,
                                                   double edge_radius);
@@ -58,11 +65,25 @@ public:
                   bool want_tangent, Eigen::VectorXd& force, const std::vector<int>& free_index,
                   const UpperPattern& pattern, std::vector<double>& values);
   double max_penetration() const;  // m, at the last evaluation
-  void augment() { lambda_ = force_now_, search_ = true; }
-  const std::vector<double>& multipliers() const { return lambda_; }
-  void set_multipliers(const std::vector<double>& lambda) { lambda_ = lambda, search_ = true; }
-  // A load step converged: the next evaluation searches the faces again.
-  void search_again() { search_ = true; }
+  // The multipliers per (point, face) pair, keyed point * (number of top faces) + face.
+  using PairForces = std::map<size_t, double>;
+  void augment() { lambda_ = force_now_; }
+  // With `on`, the tangent keeps only the positive part of -P hess g (a face pressed at a point may tilt away: the
+  // exact tangent can be indefinite): the Hessian modification of Nocedal & Wright (2006) §3.4, for a Newton
+  // iteration whose exact tangent could not be factorized.
+  void set_positive_curvature(bool on) { positive_curvature_ = on; }
+  const PairForces& multipliers() const { return lambda_; }
+  void set_multipliers(const PairForces& lambda) { lambda_ = lambda; }
+  // The multipliers with each face named by its corners (indices into top.nodes, ascending) instead of its number:
+  // they carry over to another mesh whose top surface has the same nodes in the same order (a rezoning keeps them).
+  struct HeldPair {
+    size_t point;
+    std::array<int, 3> top_nodes;
+    double multiplier;  // N
+  };
+  std::vector<HeldPair> held_pairs() const;
+  // Pairs whose face is not one of this mesh's top faces are dropped.
+  void set_held_pairs(const std::vector<HeldPair>& pairs);
   // The tissue's force on the needle at the last evaluation (N, world axes) and the active points' indices hashed
   // into `hash` (FNV-1a).
   const Eigen::Vector3d& force_on_needle() const { return force_on_needle_; }
@@ -70,16 +91,22 @@ public:
   const Eigen::Vector3d& moment_on_needle() const { return moment_on_needle_; }
   void hash_active(size_t& hash) const;
   size_t point_count() const { return points_.size(); }
+  // The (point, face) pairs in contact at the last evaluation.
+  size_t active_pairs() const { return force_now_.size(); }
 
 private:
+  std::array<int, 3> face_corners(size_t face) const;  // indices into top.nodes, ascending
+
   const TopSurface& top_;
   std::vector<int> top_index_;         // per function-space node: index into top.nodes, or -1
   const std::vector<double>& node_stiffness_;
   std::vector<Eigen::Vector3d> points_;
   Eigen::Vector3d direction_;
-  std::vector<double> lambda_, force_now_, gap_now_;
-  std::vector<int> face_;  // per point: the tissue face it is held against (index into top.triangles), -1: none
-  bool search_ = true;
+  PairForces lambda_, force_now_;
+  bool positive_curvature_ = false;
+  std::vector<double> gap_now_;  // per point: its smallest plane gap at the last evaluation, m
+  std::vector<std::vector<int>> node_faces_;            // per top node (index into top.nodes): its top faces
+  std::vector<std::array<int, 3>> edge_neighbour_;       // per top face and edge k = (k, k+1): the face across, or -1
   Eigen::Vector3d force_on_needle_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment_on_needle_ = Eigen::Vector3d::Zero();
 };

@@ -72,6 +72,7 @@ struct QuasiStaticSolver::Impl::NewtonState {
   // fails while it keeps changing).
   size_t active_set = 0;
   int last_set_change = 0;
+  bool positive_curvature = false;  // the contact tangent's curvature modified (after a failed factorization)
   Eval ev;
 };
 
@@ -125,6 +126,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
   const double tiny = 1e-14 * space.mean_youngs_modulus * space.mean_element_size * space.mean_element_size;
   NewtonState state;
   state.active_set = contact ? contact->active_set_fingerprint() : 0;
+  if (contact) contact->set_positive_curvature(false);
   const int max_iterations = newton_iteration_limit(opt);
   for (int it = 1; it <= max_iterations + 1; ++it) {
     IterationRecord rec;
@@ -175,7 +177,14 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     Eigen::VectorXd du;
     const double eta = forcing_term(rec.residual_norm, state.previous_residual, opt.residual_tolerance * ref);
     state.previous_residual = rec.residual_norm;
-    if (!solve_iteration(-r, du, rec, eta, res, failure)) return false;
+    if (!solve_iteration(-r, du, rec, eta, res, failure)) {
+      // An indefinite contact tangent (the second pass's curvature): once per Newton solve, the rest of it with the
+      // curvature's positive part (slower, but a descent direction).
+      if (!contact || state.positive_curvature || !contact->set_positive_curvature(true)) return false;
+      state.positive_curvature = true;
+      state.ev = evaluate(u, disp, true, true);
+      if (!solve_iteration(-free_residual(), du, rec, eta, res, failure)) return false;
+    }
     const double slope = r.dot(du);
     rec.energy_norm = std::abs(slope);
     if (it == 1) state.first_energy_norm = rec.energy_norm;

@@ -439,11 +439,12 @@ double QuasiStaticSolver::indenter_displacement() const { return impl_->d; }
 const std::vector<Eigen::Vector3d>& QuasiStaticSolver::nodes() const { return impl_->space.nodes; }
 const std::vector<Eigen::Vector3d>& QuasiStaticSolver::displacement() const { return impl_->u_nodes; }
 const std::vector<std::vector<int>>& QuasiStaticSolver::elements() const { return impl_->space.elements; }
-// The top-surface nodes' contact multipliers and friction states (the needles' edge multipliers of the second pass
-// are per tissue face, whose numbering a rezoning changes: they start again from zero).
+// The top-surface nodes' contact multipliers and friction states, and the second pass's multipliers with each tissue
+// face named by its top nodes (a rezoning renumbers the faces but keeps the top surface's nodes and faces).
 struct QuasiStaticSolver::ContactHistory {
   std::vector<Eigen::Vector3d> top_nodes;  // m, reference positions, in the order of the history's vectors
   detail::SurfaceContact::Multipliers multipliers;
+  std::vector<std::vector<detail::NeedleEdgeContact::HeldPair>> held_pairs;
 };
 
 std::shared_ptr<const QuasiStaticSolver::ContactHistory> QuasiStaticSolver::contact_history() const {
@@ -451,6 +452,7 @@ std::shared_ptr<const QuasiStaticSolver::ContactHistory> QuasiStaticSolver::cont
   auto history = std::make_shared<ContactHistory>();
   for (int n : impl_->top.nodes) history->top_nodes.push_back(impl_->space.nodes[static_cast<size_t>(n)]);
   history->multipliers = impl_->contact->multipliers();
+  history->held_pairs = impl_->contact->held_pairs();
   return history;
 }
 
@@ -463,6 +465,7 @@ bool QuasiStaticSolver::set_contact_history(const ContactHistory& history) {
   multipliers.nodes = history.multipliers.nodes;
   multipliers.friction = history.multipliers.friction;
   impl_->contact->set_multipliers(multipliers);
+  impl_->contact->set_held_pairs(history.held_pairs);
   return true;
 }
 

@@ -31,6 +31,13 @@ public:
                   bool want_tangent, Eigen::VectorXd& force, const std::vector<int>& free_index,
                   const UpperPattern& pattern, std::vector<double>& values);
 
+  // The second pass's tangent with the positive part of its curvature only (NeedleEdgeContact::set_positive_curvature);
+  // false when there is no second pass to modify.
+  bool set_positive_curvature(bool on) {
+    bool any = false;
+    for (auto& nd : needles_) nd.edges.set_positive_curvature(on), any = any || nd.edges.point_count() > 0;
+    return any;
+  }
   // Largest penetration at the last evaluation, m.
   double max_penetration() const;
   // Augmented-Lagrangian update: multipliers = the contact forces of the last evaluation; friction bounds = the
@@ -47,11 +54,21 @@ public:
   void update_ahead(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d);
   // The multipliers and friction states of every needle, to restore after a failed step.
   struct Multipliers {
-    std::vector<std::vector<double>> nodes, edges;
+    std::vector<std::vector<double>> nodes;
+    std::vector<NeedleEdgeContact::PairForces> edges;
     std::vector<std::vector<FrictionState>> friction;
   };
   Multipliers multipliers() const;
   void set_multipliers(const Multipliers& multipliers);
+  // The second pass's multipliers per needle with faces named by their corners (NeedleEdgeContact::held_pairs).
+  std::vector<std::vector<NeedleEdgeContact::HeldPair>> held_pairs() const {
+    std::vector<std::vector<NeedleEdgeContact::HeldPair>> out;
+    for (const auto& nd : needles_) out.push_back(nd.edges.held_pairs());
+    return out;
+  }
+  void set_held_pairs(const std::vector<std::vector<NeedleEdgeContact::HeldPair>>& pairs) {
+    for (size_t k = 0; k < needles_.size() && k < pairs.size(); ++k) needles_[k].edges.set_held_pairs(pairs[k]);
+  }
   // Number of (node, needle) pairs in contact at the last evaluation and a fingerprint of that set.
   size_t active_set_fingerprint() const;
 

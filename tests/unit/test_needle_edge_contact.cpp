@@ -1,0 +1,135 @@
+// The second pass of surface contact (internal fem::detail::NeedleEdgeContact): a needle's points against the tissue's
+// deformed top faces. On a structured block whose top is pressed into a valley, a grid of points just under the
+// surface: the forces are minus the gradient of the contact energy and the tangent is the gradient of the forces,
+// both against central finite differences, with augmented-Lagrangian multipliers from an earlier state. A point
+// pressed into the bottom of a valley is held by each face of it; a point above the surface is not held.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../../src/fem/boundary_conditions.hpp"
+#include "../../src/fem/function_space.hpp"
+#include "../../src/fem/needle_edge_contact.hpp"
+#include "../../src/fem/sparse_pattern.hpp"
+#include "needlekit/mesh/structured_block_mesh.hpp"
+
+using namespace needlekit;
+using namespace needlekit::fem;
+using namespace needlekit::fem::detail;
+
+namespace {
+struct Block {
+  FunctionSpace space;
+  TopSurface top;
+  std::vector<int> free_index;
+  UpperPattern pattern;
+  std::vector<double> stiffness;  // per top node, N/m
+};
+
+Block block() {
+  mesh::StructuredBlockOptions o;
+  o.width = o.length = o.height = 1e-3;
+  o.nx = o.ny = o.nz = 10;
+  o.material = {"gel", 0, 0.2e6, 0.45};
+  const mesh::TetMesh mesh = mesh::structured_block_mesh(o);
+  Block b{function_space(mesh, ElementOrder::Linear), {}, {}, {}, {}};
+  b.top = top_surface(mesh, b.space, 1e-9);
+  const int n = static_cast<int>(b.space.nodes.size());
+  b.free_index.resize(3 * static_cast<size_t>(n));
+  for (int i = 0; i < 3 * n; ++i) b.free_index[static_cast<size_t>(i)] = i;
+  b.pattern = upper_pattern(b.space.connectivity, 4, n, b.free_index);
+  b.stiffness.assign(b.top.nodes.size(), 2e3);
+  return b;
+}
+
+// The top pressed into a conical valley 40 µm deep at (x, y) = (0.52, 0.47) mm, with a small shear.
+Eigen::VectorXd valley(const Block& b) {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(b.space.nodes.size()));
+  for (int a : b.top.nodes) {
+    const Eigen::Vector3d& x = b.space.nodes[static_cast<size_t>(a)];
+    const double r = std::hypot(x.x() - 0.52e-3, x.y() - 0.47e-3);
+    u[3 * a + 2] = -40e-6 * std::max(0.0, 1 - r / 0.3e-3);
+    u[3 * a] = 3e-6 * std::sin(7e3 * x.y());
+  }
+  return u;
+}
+
+struct Evaluation {
+  double energy;
+  Eigen::VectorXd force;
+  std::vector<double> tangent;
+};
+Evaluation evaluate(NeedleEdgeContact& contact, const Block& b, const Eigen::VectorXd& u, double d) {
+  Evaluation e{0, Eigen::VectorXd::Zero(u.size()), std::vector<double>(b.pattern.row_indices.size(), 0.0)};
+  e.energy = contact.evaluate(b.space.nodes, u, d, true, true, e.force, b.free_index, b.pattern, e.tangent);
+  return e;
+}
+}  // namespace
+
+TEST(NeedleEdgeContact, ForcesAndTangentAreTheDerivativesOfItsEnergy) {
+  const Block b = block();
+  const Eigen::VectorXd u = valley(b);
+  // A 5 x 5 grid of points 150 µm apart round the valley, each 2 µm under the undeformed surface's valley shape.
+  std::vector<Eigen::Vector3d> points;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j) {
+      const double x = 0.52e-3 + 0.15e-3 * i + 13e-6, y = 0.47e-3 + 0.15e-3 * j + 7e-6;
+      const double r = std::hypot(x - 0.52e-3, y - 0.47e-3);
+      points.emplace_back(x, y, b.top.z - 40e-6 * std::max(0.0, 1 - r / 0.3e-3) - 2e-6 - 1e-6 * (i + j + 4) / 8);
+    }
+  NeedleEdgeContact contact(b.top, b.stiffness, points, Eigen::Vector3d(0, 0, -1));
+  evaluate(contact, b, u, 0.5e-6);
+  contact.augment();  // multipliers from a state half a micrometre further on
+  const Evaluation base = evaluate(contact, b, u, 0.0);
+  ASSERT_GT(base.energy, 0);
+  const double h = 1e-11;  // m
+  double force_error = 0, force_scale = 0, tangent_error = 0, tangent_scale = 0;
+  for (int a : b.top.nodes)
+    for (int c = 0; c < 3; ++c) {
+      const int dof = 3 * a + c;
+      Eigen::VectorXd up = u, down = u;
+      up[dof] += h;
+      down[dof] -= h;
+      const Evaluation plus = evaluate(contact, b, up, 0.0), minus = evaluate(contact, b, down, 0.0);
+      force_error = std::max(force_error, std::abs(-(plus.energy - minus.energy) / (2 * h) - base.force[dof]));
+      force_scale = std::max(force_scale, std::abs(base.force[dof]));
+      const Eigen::VectorXd column = -(plus.force - minus.force) / (2 * h);  // K = -d(force)/du
+      for (int row = 0; row <= dof; ++row) {
+        const int64_t first = b.pattern.column_pointers[static_cast<size_t>(dof)];
+        const int64_t last = b.pattern.column_pointers[static_cast<size_t>(dof) + 1];
+        const bool stored = std::binary_search(b.pattern.row_indices.begin() + first,
+                                               b.pattern.row_indices.begin() + last, int64_t{row});
+        const double k = stored ? base.tangent[static_cast<size_t>(entry_position(b.pattern, row, dof))] : 0.0;
+        tangent_error = std::max(tangent_error, std::abs(column[row] - k));
+        tangent_scale = std::max(tangent_scale, std::abs(k));
+      }
+    }
+  ASSERT_GT(force_scale, 0);
+  EXPECT_LT(force_error, 1e-6 * force_scale);
+  EXPECT_LT(tangent_error, 1e-5 * tangent_scale);
+}
+
+TEST(NeedleEdgeContact, APointInAValleyIsHeldByEachOfItsFaces) {
+  const Block b = block();
+  const Eigen::VectorXd u = valley(b);
+  // The valley's lowest node, and a point 1 µm under it: every top face round that node holds the point.
+  int bottom = b.top.nodes.front();
+  for (int a : b.top.nodes)
+    if (b.space.nodes[a].z() + u[3 * a + 2] < b.space.nodes[bottom].z() + u[3 * bottom + 2]) bottom = a;
+  const Eigen::Vector3d lowest = b.space.nodes[bottom] + u.segment<3>(3 * bottom);
+  int faces_round = 0;
+  for (const auto& t : b.top.triangles) faces_round += t[0] == bottom || t[1] == bottom || t[2] == bottom;
+  NeedleEdgeContact held(b.top, b.stiffness, {lowest - Eigen::Vector3d(0, 0, 1e-6)}, Eigen::Vector3d(0, 0, -1));
+  const Evaluation e = evaluate(held, b, u, 0.0);
+  size_t hash = 0;
+  held.hash_active(hash);
+  EXPECT_NE(hash, 0u);
+  EXPECT_EQ(held.active_pairs(), static_cast<size_t>(faces_round));
+  // The needle is pushed up: the force on it points out of the valley.
+  EXPECT_GT(held.force_on_needle().z(), 0);
+  EXPECT_GT(e.energy, 0);
+  // 1 µm above the valley's bottom the point is free.
+  NeedleEdgeContact free(b.top, b.stiffness, {lowest + Eigen::Vector3d(0, 0, 1e-6)}, Eigen::Vector3d(0, 0, -1));
+  EXPECT_EQ(evaluate(free, b, u, 0.0).energy, 0.0);
+  EXPECT_EQ(free.active_pairs(), 0u);
+}
