@@ -1,16 +1,12 @@
 #include "needle_edge_contact.hpp"
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <map>
-
-#include "rigid_surface_distance.hpp"
 
 namespace needlekit::fem::detail {
 
@@ -136,51 +132,12 @@ NeedleEdgeContact::NeedleEdgeContact(const TopSurface& top, const std::vector<do
   top_index_.assign(top.node_area.size(), -1);
   for (size_t k = 0; k < top.nodes.size(); ++k) top_index_[static_cast<size_t>(top.nodes[k])] = static_cast<int>(k);
   gap_now_.assign(points_.size(), std::numeric_limits<double>::infinity());
-  node_faces_.resize(top.nodes.size());
-  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
-  for (size_t f = 0; f < top.triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = top.triangles[f][k], b = top.triangles[f][(k + 1) % 3];
-      node_faces_[static_cast<size_t>(top_index_[a])].push_back(static_cast<int>(f));
-      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
-    }
-  edge_neighbour_.assign(top.triangles.size(), {-1, -1, -1});
-  for (size_t f = 0; f < top.triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = top.triangles[f][k], b = top.triangles[f][(k + 1) % 3];
-      for (int g : edge_faces.at({std::min(a, b), std::max(a, b)}))
-        if (g != static_cast<int>(f)) edge_neighbour_[f][static_cast<size_t>(k)] = g;
-    }
 }
 
-double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d,
-                                   bool want_force, bool want_tangent, Eigen::VectorXd& force,
-                                   const std::vector<int>& free_index, const UpperPattern& pattern,
-                                   std::vector<double>& values) {
-  force_on_needle_.setZero();
-  moment_on_needle_.setZero();
-  force_now_.clear();
-  std::fill(gap_now_.begin(), gap_now_.end(), std::numeric_limits<double>::infinity());
-  if (points_.empty()) { if (std::getenv("NK_DEBUG")) std::fprintf(stderr, "edges: no points\n"); return 0; }
+// The (point, face) pairs at (u, d): every face whose plane the point is near (within the face's size) and whose
+// interior, widened by kMargin, holds its projection.
+void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d) {
   const auto position = [&](int a) -> Eigen::Vector3d { return nodes[a] + u.segment<3>(3 * a); };
-  const auto face_normal = [&](int f) -> Eigen::Vector3d {
-    const auto& t = top_.triangles[static_cast<size_t>(f)];
-    const Eigen::Vector3d m = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
-    return m.norm() > 0 ? Eigen::Vector3d(m.normalized()) : Eigen::Vector3d::Zero();
-  };
-  // The outward normal at a vertex: its faces' normals weighted by their angles there, the angle-weighted
-  // pseudo-normal whose sign test against the closest point is exact (Baerentzen & Aanaes, IEEE TVCG 11, 2005).
-  const auto vertex_normal = [&](int node) -> Eigen::Vector3d {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int f : node_faces_[static_cast<size_t>(top_index_[node])]) {
-      const auto& t = top_.triangles[static_cast<size_t>(f)];
-      const int k = t[0] == node ? 0 : t[1] == node ? 1 : 2;
-      const Eigen::Vector3d e1 = (position(t[(k + 1) % 3]) - position(node)).normalized();
-      const Eigen::Vector3d e2 = (position(t[(k + 2) % 3]) - position(node)).normalized();
-      sum += std::acos(std::clamp(e1.dot(e2), -1.0, 1.0)) * face_normal(f);
-    }
-    return sum;
-  };
   // The triangles near the needle's points: deformed box within a triangle's reach (its reference size) of theirs.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& p : points_) lo = lo.cwiseMin(p + d * direction_), hi = hi.cwiseMax(p + d * direction_);
@@ -199,50 +156,62 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
     c.hi.array() += reach;
     if ((c.hi.array() >= lo.array()).all() && (c.lo.array() <= hi.array()).all()) near.push_back(c);
   }
-  double energy = 0;
-  const size_t faces = top_.triangles.size();
+  pairs_.clear();
   for (size_t i = 0; i < points_.size(); ++i) {
     const Eigen::Vector3d p = points_[i] + d * direction_;
-    // Every face whose plane the point is near and whose interior (widened by kMargin) holds its projection: where
-    // the tissue's surface folds into a valley round the tip, the point is held by each face of the valley at once.
+    // Where the tissue's surface folds into a valley round the tip, the point is held by each face of it at once.
     for (const Candidate& c : near) {
       if ((p.array() < c.lo.array()).any() || (p.array() > c.hi.array()).any()) continue;
       const auto& tri = top_.triangles[static_cast<size_t>(c.triangle)];
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
-      if (!pr.valid || pr.xi1 < -kMargin || pr.xi2 < -kMargin || pr.xi1 + pr.xi2 > 1 + kMargin ||
-          std::abs(pr.gap) > c.reach)
-        continue;
-      const std::array<int, 3> corner{tri[0], tri[1], tri[2]};
-      const double k = (node_stiffness_[top_index_[corner[0]]] + node_stiffness_[top_index_[corner[1]]] +
-                        node_stiffness_[top_index_[corner[2]]]) / 3;
-      const size_t key = i * faces + static_cast<size_t>(c.triangle);
-      const auto held = lambda_.find(key);
-      const double pressure = (held == lambda_.end() ? 0.0 : held->second) - k * pr.gap;
-      gap_now_[i] = std::min(gap_now_[i], pr.gap);
-      if (pressure <= 0) continue;
-      const PlaneGap g = triangle_plane_gap(p, position(corner[0]), position(corner[1]), position(corner[2]));
-      energy += pressure * pressure / (2 * k);
-      force_now_[key] = pressure;
-      force_on_needle_ += pressure * g.normal;
-      moment_on_needle_ += points_[i].cross(pressure * g.normal);
-      if (want_force)  // -dE/dx_i = P dg/dx_i
-        for (int a = 0; a < 3; ++a) force.segment<3>(3 * corner[a]) += pressure * g.gradient.segment<3>(3 * a);
-      if (want_tangent) {  // the exact tangent k grad g grad g^T - P hess g
-        Eigen::Matrix<double, 9, 9> curvature = -pressure * 0.5 * (g.hessian + g.hessian.transpose());
-        if (positive_curvature_) {
-          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(curvature);
-          curvature = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
-                      eigen.eigenvectors().transpose();
-        }
-        add_node_block<3>(corner, Eigen::Matrix<double, 9, 9>(k * g.gradient * g.gradient.transpose() + curvature),
-                          free_index, pattern, values);
-      }
+      if (!pr.valid || std::abs(pr.gap) > c.reach) continue;
+      if (pr.xi1 < -kMargin || pr.xi2 < -kMargin || pr.xi1 + pr.xi2 > 1 + kMargin) continue;
+      pairs_.emplace_back(i, c.triangle);
     }
   }
-  if (std::getenv("NK_DEBUG")) {
-    int active = 0, found = 0; double mg = 1e9;
-    active = force_now_.size(); for (size_t i = 0; i < points_.size(); ++i) { found += std::isfinite(gap_now_[i]); if (std::isfinite(gap_now_[i])) mg = std::min(mg, gap_now_[i]); }
-    std::fprintf(stderr, "edges: d %.3g um points %zu near %zu found %d active %d min gap %.3g um F %.3g mN\n", d*1e6, points_.size(), near.size(), found, active, mg*1e6, -force_on_needle_.dot(direction_)*1e3);
+}
+
+double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d,
+                                   bool want_force, bool want_tangent, Eigen::VectorXd& force,
+                                   const std::vector<int>& free_index, const UpperPattern& pattern,
+                                   std::vector<double>& values) {
+  force_on_needle_.setZero();
+  moment_on_needle_.setZero();
+  force_now_.clear();
+  std::fill(gap_now_.begin(), gap_now_.end(), std::numeric_limits<double>::infinity());
+  if (points_.empty()) return 0;
+  const auto position = [&](int a) -> Eigen::Vector3d { return nodes[a] + u.segment<3>(3 * a); };
+  const size_t faces = top_.triangles.size();
+  search(nodes, u, d);
+  double energy = 0;
+  for (const auto& [i, face] : pairs_) {
+    const Eigen::Vector3d p = points_[i] + d * direction_;
+    const auto& tri = top_.triangles[static_cast<size_t>(face)];
+    const std::array<int, 3> corner{tri[0], tri[1], tri[2]};
+    const PlaneGap g = triangle_plane_gap(p, position(corner[0]), position(corner[1]), position(corner[2]));
+    const double k = (node_stiffness_[top_index_[corner[0]]] + node_stiffness_[top_index_[corner[1]]] +
+                      node_stiffness_[top_index_[corner[2]]]) / 3;
+    const size_t key = i * faces + static_cast<size_t>(face);
+    const auto held = lambda_.find(key);
+    const double pressure = (held == lambda_.end() ? 0.0 : held->second) - k * g.gap;
+    gap_now_[i] = std::min(gap_now_[i], g.gap);
+    if (pressure <= 0) continue;
+    energy += pressure * pressure / (2 * k);
+    force_now_[key] = pressure;
+    force_on_needle_ += pressure * g.normal;
+    moment_on_needle_ += points_[i].cross(pressure * g.normal);
+    if (want_force)  // -dE/dx_i = P dg/dx_i
+      for (int a = 0; a < 3; ++a) force.segment<3>(3 * corner[a]) += pressure * g.gradient.segment<3>(3 * a);
+    if (want_tangent) {  // the exact tangent k grad g grad g^T - P hess g
+      Eigen::Matrix<double, 9, 9> curvature = -pressure * 0.5 * (g.hessian + g.hessian.transpose());
+      if (positive_curvature_) {
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(curvature);
+        curvature = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                    eigen.eigenvectors().transpose();
+      }
+      add_node_block<3>(corner, Eigen::Matrix<double, 9, 9>(k * g.gradient * g.gradient.transpose() + curvature),
+                        free_index, pattern, values);
+    }
   }
   return energy;
 }

@@ -13,11 +13,11 @@
 // multiplier: where the tissue's surface folds into a valley round the needle's tip, the tip is held by each face of
 // the valley at once, as a solid that is locally the union of the faces' half-spaces. (One face per point, frozen
 // through each Newton solve, let the §6.2 sharp bevel's apex slide off its face and through its neighbours: the tip
-// lay 80-100 % of its depth inside the tissue, docs/fem_solver.md; the closest point over the whole surface has a gap
-// whose direction turns on a ridge or in a valley by the point's lateral motion over its nanometre distance, and
-// Newton stalled.) The faces are searched at every evaluation. Energy (lambda - k g)^2 / (2 k) while positive; its
-// forces and its exact tangent k grad g grad g^T - P hess g (the second derivative of g in the triangle's nodes,
-// triangle_plane_gap) make the contact tangent consistent.
+// lay 80-100 % of its depth inside the tissue, docs/fem_solver.md. The closest point over the whole surface gives a
+// continuous gap, but on a ridge or in a valley its direction turns with the point's lateral motion over its
+// nanometre distance, and Newton stalled.) The faces are searched at every evaluation. Energy (lambda - k g)^2 / (2 k)
+// per pair while positive; its forces and its exact tangent k grad g grad g^T - P hess g (the second derivative of g
+// in the triangle's nodes, triangle_plane_gap) make the contact tangent consistent.
 #pragma once
 #include <Eigen/Core>
 #include <array>
@@ -95,6 +95,7 @@ public:
   size_t active_pairs() const { return force_now_.size(); }
 
 private:
+  void search(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d);
   std::array<int, 3> face_corners(size_t face) const;  // indices into top.nodes, ascending
 
   const TopSurface& top_;
@@ -104,9 +105,8 @@ private:
   Eigen::Vector3d direction_;
   PairForces lambda_, force_now_;
   bool positive_curvature_ = false;
+  std::vector<std::pair<size_t, int>> pairs_;  // (point, face) pairs found by the last search
   std::vector<double> gap_now_;  // per point: its smallest plane gap at the last evaluation, m
-  std::vector<std::vector<int>> node_faces_;            // per top node (index into top.nodes): its top faces
-  std::vector<std::array<int, 3>> edge_neighbour_;       // per top face and edge k = (k, k+1): the face across, or -1
   Eigen::Vector3d force_on_needle_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment_on_needle_ = Eigen::Vector3d::Zero();
 };

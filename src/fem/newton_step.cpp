@@ -312,6 +312,7 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
     return res;
   }
   double step = target - m.d;
+  std::string warm_failure;  // why the given start did not converge
   int streak = 0;
   bool ok = true, stepped = false;
   while (ok && m.d != target) {
@@ -345,15 +346,19 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
     }
     m.u = u_saved;
     if (m.contact) m.contact->set_multipliers(multipliers_saved);
-    if (warm) {  // the start did not converge: the ordinary step, predictor and cut-backs, from here on
+    if (warm) {  // the start did not converge: the ordinary step, predictor and cut-backs, from here on, with the
+                 // contact history of the start (another mesh's, at the target) forgotten
       start = nullptr;
+      if (m.contact) m.contact->forget_history();
+      warm_failure = failure.why;
       continue;
     }
     streak = 0;
     if (res.cutbacks >= m.opt.max_cutbacks) {
       res.status = failure.status;
       res.reason = "stopped at " + fmt_um(m.d) + " (target " + fmt_um(target) + "): step to " + fmt_um(next) +
-                   " failed after " + std::to_string(res.cutbacks) + " cut-backs: " + failure.why;
+                   " failed after " + std::to_string(res.cutbacks) + " cut-backs: " + failure.why +
+                   (warm_failure.empty() ? "" : "; from the given start at " + fmt_um(target) + ": " + warm_failure);
       ok = false;
       break;
     }

@@ -20,6 +20,7 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
   const size_t count = top.nodes.size();
   std::vector<FrictionState> at_rest(count);  // the slip counts from the reference positions, the needle at d = 0
   for (size_t t = 0; t < count; ++t) at_rest[t].reference = space.nodes[top.nodes[t]];
+  at_rest_ = at_rest;
   for (const Indenter& needle : needles) {
     const Eigen::Vector3d direction = needle.direction.normalized();
     needles_.push_back(NeedleContact{
@@ -146,6 +147,14 @@ void SurfaceContact::update_ahead(const std::vector<Eigen::Vector3d>& nodes, con
       const auto sd = nd.distance->signed_distance(relative(nodes, u, d, nd, t), reach);
       nd.ahead[t] = sd.distance >= reach || sd.normal.dot(nd.direction) > RigidSurfaceDistance::kLeadingCosine;
     }
+  }
+}
+
+void SurfaceContact::forget_history() {
+  for (auto& nd : needles_) {
+    std::fill(nd.lambda.begin(), nd.lambda.end(), 0.0);
+    nd.edges.set_multipliers({});
+    nd.friction = at_rest_;
   }
 }
 

@@ -60,6 +60,9 @@ public:
   };
   Multipliers multipliers() const;
   void set_multipliers(const Multipliers& multipliers);
+  // Back to the needles at rest: no multipliers, no friction history (a warm start from another mesh's state failed
+  // and the load path starts again from zero).
+  void forget_history();
   // The second pass's multipliers per needle with faces named by their corners (NeedleEdgeContact::held_pairs).
   std::vector<std::vector<NeedleEdgeContact::HeldPair>> held_pairs() const {
     std::vector<std::vector<NeedleEdgeContact::HeldPair>> out;
@@ -117,6 +120,7 @@ private:
   double h_min_ = 0;
   double friction_ = 0;            // Coulomb coefficient, >= 0
   std::vector<NeedleContact> needles_;
+  std::vector<FrictionState> at_rest_;  // per top node: the friction state with the needle at d = 0
 };
 
 }  // namespace needlekit::fem::detail

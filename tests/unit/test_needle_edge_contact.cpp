@@ -5,6 +5,7 @@
 // pressed into the bottom of a valley is held by each face of it; a point above the surface is not held.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "../../src/fem/boundary_conditions.hpp"
@@ -42,13 +43,16 @@ Block block() {
   return b;
 }
 
-// The top pressed into a conical valley 40 µm deep at (x, y) = (0.52, 0.47) mm, with a small shear.
-Eigen::VectorXd valley(const Block& b) {
+// The block spans (-0.5, 0.5) mm in x and y. Its top pressed into a conical valley `depth` deep at (x, y) =
+// (0.02, -0.03) mm, 0.3 mm in radius, with a small
+// shear.
+constexpr double kCentreX = 0.02e-3, kCentreY = -0.03e-3;  // m
+Eigen::VectorXd valley(const Block& b, double depth = 40e-6) {
   Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(b.space.nodes.size()));
   for (int a : b.top.nodes) {
     const Eigen::Vector3d& x = b.space.nodes[static_cast<size_t>(a)];
-    const double r = std::hypot(x.x() - 0.52e-3, x.y() - 0.47e-3);
-    u[3 * a + 2] = -40e-6 * std::max(0.0, 1 - r / 0.3e-3);
+    const double r = std::hypot(x.x() - kCentreX, x.y() - kCentreY);
+    u[3 * a + 2] = -depth * std::max(0.0, 1 - r / 0.3e-3);
     u[3 * a] = 3e-6 * std::sin(7e3 * x.y());
   }
   return u;
@@ -73,8 +77,8 @@ TEST(NeedleEdgeContact, ForcesAndTangentAreTheDerivativesOfItsEnergy) {
   std::vector<Eigen::Vector3d> points;
   for (int i = -2; i <= 2; ++i)
     for (int j = -2; j <= 2; ++j) {
-      const double x = 0.52e-3 + 0.15e-3 * i + 13e-6, y = 0.47e-3 + 0.15e-3 * j + 7e-6;
-      const double r = std::hypot(x - 0.52e-3, y - 0.47e-3);
+      const double x = kCentreX + 0.15e-3 * i + 13e-6, y = kCentreY + 0.15e-3 * j + 7e-6;
+      const double r = std::hypot(x - kCentreX, y - kCentreY);
       points.emplace_back(x, y, b.top.z - 40e-6 * std::max(0.0, 1 - r / 0.3e-3) - 2e-6 - 1e-6 * (i + j + 4) / 8);
     }
   NeedleEdgeContact contact(b.top, b.stiffness, points, Eigen::Vector3d(0, 0, -1));
@@ -111,25 +115,51 @@ TEST(NeedleEdgeContact, ForcesAndTangentAreTheDerivativesOfItsEnergy) {
 
 TEST(NeedleEdgeContact, APointInAValleyIsHeldByEachOfItsFaces) {
   const Block b = block();
+  for (const auto& [depth, under] : {std::pair{40e-6, 1e-6}, std::pair{120e-6, 3e-6}}) {
+    const Eigen::VectorXd u = valley(b, depth);
+    // The valley's lowest node, and a point under it: every top face round that node holds the point.
+    int bottom = b.top.nodes.front();
+    for (int a : b.top.nodes)
+      if (b.space.nodes[a].z() + u[3 * a + 2] < b.space.nodes[bottom].z() + u[3 * bottom + 2]) bottom = a;
+    const Eigen::Vector3d lowest = b.space.nodes[bottom] + u.segment<3>(3 * bottom);
+    int faces_round = 0;
+    for (const auto& t : b.top.triangles) faces_round += t[0] == bottom || t[1] == bottom || t[2] == bottom;
+    NeedleEdgeContact held(b.top, b.stiffness, {lowest - Eigen::Vector3d(0, 0, under)}, Eigen::Vector3d(0, 0, -1));
+    const Evaluation e = evaluate(held, b, u, 0.0);
+    size_t hash = 0;
+    held.hash_active(hash);
+    EXPECT_NE(hash, 0u);
+    EXPECT_EQ(held.active_pairs(), static_cast<size_t>(faces_round)) << depth;
+    EXPECT_GT(held.force_on_needle().z(), 0);  // the needle is pushed out of the valley
+    EXPECT_GT(e.energy, 0);
+    // Above the valley's bottom the point is free.
+    NeedleEdgeContact free(b.top, b.stiffness, {lowest + Eigen::Vector3d(0, 0, 1e-6)}, Eigen::Vector3d(0, 0, -1));
+    EXPECT_EQ(evaluate(free, b, u, 0.0).energy, 0.0);
+    EXPECT_EQ(free.active_pairs(), 0u);
+  }
+}
+
+// The multipliers named by their faces' top nodes survive a renumbering of the faces (what a rezoning does): the
+// same points against the same surface with its faces in reverse order have the same energy and forces.
+TEST(NeedleEdgeContact, MultipliersCarryOverToRenumberedFaces) {
+  const Block b = block();
   const Eigen::VectorXd u = valley(b);
-  // The valley's lowest node, and a point 1 µm under it: every top face round that node holds the point.
-  int bottom = b.top.nodes.front();
-  for (int a : b.top.nodes)
-    if (b.space.nodes[a].z() + u[3 * a + 2] < b.space.nodes[bottom].z() + u[3 * bottom + 2]) bottom = a;
-  const Eigen::Vector3d lowest = b.space.nodes[bottom] + u.segment<3>(3 * bottom);
-  int faces_round = 0;
-  for (const auto& t : b.top.triangles) faces_round += t[0] == bottom || t[1] == bottom || t[2] == bottom;
-  NeedleEdgeContact held(b.top, b.stiffness, {lowest - Eigen::Vector3d(0, 0, 1e-6)}, Eigen::Vector3d(0, 0, -1));
-  const Evaluation e = evaluate(held, b, u, 0.0);
-  size_t hash = 0;
-  held.hash_active(hash);
-  EXPECT_NE(hash, 0u);
-  EXPECT_EQ(held.active_pairs(), static_cast<size_t>(faces_round));
-  // The needle is pushed up: the force on it points out of the valley.
-  EXPECT_GT(held.force_on_needle().z(), 0);
-  EXPECT_GT(e.energy, 0);
-  // 1 µm above the valley's bottom the point is free.
-  NeedleEdgeContact free(b.top, b.stiffness, {lowest + Eigen::Vector3d(0, 0, 1e-6)}, Eigen::Vector3d(0, 0, -1));
-  EXPECT_EQ(evaluate(free, b, u, 0.0).energy, 0.0);
-  EXPECT_EQ(free.active_pairs(), 0u);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = -2; i <= 2; ++i)
+    points.emplace_back(kCentreX + 20e-6 * i + 3e-6, kCentreY + 11e-6 * i, b.top.z - 42e-6 + 2e-6 * std::abs(i));
+  NeedleEdgeContact original(b.top, b.stiffness, points, Eigen::Vector3d(0, 0, -1));
+  evaluate(original, b, u, 1e-6);
+  original.augment();
+  ASSERT_FALSE(original.held_pairs().empty());
+  TopSurface reversed = b.top;
+  std::reverse(reversed.triangles.begin(), reversed.triangles.end());
+  NeedleEdgeContact renumbered(reversed, b.stiffness, points, Eigen::Vector3d(0, 0, -1));
+  renumbered.set_held_pairs(original.held_pairs());
+  const Evaluation a = evaluate(original, b, u, 0.0), c = evaluate(renumbered, b, u, 0.0);
+  EXPECT_GT(a.energy, 0);
+  EXPECT_NEAR(c.energy, a.energy, 1e-12 * a.energy);
+  EXPECT_LT((c.force - a.force).norm(), 1e-12 * a.force.norm());
+  // Without them the energy is the penalty's alone, smaller.
+  NeedleEdgeContact fresh(reversed, b.stiffness, points, Eigen::Vector3d(0, 0, -1));
+  EXPECT_LT(evaluate(fresh, b, u, 0.0).energy, 0.9 * a.energy);
 }
