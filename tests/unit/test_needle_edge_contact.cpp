@@ -2,7 +2,8 @@
 // deformed top faces. On a structured block whose top is pressed into a valley, a grid of points just under the
 // surface: the forces are minus the gradient of the contact energy and the tangent is the gradient of the forces,
 // both against central finite differences, with augmented-Lagrangian multipliers from an earlier state. A point
-// pressed into the bottom of a valley is held by each face of it; a point above the surface is not held.
+// pressed into the bottom of a valley is held by each face of it; a point above the surface is not held. The
+// multipliers, named by their faces' top nodes, carry over to the same surface with its faces renumbered.
 #include <gtest/gtest.h>
 
 #include <algorithm>
