@@ -157,8 +157,10 @@ void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const 
     if ((c.hi.array() >= lo.array()).all() && (c.lo.array() <= hi.array()).all()) near.push_back(c);
   }
   pairs_.clear();
+  size_t kept = 0;  // kept_pairs_ is sorted by point
   for (size_t i = 0; i < points_.size(); ++i) {
     const Eigen::Vector3d p = points_[i] + d * direction_;
+    const auto first = static_cast<std::ptrdiff_t>(pairs_.size());
     // Where the tissue's surface folds into a valley round the tip, the point is held by each face of it at once.
     for (const Candidate& c : near) {
       if ((p.array() < c.lo.array()).any() || (p.array() > c.hi.array()).any()) continue;
@@ -167,6 +169,20 @@ void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const 
       if (!pr.valid || std::abs(pr.gap) > c.reach) continue;
       if (pr.xi1 < -kMargin || pr.xi2 < -kMargin || pr.xi1 + pr.xi2 > 1 + kMargin) continue;
       pairs_.emplace_back(i, c.triangle);
+    }
+    // The faces the point was over at the last converged state hold it through the step while it stays over them:
+    // at the step's first evaluation the needle has moved on and the surface not yet (the tip of a sharp bevel
+    // started each step a whole element under the faces it had met, out of their reach, and went through them).
+    const auto found = static_cast<std::ptrdiff_t>(pairs_.size());
+    for (; kept < kept_pairs_.size() && kept_pairs_[kept].first == i; ++kept) {
+      const int face = kept_pairs_[kept].second;
+      if (std::any_of(pairs_.begin() + first, pairs_.begin() + found,
+                      [&](const auto& pair) { return pair.second == face; }))
+        continue;
+      const auto& tri = top_.triangles[static_cast<size_t>(face)];
+      const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
+      if (pr.valid && pr.xi1 >= -kMargin && pr.xi2 >= -kMargin && pr.xi1 + pr.xi2 <= 1 + kMargin)
+        pairs_.emplace_back(i, face);
     }
   }
 }

@@ -74,6 +74,12 @@ public:
   void set_positive_curvature(bool on) { positive_curvature_ = on; }
   const PairForces& multipliers() const { return lambda_; }
   void set_multipliers(const PairForces& lambda) { lambda_ = lambda; }
+  // A load step converged at (u, d): the pairs found there are kept through the next step (search()).
+  void keep_pairs(const std::vector<Eigen::Vector3d>& nodes, const Eigen::VectorXd& u, double d) {
+    kept_pairs_.clear();
+    search(nodes, u, d);
+    kept_pairs_ = pairs_;
+  }
   // The multipliers with each face named by its corners (indices into top.nodes, ascending) instead of its number:
   // they carry over to another mesh whose top surface has the same nodes in the same order (a rezoning keeps them).
   struct HeldPair {
@@ -105,7 +111,8 @@ private:
   Eigen::Vector3d direction_;
   PairForces lambda_, force_now_;
   bool positive_curvature_ = false;
-  std::vector<std::pair<size_t, int>> pairs_;  // (point, face) pairs found by the last search
+  std::vector<std::pair<size_t, int>> pairs_;  // (point, face) pairs found by the last search, by point
+  std::vector<std::pair<size_t, int>> kept_pairs_;  // those at the last converged state
   std::vector<double> gap_now_;  // per point: its smallest plane gap at the last evaluation, m
   Eigen::Vector3d force_on_needle_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment_on_needle_ = Eigen::Vector3d::Zero();

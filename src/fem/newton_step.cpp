@@ -121,6 +121,18 @@ double QuasiStaticSolver::Impl::newton_line_search(double disp, const Eigen::Vec
   return search.step;
 }
 
+bool QuasiStaticSolver::Impl::newton_direction(double disp, const Eigen::VectorXd& rhs, Eigen::VectorXd& du,
+                                               IterationRecord& rec, double forcing, StepResult& res,
+                                               Failure& failure, NewtonState& state) {
+  if (solve_iteration(rhs, du, rec, forcing, res, failure)) return true;
+  // An indefinite contact tangent (the second pass's curvature): the rest of this Newton solve with the curvature's
+  // positive part (slower, but a descent direction). The residual at u is the same.
+  if (!contact || state.positive_curvature || !contact->set_positive_curvature(true)) return false;
+  state.positive_curvature = true;
+  state.ev = evaluate(u, disp, true, true);
+  return solve_iteration(rhs, du, rec, forcing, res, failure);
+}
+
 // Newton with backtracking line search at fixed needle displacement `disp` (and fixed multipliers).
 bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& failure, int cutbacks_so_far) {
   const double tiny = 1e-14 * space.mean_youngs_modulus * space.mean_element_size * space.mean_element_size;
@@ -177,14 +189,7 @@ bool QuasiStaticSolver::Impl::newton(double disp, StepResult& res, Failure& fail
     Eigen::VectorXd du;
     const double eta = forcing_term(rec.residual_norm, state.previous_residual, opt.residual_tolerance * ref);
     state.previous_residual = rec.residual_norm;
-    if (!solve_iteration(-r, du, rec, eta, res, failure)) {
-      // An indefinite contact tangent (the second pass's curvature): once per Newton solve, the rest of it with the
-      // curvature's positive part (slower, but a descent direction).
-      if (!contact || state.positive_curvature || !contact->set_positive_curvature(true)) return false;
-      state.positive_curvature = true;
-      state.ev = evaluate(u, disp, true, true);
-      if (!solve_iteration(-free_residual(), du, rec, eta, res, failure)) return false;
-    }
+    if (!newton_direction(disp, -r, du, rec, eta, res, failure, state)) return false;
     const double slope = r.dot(du);
     rec.energy_norm = std::abs(slope);
     if (it == 1) state.first_energy_norm = rec.energy_norm;
@@ -321,11 +326,8 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
     const auto multipliers_saved = m.contact ? m.contact->multipliers() : detail::SurfaceContact::Multipliers{};
     Impl::Failure failure;
     const bool warm = start != nullptr && next == target;
-    if (warm) {
-      // A converged state on the same mesh: its fixed dofs are those of this run; the prescribed tip dofs are set
-      // by the substep.
+    if (warm)  // a state on this mesh: its fixed dofs are this run's; the substep sets the prescribed tip dofs
       for (int n = 0; n < static_cast<int>(start->size()); ++n) m.u.segment<3>(3 * n) = (*start)[n];
-    }
     if (m.substep(next, res, failure, res.cutbacks, !warm)) {
       const double previous = m.d;
       m.d = next;

@@ -107,6 +107,10 @@ struct QuasiStaticSolver::Impl {
   struct NewtonState;  // what one Newton solve carries from iteration to iteration (newton_step.cpp)
   double newton_line_search(double disp, const Eigen::VectorXd& du, double slope, bool expect_last, NewtonState& state,
                             IterationRecord& rec);
+  // solve_iteration for Newton's direction at (u, disp); when the tangent cannot be factorized, once per Newton solve,
+  // again with the contact tangent's curvature modified (SurfaceContact::set_positive_curvature).
+  bool newton_direction(double disp, const Eigen::VectorXd& rhs, Eigen::VectorXd& du, IterationRecord& rec,
+                        double forcing, StepResult& res, Failure& failure, NewtonState& state);
   // `predict`: false when u already holds a start (advance_to's warm start) that the predictor must not move.
   bool substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict = true);
   bool solve_substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict,

@@ -147,6 +147,7 @@ void SurfaceContact::update_ahead(const std::vector<Eigen::Vector3d>& nodes, con
       const auto sd = nd.distance->signed_distance(relative(nodes, u, d, nd, t), reach);
       nd.ahead[t] = sd.distance >= reach || sd.normal.dot(nd.direction) > RigidSurfaceDistance::kLeadingCosine;
     }
+    nd.edges.keep_pairs(nodes, u, d);
   }
 }
 

@@ -3,9 +3,11 @@
 // surface: the forces are minus the gradient of the contact energy and the tangent is the gradient of the forces,
 // both against central finite differences, with augmented-Lagrangian multipliers from an earlier state. A point
 // pressed into the bottom of a valley is held by each face of it; a point above the surface is not held. The
-// multipliers, named by their faces' top nodes, carry over to the same surface with its faces renumbered.
+// multipliers, named by their faces' top nodes, carry over to the same surface with its faces renumbered; the faces
+// met at a converged state hold a point through the next step.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -163,4 +165,30 @@ TEST(NeedleEdgeContact, MultipliersCarryOverToRenumberedFaces) {
   // Without them the energy is the penalty's alone, smaller.
   NeedleEdgeContact fresh(reversed, b.stiffness, points, Eigen::Vector3d(0, 0, -1));
   EXPECT_LT(evaluate(fresh, b, u, 0.0).energy, 0.9 * a.energy);
+}
+
+// The faces a point was over at the last converged state hold it through the next step: a point 1 µm under a face's
+// centroid, moved 110 µm deeper (farther than the 100 µm faces' reach), is held by that face when the pairs were kept
+// there, and by none without.
+TEST(NeedleEdgeContact, FacesMetAtTheConvergedStateHoldThePointThroughTheStep) {
+  const Block b = block();
+  const Eigen::VectorXd u = valley(b);
+  Eigen::Vector3d point = Eigen::Vector3d::Constant(1.0);
+  for (const auto& t : b.top.triangles) {  // under the deformed centroid nearest (x, y) = the valley's centre
+    Eigen::Vector3d x[3];
+    for (int k = 0; k < 3; ++k) x[k] = b.space.nodes[t[k]] + u.segment<3>(3 * t[k]);
+    const Eigen::Vector3d centroid = (x[0] + x[1] + x[2]) / 3;
+    const Eigen::Vector3d normal = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
+    if (std::hypot(centroid.x() - kCentreX, centroid.y() - kCentreY) <
+        std::hypot(point.x() - kCentreX, point.y() - kCentreY))
+      point = centroid - 1e-6 * normal;
+  }
+  NeedleEdgeContact kept(b.top, b.stiffness, {point}, Eigen::Vector3d(0, 0, -1));
+  kept.keep_pairs(b.space.nodes, u, 0.0);
+  const Evaluation held = evaluate(kept, b, u, 110e-6);
+  EXPECT_GT(held.energy, 0);
+  EXPECT_GT(kept.force_on_needle().z(), 0);
+  EXPECT_GT(kept.max_penetration(), 100e-6);
+  NeedleEdgeContact fresh(b.top, b.stiffness, {point}, Eigen::Vector3d(0, 0, -1));
+  EXPECT_EQ(evaluate(fresh, b, u, 110e-6).energy, 0.0);
 }
