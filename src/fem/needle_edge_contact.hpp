@@ -15,7 +15,8 @@
 // through each Newton solve, let the §6.2 sharp bevel's apex slide off its face and through its neighbours: the tip
 // lay 80-100 % of its depth inside the tissue, docs/fem_solver.md. The closest point over the whole surface gives a
 // continuous gap, but on a ridge or in a valley its direction turns with the point's lateral motion over its
-// nanometre distance, and Newton stalled.) The faces are searched at every evaluation. Energy (lambda - k g)^2 / (2 k)
+// nanometre distance, and Newton stalled.) The faces are searched at every evaluation, and those a point was over
+// at the last converged state hold it through the next step while it stays over them. Energy (lambda - k g)^2 / (2 k)
 // per pair while positive; its forces and its exact tangent k grad g grad g^T - P hess g (the second derivative of g
 // in the triangle's nodes, triangle_plane_gap) make the contact tangent consistent.
 #pragma once
@@ -43,12 +44,13 @@ struct PlaneGap {
 PlaneGap triangle_plane_gap(const Eigen::Vector3d& p, const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
                             const Eigen::Vector3d& x2);
 
+// How far outside a face (in its barycentric coordinates) a point still counts as over it.
+inline constexpr double kMargin = 0.05;
+
 // The points standing for a needle's sharp features, in its frame at zero displacement (m): along each convex edge
 // whose faces meet at more than kSharpAngle (every `spacing` at most, ends included) and at each convex vertex whose
 // faces' normals spread by more than kSharpAngle. `edge_radius`: each point moves out along its feature's
 // pseudo-normal by it (the rounded needle of Indenter::edge_radius).
-// How far outside a face (in its barycentric coordinates) a point still counts as over it.
-inline constexpr double kMargin = 0.05;
 inline constexpr double kSharpAngle = 30.0 * 3.14159265358979323846 / 180;  // rad
 std::vector<Eigen::Vector3d> sharp_feature_points(const geometry::TriangleMesh& needle, double spacing,
                                                   double edge_radius);
@@ -90,7 +92,7 @@ public:
   std::vector<HeldPair> held_pairs() const;
   // Pairs whose face is not one of this mesh's top faces are dropped.
   void set_held_pairs(const std::vector<HeldPair>& pairs);
-  // The tissue's force on the needle at the last evaluation (N, world axes) and the active points' indices hashed
+  // The tissue's force on the needle at the last evaluation (N, world axes) and the active pairs' keys hashed
   // into `hash` (FNV-1a).
   const Eigen::Vector3d& force_on_needle() const { return force_on_needle_; }
   // Its moment about the origin of the needle's frame at zero displacement (the points as placed), N m.
