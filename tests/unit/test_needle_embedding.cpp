@@ -33,7 +33,7 @@ Block block() {
 
 // A 40 x 40 x 300 µm box needle over the block's centre with its lowest face `bottom` above the top plane (m).
 Indenter box_needle(const Block& b, double bottom) {
-  const Eigen::Vector3d centre(0.5e-3 + 3e-6, 0.5e-3 + 7e-6, b.top.z + bottom);  // off the grid lines
+  const Eigen::Vector3d centre(3e-6, 7e-6, b.top.z + bottom);  // the block spans (-0.5, 0.5) mm; off the grid lines
   return {test_support::box_surface(centre + Eigen::Vector3d(-20e-6, -20e-6, 0),
                                     centre + Eigen::Vector3d(20e-6, 20e-6, 300e-6)),
           Eigen::Vector3d(0, 0, -1), 0.0};
