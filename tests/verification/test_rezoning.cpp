@@ -80,7 +80,7 @@ TEST(RezonedMesh, RefusesADisplacementOfAnotherSize) {
 namespace {
 
 // A 230 um flat cylinder 60 um into a 1.15 mm silicone block under surface contact, 2 steps.
-insertion::IndentationCase punch(bool rezone) {
+insertion::IndentationCase punch(bool rezone, bool two_pass = false) {
   insertion::IndentationCase c;
   c.name = "punch";
   const needle::NeedleGeometry cylinder{needle::Shape::Cylinder, 230e-6, 230e-6, 0, 1000e-6};
@@ -97,12 +97,25 @@ insertion::IndentationCase punch(bool rezone) {
   c.solver.law = fem::MaterialLaw::NeoHookean;
   c.solver.contact = fem::ContactModel::Surface;
   c.solver.rezone = rezone;
+  c.solver.two_pass = two_pass;
   c.solver.rezone_volume_ratio = 0.999;  // after the first step, whatever its J (measured: +0.20 %; the next step +0.10 %)
   c.solver.max_remeshes = 1;
   return c;
 }
 
 }  // namespace
+
+// With the second pass (the punch's rim against the tissue's faces) the force jumps less than 2 % too. (The rim's
+// multipliers carried over, NeedleEdgeContact::held_pairs, do not change this answer: the augmentations on the new
+// mesh find them again; their test is NeedleEdgeContact.MultipliersCarryOverToRenumberedFaces.)
+TEST(Rezoning, ATwoPassPunchsForceJumpsLessThanTwoPercent) {
+  const insertion::IndentationResult rezoned = insertion::run_indentation(punch(true, true));
+  ASSERT_EQ(rezoned.status, insertion::IndentationStatus::ReachedDepth) << rezoned.reason;
+  ASSERT_EQ(rezoned.remeshes.size(), 1u);
+  const insertion::Remesh& r = rezoned.remeshes.front();
+  EXPECT_TRUE(r.failure.empty()) << r.failure;
+  EXPECT_LT(std::abs(r.force_jump()), 0.02) << r.force_before << " -> " << r.force_after;
+}
 
 TEST(Rezoning, AFlatPunchsForceJumpsLessThanTwoPercent) {
   const insertion::IndentationResult plain = insertion::run_indentation(punch(false));
