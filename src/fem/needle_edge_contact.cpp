@@ -22,6 +22,8 @@ struct Projection {
   bool valid = false;
   double gap = 0;
   double xi1 = 0, xi2 = 0;
+  // Within the triangle widened by kMargin.
+  bool over() const { return valid && xi1 >= -kMargin && xi2 >= -kMargin && xi1 + xi2 <= 1 + kMargin; }
 };
 Projection project(const Eigen::Vector3d& p, const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
                    const Eigen::Vector3d& x2) {
@@ -166,9 +168,7 @@ void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const 
       if ((p.array() < c.lo.array()).any() || (p.array() > c.hi.array()).any()) continue;
       const auto& tri = top_.triangles[static_cast<size_t>(c.triangle)];
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
-      if (!pr.valid || std::abs(pr.gap) > c.reach) continue;
-      if (pr.xi1 < -kMargin || pr.xi2 < -kMargin || pr.xi1 + pr.xi2 > 1 + kMargin) continue;
-      pairs_.emplace_back(i, c.triangle);
+      if (pr.over() && std::abs(pr.gap) <= c.reach) pairs_.emplace_back(i, c.triangle);
     }
     // The faces the point was over at the last converged state hold it through the step while it stays over them:
     // at the step's first evaluation the needle has moved on and the surface not yet (the tip of a sharp bevel
@@ -181,8 +181,7 @@ void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const 
         continue;
       const auto& tri = top_.triangles[static_cast<size_t>(face)];
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
-      if (pr.valid && pr.xi1 >= -kMargin && pr.xi2 >= -kMargin && pr.xi1 + pr.xi2 <= 1 + kMargin)
-        pairs_.emplace_back(i, face);
+      if (pr.over()) pairs_.emplace_back(i, face);
     }
   }
 }
@@ -253,7 +252,8 @@ void NeedleEdgeContact::set_held_pairs(const std::vector<HeldPair>& pairs) {
   lambda_.clear();
   for (const HeldPair& pair : pairs) {
     const auto face = face_of.find(pair.top_nodes);
-    if (face != face_of.end() && pair.point < points_.size()) lambda_[pair.point * faces + face->second] = pair.multiplier;
+    if (face != face_of.end() && pair.point < points_.size())
+      lambda_[pair.point * faces + face->second] = pair.multiplier;
   }
 }
 
@@ -265,7 +265,8 @@ double NeedleEdgeContact::max_penetration() const {
 }
 
 void NeedleEdgeContact::hash_active(size_t& hash) const {
-  for (const auto& [key, pressure] : force_now_) hash = (hash ^ (~key)) * 1099511628211ull;  // ~: apart from the first pass
+  // ~key: apart from the first pass's indices
+  for (const auto& [key, pressure] : force_now_) hash = (hash ^ (~key)) * 1099511628211ull;
 }
 
 }  // namespace needlekit::fem::detail

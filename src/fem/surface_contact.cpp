@@ -18,9 +18,8 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
     stiffness_[t] = options.penalty_factor * space.node_youngs_modulus[n] / top.node_size[n] * top.node_area[n];
   }
   const size_t count = top.nodes.size();
-  std::vector<FrictionState> at_rest(count);  // the slip counts from the reference positions, the needle at d = 0
-  for (size_t t = 0; t < count; ++t) at_rest[t].reference = space.nodes[top.nodes[t]];
-  at_rest_ = at_rest;
+  at_rest_.resize(count);  // the slip counts from the reference positions, the needle at d = 0
+  for (size_t t = 0; t < count; ++t) at_rest_[t].reference = space.nodes[top.nodes[t]];
   for (const Indenter& needle : needles) {
     const Eigen::Vector3d direction = needle.direction.normalized();
     needles_.push_back(NeedleContact{
@@ -29,7 +28,7 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
         std::vector<double>(count, 0.0), std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         std::vector<char>(count, 1),  // the needle starts above the tissue
-        at_rest, std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
+        at_rest_, std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         NeedleEdgeContact(top, stiffness_,
                           options.two_pass ? sharp_feature_points(needle.surface, h_min_ / 2, needle.edge_radius)
                                    : std::vector<Eigen::Vector3d>{},

@@ -37,6 +37,13 @@ protected:
                std::to_string(steps) + "\n" + rest;
     return run("indent sharp.toml --json");
   }
+  // The 10 um bevel on a 28 um mesh, 4 steps to 100 um, under surface contact on linear tetrahedra, with one pass or
+  // both.
+  CliRun run_tip_case(bool two_pass) {
+    return run_bevel_case("10 um", "28 um", "400 um", "100 um", 4,
+                          std::string("[model]\ncontact = \"surface\"\nelement = \"linear\"\n[solver]\ntwo_pass = ") +
+                              (two_pass ? "true" : "false") + "\n");
+  }
 };
 
 // Quick mode: a coarse mesh (50 um at the punch, a/2.3; 800 um far) and one 10 um step. Sneddon's half-space force
@@ -129,8 +136,7 @@ TEST_F(IndentCli, SharpTipPastItsPunctureRunsOnWhereThePredictedStartInverts) {
 // the tissue's nodes and lies about as deep inside the tissue as it was pushed (docs/indentation.md, "The tips
 // inside the tissue"); the run says so per step and in a note, on stderr and in the JSON.
 TEST_F(IndentCli, SaysHowFarTheTipLiesInsideTheTissue) {
-  const CliRun r = run_bevel_case("10 um", "28 um", "400 um", "100 um", 4,
-                                  "[model]\ncontact = \"surface\"\nelement = \"linear\"\n[solver]\ntwo_pass = false\n");
+  const CliRun r = run_tip_case(false);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   const auto embedded = json["tip_embedded_um"].get<std::vector<double>>();
@@ -148,8 +154,7 @@ TEST_F(IndentCli, SaysHowFarTheTipLiesInsideTheTissue) {
 // at the surface, within the 28 um mesh size of it at every step, and the force grows with the depth (it was
 // 0.55, 1.12, 1.69 and 2.21 mN when this test was written; one pass: 0.015-0.068 mN).
 TEST_F(IndentCli, TwoPassContactKeepsTheTipOutOfTheTissue) {
-  const CliRun r = run_bevel_case("10 um", "28 um", "400 um", "100 um", 4,
-                                  "[model]\ncontact = \"surface\"\nelement = \"linear\"\n[solver]\ntwo_pass = true\n");
+  const CliRun r = run_tip_case(true);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["status"], "reached-depth") << json["reason"];

@@ -11,33 +11,24 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../../src/fem/boundary_conditions.hpp"
-#include "../../src/fem/function_space.hpp"
 #include "../../src/fem/needle_edge_contact.hpp"
 #include "../../src/fem/sparse_pattern.hpp"
-#include "needlekit/mesh/structured_block_mesh.hpp"
+#include "../support/gel_block.hpp"
 
 using namespace needlekit;
 using namespace needlekit::fem;
 using namespace needlekit::fem::detail;
 
 namespace {
-struct Block {
-  FunctionSpace space;
-  TopSurface top;
+// The gel block with every dof free, its tangent's pattern and a penalty stiffness per top node.
+struct Block : test::GelBlock {
   std::vector<int> free_index;
   UpperPattern pattern;
   std::vector<double> stiffness;  // per top node, N/m
 };
 
 Block block() {
-  mesh::StructuredBlockOptions o;
-  o.width = o.length = o.height = 1e-3;
-  o.nx = o.ny = o.nz = 10;
-  o.material = {"gel", 0, 0.2e6, 0.45};
-  const mesh::TetMesh mesh = mesh::structured_block_mesh(o);
-  Block b{function_space(mesh, ElementOrder::Linear), {}, {}, {}, {}};
-  b.top = top_surface(mesh, b.space, 1e-9);
+  Block b{test::gel_block(), {}, {}, {}};
   const int n = static_cast<int>(b.space.nodes.size());
   b.free_index.resize(3 * static_cast<size_t>(n));
   for (int i = 0; i < 3 * n; ++i) b.free_index[static_cast<size_t>(i)] = i;

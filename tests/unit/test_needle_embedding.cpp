@@ -4,54 +4,36 @@
 // (its lowest face is 30 or 350 µm under the top surface); with the whole tissue moved below it, it is not.
 #include <gtest/gtest.h>
 
-#include "../../src/fem/boundary_conditions.hpp"
-#include "../../src/fem/function_space.hpp"
 #include "../../src/fem/needle_embedding.hpp"
+#include "../support/gel_block.hpp"
 #include "../verification/fem_test_support.hpp"
-#include "needlekit/mesh/structured_block_mesh.hpp"
 
 using namespace needlekit;
 using namespace needlekit::fem;
 using namespace needlekit::fem::detail;
 
 namespace {
-struct Block {
-  FunctionSpace space;
-  TopSurface top;
-};
-
-Block block() {
-  mesh::StructuredBlockOptions o;
-  o.width = o.length = o.height = 1e-3;
-  o.nx = o.ny = o.nz = 10;
-  o.material = {"gel", 0, 0.2e6, 0.45};
-  const mesh::TetMesh mesh = mesh::structured_block_mesh(o);
-  Block b{function_space(mesh, ElementOrder::Linear), {}};
-  b.top = top_surface(mesh, b.space, 1e-9);
-  return b;
-}
-
 // A 40 x 40 x 300 µm box needle over the block's centre with its lowest face `bottom` above the top plane (m).
-Indenter box_needle(const Block& b, double bottom) {
+Indenter box_needle(const test::GelBlock& b, double bottom) {
   const Eigen::Vector3d centre(3e-6, 7e-6, b.top.z + bottom);  // the block spans (-0.5, 0.5) mm; off the grid lines
   return {test_support::box_surface(centre + Eigen::Vector3d(-20e-6, -20e-6, 0),
                                     centre + Eigen::Vector3d(20e-6, 20e-6, 300e-6)),
           Eigen::Vector3d(0, 0, -1), 0.0};
 }
 
-Eigen::VectorXd at_rest(const Block& b) {
+Eigen::VectorXd at_rest(const test::GelBlock& b) {
   return Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(b.space.nodes.size()));
 }
 }  // namespace
 
 TEST(NeedleEmbedding, ANeedleAboveTheTissueIsNotEmbedded) {
-  const Block b = block();
+  const test::GelBlock b = test::gel_block();
   const NeedleEmbedding embedding(b.space, b.top, {box_needle(b, 50e-6)}, 20e-6);
   EXPECT_EQ(embedding.deepest(b.space.nodes, at_rest(b), 0.0), 0.0);
 }
 
 TEST(NeedleEmbedding, ANeedleInsideTheTissueIsEmbeddedByItsDepthThere) {
-  const Block b = block();
+  const test::GelBlock b = test::gel_block();
   // Placed 30 or 350 µm into the block, or 50 µm above it and moved 80 or 400 µm along its direction.
   for (const auto& [bottom, d, depth] : {std::tuple{-30e-6, 0.0, 30e-6}, std::tuple{-350e-6, 0.0, 350e-6},
                                          std::tuple{50e-6, 80e-6, 30e-6}, std::tuple{50e-6, 400e-6, 350e-6}}) {
