@@ -22,8 +22,10 @@ struct Projection {
   bool valid = false;
   double gap = 0;
   double xi1 = 0, xi2 = 0;
-  // Within the triangle widened by kMargin.
-  bool over() const { return valid && xi1 >= -kMargin && xi2 >= -kMargin && xi1 + xi2 <= 1 + kMargin; }
+  // Within the triangle widened by `margin`.
+  bool over(double margin = kMargin) const {
+    return valid && xi1 >= -margin && xi2 >= -margin && xi1 + xi2 <= 1 + margin;
+  }
 };
 Projection project(const Eigen::Vector3d& p, const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
                    const Eigen::Vector3d& x2) {
@@ -170,9 +172,10 @@ void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const 
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
       if (pr.over() && std::abs(pr.gap) <= c.reach) pairs_.emplace_back(i, c.triangle);
     }
-    // The faces the point was over at the last converged state hold it through the step while it stays over them:
-    // at the step's first evaluation the needle has moved on and the surface not yet (the tip of a sharp bevel
-    // started each step a whole element under the faces it had met, out of their reach, and went through them).
+    // The faces the point was over at the last converged state hold it through the step while it stays over them
+    // (widened by kKeptMargin): at the step's first evaluation the needle has moved on and the surface not yet (the
+    // tip of a sharp bevel started each step a whole element under the faces it had met, out of their reach, and
+    // went through them).
     const auto found = static_cast<std::ptrdiff_t>(pairs_.size());
     for (; kept < kept_pairs_.size() && kept_pairs_[kept].first == i; ++kept) {
       const int face = kept_pairs_[kept].second;
@@ -181,7 +184,7 @@ void NeedleEdgeContact::search(const std::vector<Eigen::Vector3d>& nodes, const 
         continue;
       const auto& tri = top_.triangles[static_cast<size_t>(face)];
       const Projection pr = project(p, position(tri[0]), position(tri[1]), position(tri[2]));
-      if (pr.over()) pairs_.emplace_back(i, face);
+      if (pr.over(kKeptMargin)) pairs_.emplace_back(i, face);
     }
   }
 }

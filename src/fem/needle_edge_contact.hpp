@@ -16,7 +16,9 @@
 // lay 80-100 % of its depth inside the tissue, docs/fem_solver.md. The closest point over the whole surface gives a
 // continuous gap, but on a ridge or in a valley its direction turns with the point's lateral motion over its
 // nanometre distance, and Newton stalled.) The faces are searched at every evaluation, and those a point was over
-// at the last converged state hold it through the next step while it stays over them. Energy (lambda - k g)^2 / (2 k)
+// at the last converged state hold it through the next step while it stays over them widened by kKeptMargin: a tip
+// that sits in a valley's crease lies just outside each of its faces, and a load step's predictor can leave it a few
+// micrometres under the crease. Energy (lambda - k g)^2 / (2 k)
 // per pair while positive; its forces and its exact tangent k grad g grad g^T - P hess g (the second derivative of g
 // in the triangle's nodes, triangle_plane_gap) make the contact tangent consistent.
 #pragma once
@@ -46,6 +48,11 @@ PlaneGap triangle_plane_gap(const Eigen::Vector3d& p, const Eigen::Vector3d& x0,
 
 // How far outside a face (in its barycentric coordinates) a point still counts as over it.
 inline constexpr double kMargin = 0.05;
+// The same for a face that held the point at the last converged state, through the next step. With kMargin for
+// these too, the §6.2 sharp bevel's tip (40 um tip mesh, 25 um steps) sat in its valley's crease at 50 um, just
+// outside both faces (barycentric -0.01 to -0.04), and was out of every face at the next step's start: it ran 20 um
+// inside the tissue at 75 um. With half a face it stays held (0 um inside to 100 um, twenty-fourth session).
+inline constexpr double kKeptMargin = 0.5;
 
 // The points standing for a needle's sharp features, in its frame at zero displacement (m): along each convex edge
 // whose faces meet at more than kSharpAngle (every `spacing` at most, ends included) and at each convex vertex whose
@@ -82,6 +89,7 @@ public:
     search(nodes, u, d);
     kept_pairs_ = pairs_;
   }
+  void drop_kept_pairs() { kept_pairs_.clear(); }
   // The multipliers with each face named by its corners (indices into top.nodes, ascending) instead of its number:
   // they carry over to another mesh whose top surface has the same nodes in the same order (a rezoning keeps them).
   struct HeldPair {

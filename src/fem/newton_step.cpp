@@ -295,18 +295,89 @@ bool QuasiStaticSolver::Impl::solve_substep(double target, StepResult& res, Fail
 }
 
 std::string_view to_string(StepStatus status) { return name_of(kStepStatusNames, status); }
+std::string_view to_string(StartBalance balance) { return name_of(kStartBalanceNames, balance); }
 
 StepResult QuasiStaticSolver::advance_to(double target) { return impl_->advance(target, nullptr); }
 
-StepResult QuasiStaticSolver::advance_to(double target, const std::vector<Eigen::Vector3d>& start) {
+StepResult QuasiStaticSolver::advance_to(double target, const std::vector<Eigen::Vector3d>& start, bool reload) {
   if (start.size() != impl_->u_nodes.size()) {
     throw std::invalid_argument("advance_to: a start of " + std::to_string(start.size()) + " nodes for a solver of " +
                                 std::to_string(impl_->u_nodes.size()));
   }
-  return impl_->advance(target, &start);
+  return impl_->advance(target, &start, reload);
 }
 
-StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eigen::Vector3d>* start) {
+bool QuasiStaticSolver::Impl::ease_into_balance(double target, StepResult& res, Failure& failure) {
+  const Eval start = evaluate(u, target, true, false);
+  if (!start.valid) {
+    failure = inverted(start);
+    return false;
+  }
+  start_residual = free_residual();
+  double share = 1, stage = 0.5;  // the share of the start's residual still applied, and the next stage's decrement
+  int cutbacks = 0, streak = 0;
+  while (share > 0) {
+    const double next = std::max(0.0, share - stage);
+    const Eigen::VectorXd u_saved = u;
+    const auto multipliers_saved = contact ? contact->multipliers() : detail::SurfaceContact::Multipliers{};
+    start_share = next;
+    if (solve_substep(target, res, failure, cutbacks, false, false)) {
+      share = next;
+      if (++streak >= 2) stage *= 2, streak = 0;  // as advance's recovery after a cut-back
+      continue;
+    }
+    u = u_saved;
+    if (contact) contact->set_multipliers(multipliers_saved);
+    streak = 0;
+    if (++cutbacks > opt.max_cutbacks) break;
+    stage *= 0.5;
+  }
+  start_share = 0;
+  start_residual.resize(0);
+  if (share > 0) failure.why = "at " + std::to_string(share) + " of the start's residual: " + failure.why;
+  return share == 0;
+}
+
+void QuasiStaticSolver::Impl::accept_substep(double next, const Eigen::VectorXd& u_before) {
+  const double previous = d;
+  d = next;
+  earlier_increment = std::move(last_increment);
+  earlier_step = last_step;
+  last_increment = u - u_before;
+  last_step = next - previous;
+  StepResult probe;
+  measure(probe);
+  for (size_t k = 0; k < needles.size(); ++k)
+    external_work += 0.5 * (last_force[k] + probe.indenter_force[k]) * (next - previous);  // trapezoid
+  last_force = probe.indenter_force;
+}
+
+bool QuasiStaticSolver::Impl::substep_from_start(double target, const std::vector<Eigen::Vector3d>& start,
+                                                 const detail::SurfaceContact::Multipliers& multipliers,
+                                                 StepResult& res, Failure& failure, std::string& why_not) {
+  const auto set_start = [&] {  // a state on this mesh: its fixed dofs are this run's
+    for (int n = 0; n < static_cast<int>(start.size()); ++n) u.segment<3>(3 * n) = start[n];
+    if (contact) contact->set_multipliers(multipliers);
+  };
+  set_start();
+  // The start stands for a converged state at the target: which nodes lead and which faces hold the second pass's
+  // points are those at the start (a rezoned tip sits in its valley's crease, just outside its faces).
+  if (contact) contact->update_ahead(space.nodes, u, target);
+  if (substep(target, res, failure, res.cutbacks, false)) {
+    res.start_balance = StartBalance::Newton;
+    return true;
+  }
+  why_not = failure.why;
+  set_start();
+  if (ease_into_balance(target, res, failure)) {
+    res.start_balance = StartBalance::Eased;
+    return true;
+  }
+  why_not += "; eased into balance from it: " + failure.why;
+  return false;
+}
+
+StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eigen::Vector3d>* start, bool reload) {
   auto& m = *this;
   const auto t0 = Impl::Clock::now();
   StepResult res;
@@ -326,20 +397,10 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
     const auto multipliers_saved = m.contact ? m.contact->multipliers() : detail::SurfaceContact::Multipliers{};
     Impl::Failure failure;
     const bool warm = start != nullptr && next == target;
-    if (warm)  // a state on this mesh: its fixed dofs are this run's; the substep sets the prescribed tip dofs
-      for (int n = 0; n < static_cast<int>(start->size()); ++n) m.u.segment<3>(3 * n) = (*start)[n];
-    if (m.substep(next, res, failure, res.cutbacks, !warm)) {
-      const double previous = m.d;
-      m.d = next;
-      m.earlier_increment = std::move(m.last_increment);
-      m.earlier_step = m.last_step;
-      m.last_increment = m.u - u_saved;
-      m.last_step = next - previous;
-      StepResult probe;
-      m.measure(probe);
-      for (size_t k = 0; k < m.needles.size(); ++k)
-        m.external_work += 0.5 * (m.last_force[k] + probe.indenter_force[k]) * (next - previous);  // trapezoid
-      m.last_force = probe.indenter_force;
+    const bool done = warm ? m.substep_from_start(next, *start, multipliers_saved, res, failure, warm_failure)
+                           : m.substep(next, res, failure, res.cutbacks);
+    if (done) {
+      m.accept_substep(next, u_saved);
       res.substeps++;
       stepped = true;
       if (++streak >= 2 && std::abs(step) < std::abs(target - m.d)) step *= 2, streak = 0;  // recover after cut-back
@@ -348,11 +409,17 @@ StepResult QuasiStaticSolver::Impl::advance(double target, const std::vector<Eig
     }
     m.u = u_saved;
     if (m.contact) m.contact->set_multipliers(multipliers_saved);
-    if (warm) {  // the start did not converge: the ordinary step, predictor and cut-backs, from here on, with the
-                 // contact history of the start (another mesh's, at the target) forgotten
+    if (warm && !reload) {
+      res.status = failure.status;
+      res.reason = "from the given start at " + fmt_um(target) + ": " + warm_failure;
+      ok = false;
+      break;
+    }
+    if (warm) {  // neither the start nor its easing converged: the ordinary step, predictor and cut-backs, from
+                 // here on, with the contact history of the start (another mesh's, at the target) forgotten
       start = nullptr;
+      res.start_balance = StartBalance::Reloaded;
       if (m.contact) m.contact->forget_history();
-      warm_failure = failure.why;
       continue;
     }
     streak = 0;

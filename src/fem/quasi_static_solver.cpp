@@ -164,6 +164,9 @@ QuasiStaticSolver::Impl::Eval QuasiStaticSolver::Impl::evaluate(const Eigen::Vec
   if (ev.valid && contact)
     ev.contact_energy = contact->evaluate(space.nodes, uu, disp, want_force, want_tangent, fcontact,
                                           dofs.free_index, tangent->pattern(), tangent->values());
+  if (ev.valid && start_share != 0)
+    for (size_t k = 0; k < dofs.free_dofs.size(); ++k)
+      ev.load_energy -= start_share * start_residual[static_cast<Eigen::Index>(k)] * uu[dofs.free_dofs[k]];
   if (ev.valid && nodal && want_tangent) {
     if (tangent->splits_preconditioner()) {  // P: everything so far (one-ring) plus the element bulk term
       tangent->capture_preconditioner();
@@ -228,6 +231,7 @@ Eigen::VectorXd QuasiStaticSolver::Impl::free_residual() const {
   Eigen::VectorXd r(static_cast<Eigen::Index>(dofs.free_dofs.size()));
   for (size_t k = 0; k < dofs.free_dofs.size(); ++k)
     r[static_cast<Eigen::Index>(k)] = fint[dofs.free_dofs[k]] - (contact ? fcontact[dofs.free_dofs[k]] : 0.0);
+  if (start_share != 0) r -= start_share * start_residual;
   return r;
 }
 

@@ -69,14 +69,19 @@ struct QuasiStaticSolver::Impl {
   double earlier_step = 0;            // m
   int augmentation = 0;                // surface contact: the (sub)step's augmented-Lagrangian updates so far
   double converged_strain_energy = 0;  // J, of the state at which newton() last returned converged
+  // Easing a warm start into balance (ease_into_balance): the start's residual r0 on the free dofs, and the share s
+  // of it still applied as a load, so that the solver solves R(u) = s r0 (energy: Pi(u) - s r0 . u). Empty: none.
+  Eigen::VectorXd start_residual;
+  double start_share = 0;
 
   // ---- assembly (quasi_static_solver.cpp) ----
   struct Eval {
     double strain_energy = 0;
     double contact_energy = 0;
+    double load_energy = 0;  // J, -s r0 . u while a warm start is eased into balance
     bool valid = true;
     int inverted_element = -1;  // when not valid: the lowest-numbered element found inverted (-1: none named)
-    double potential() const { return strain_energy + contact_energy; }
+    double potential() const { return strain_energy + contact_energy + load_energy; }
   };
   template <int N>
   Eval element_pass(const Eigen::VectorXd& uu, bool want_force, bool want_tangent, const Eigen::VectorXd* dup,
@@ -115,7 +120,20 @@ struct QuasiStaticSolver::Impl {
   bool substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict = true);
   bool solve_substep(double target, StepResult& res, Failure& failure, int cutbacks_so_far, bool predict,
                      bool extrapolate);
-  StepResult advance(double target, const std::vector<Eigen::Vector3d>* start);
+  // From a start u out of balance at needle displacement `target` (a rezoned mesh's transferred state, whose Newton
+  // did not converge directly): the residual r0 of the start is applied as a load and taken off in stages, s = 1 -> 0,
+  // each a substep at the fixed needle with cut-backs of the stage (a homotopy on the out-of-balance force). The
+  // start is in balance at s = 1 by construction, so no stage begins far from its solution and none begins inverted.
+  bool ease_into_balance(double target, StepResult& res, Failure& failure);
+  // A converged substep to needle displacement `next` from the state u_before: the predictor's increments, the
+  // external work and the forces of the converged state.
+  void accept_substep(double next, const Eigen::VectorXd& u_before);
+  // advance's substep to `target` from a given start (QuasiStaticSolver::advance_to with a start): Newton from it,
+  // else the start eased into balance; `why_not` says why each failed.
+  bool substep_from_start(double target, const std::vector<Eigen::Vector3d>& start,
+                          const detail::SurfaceContact::Multipliers& multipliers, StepResult& res, Failure& failure,
+                          std::string& why_not);
+  StepResult advance(double target, const std::vector<Eigen::Vector3d>* start, bool reload = true);
 };
 
 }  // namespace needlekit::fem

@@ -154,6 +154,7 @@ void SurfaceContact::forget_history() {
   for (auto& nd : needles_) {
     std::fill(nd.lambda.begin(), nd.lambda.end(), 0.0);
     nd.edges.set_multipliers({});
+    nd.edges.drop_kept_pairs();
     nd.friction = at_rest_;
   }
 }

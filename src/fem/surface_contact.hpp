@@ -60,8 +60,8 @@ public:
   };
   Multipliers multipliers() const;
   void set_multipliers(const Multipliers& multipliers);
-  // Back to the needles at rest: no multipliers, no friction history (a warm start from another mesh's state failed
-  // and the load path starts again from zero).
+  // Back to the needles at rest: no multipliers, no friction history, no faces kept by the second pass (a warm start
+  // from another mesh's state failed and the load path starts again from zero).
   void forget_history();
   // The second pass's multipliers per needle with faces named by their corners (NeedleEdgeContact::held_pairs).
   std::vector<std::vector<NeedleEdgeContact::HeldPair>> held_pairs() const {

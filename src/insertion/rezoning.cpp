@@ -24,11 +24,12 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
     mesh::RezonedMesh rezoned = mesh::rezoned_mesh(tissue, solver.displacement(), rezone);
     auto next = std::make_unique<fem::QuasiStaticSolver>(rezoned.mesh, std::move(indenters), options);
     if (const auto history = solver.contact_history()) next->set_contact_history(*history);
-    const fem::StepResult balanced = next->advance_to(solver.indenter_displacement(), rezoned.displacement);
+    const fem::StepResult balanced = next->advance_to(solver.indenter_displacement(), rezoned.displacement, false);
     if (!balanced.converged) {
       out.record.failure = "the new mesh did not come to equilibrium: " + balanced.reason;
       return out;
     }
+    out.record.balance = balanced.start_balance;
     out.record.elements_after = static_cast<int>(rezoned.mesh.tets.size());
     out.record.force_after =
         force_factor * std::accumulate(balanced.indenter_force.begin(), balanced.indenter_force.end(), 0.0);

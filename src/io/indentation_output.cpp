@@ -36,7 +36,8 @@ nlohmann::json remeshes_json(const insertion::IndentationResult& result) {
                         {"force_before_N", r.force_before}, {"force_after_N", r.force_after},
                         {"force_jump_percent", r.failure.empty() ? nlohmann::json(100 * r.force_jump()) : nlohmann::json(nullptr)},
                         {"min_volume_ratio_before", r.min_volume_ratio_before},
-                        {"min_volume_ratio_after", r.min_volume_ratio_after}, {"seconds", r.seconds}});
+                        {"min_volume_ratio_after", r.min_volume_ratio_after}, {"seconds", r.seconds},
+                        {"balance", r.failure.empty() ? nlohmann::json(fem::to_string(r.balance)) : nlohmann::json(nullptr)}});
   }
   return remeshes;
 }
@@ -128,9 +129,10 @@ std::string force_depth_csv(const insertion::IndentationResult& result) {
 std::string remesh_note(const insertion::Remesh& r) {
   return r.failure.empty()
              ? fmt::format("rezoned at {:g} um (after load step {}; {}): {} -> {} tetrahedra, force {:.4g} -> {:.4g} N "
-                           "({:+.2f} %), smallest J {:.3g} -> {:.3g}",
+                           "({:+.2f} %), smallest J {:.3g} -> {:.3g}, balance: {}",
                            r.depth * 1e6, r.step, r.reason, r.elements_before, r.elements_after, r.force_before,
-                           r.force_after, 100 * r.force_jump(), r.min_volume_ratio_before, r.min_volume_ratio_after)
+                           r.force_after, 100 * r.force_jump(), r.min_volume_ratio_before, r.min_volume_ratio_after,
+                           fem::to_string(r.balance))
              : fmt::format("rezoning at {:g} um (after load step {}; {}) failed: {}", r.depth * 1e6, r.step, r.reason,
                            r.failure);
 }

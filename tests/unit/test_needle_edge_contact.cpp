@@ -4,7 +4,7 @@
 // both against central finite differences, with augmented-Lagrangian multipliers from an earlier state. A point
 // pressed into the bottom of a valley is held by each face of it; a point above the surface is not held. The
 // multipliers, named by their faces' top nodes, carry over to the same surface with its faces renumbered; the faces
-// met at a converged state hold a point through the next step.
+// met at a converged state hold a point through the next step, also just outside them under a crease.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -182,4 +182,27 @@ TEST(NeedleEdgeContact, FacesMetAtTheConvergedStateHoldThePointThroughTheStep) {
   EXPECT_GT(kept.max_penetration(), 100e-6);
   NeedleEdgeContact fresh(b.top, b.stiffness, {point}, Eigen::Vector3d(0, 0, -1));
   EXPECT_EQ(evaluate(fresh, b, u, 110e-6).energy, 0.0);
+}
+
+// A point in a valley's bottom at the converged state, then 30 µm deeper: it lies under the valley's faces but
+// outside each of them by more than kMargin, so a fresh search finds none of them; the faces kept from the converged
+// state hold it while it stays within kKeptMargin of them (the §6.2 sharp bevel's tip in its crease, twenty-fourth
+// session).
+TEST(NeedleEdgeContact, FacesKeptFromTheConvergedStateHoldAPointUnderTheirCrease) {
+  const Block b = block();
+  const Eigen::VectorXd u = valley(b, 120e-6);
+  int bottom = b.top.nodes.front();
+  for (int a : b.top.nodes)
+    if (b.space.nodes[a].z() + u[3 * a + 2] < b.space.nodes[bottom].z() + u[3 * bottom + 2]) bottom = a;
+  const Eigen::Vector3d point = b.space.nodes[bottom] + u.segment<3>(3 * bottom) - Eigen::Vector3d(0, 0, 1e-6);
+  int faces_round = 0;
+  for (const auto& t : b.top.triangles) faces_round += t[0] == bottom || t[1] == bottom || t[2] == bottom;
+  NeedleEdgeContact kept(b.top, b.stiffness, {point}, Eigen::Vector3d(0, 0, -1));
+  kept.keep_pairs(b.space.nodes, u, 0.0);
+  EXPECT_GT(evaluate(kept, b, u, 30e-6).energy, 0);
+  EXPECT_EQ(kept.active_pairs(), static_cast<size_t>(faces_round));
+  EXPECT_GT(kept.force_on_needle().z(), 0);
+  NeedleEdgeContact fresh(b.top, b.stiffness, {point}, Eigen::Vector3d(0, 0, -1));
+  EXPECT_EQ(evaluate(fresh, b, u, 30e-6).energy, 0.0);
+  EXPECT_EQ(fresh.active_pairs(), 0u);
 }

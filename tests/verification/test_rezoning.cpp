@@ -285,3 +285,61 @@ TEST(OwnReference, MeasuresTheDeformationFromTheTetrahedronsOwnShape) {
     }
   }
 }
+
+// A warm start far out of balance (twice the converged displacement under a flat plate), from which Newton does not
+// converge within the 4 iterations allowed here, is eased into balance: its residual applied as a load and taken off
+// in stages (QuasiStaticSolver::advance_to with a start, StepResult::start_balance). It reaches the state the cold step
+// reaches: the same force. (A rezoned mesh's transferred state is such a start; easing it replaced loading the new
+// mesh from zero, which inverted tetrahedra at once where the deformed tissue had been remeshed.)
+namespace {
+std::vector<fem::Indenter> plate_on_top() {  // 400 um square, its face on the block's top at zero displacement
+  geometry::TriangleMesh plate;
+  const double lo = -0.2e-3, hi = 0.2e-3, z0 = 0, z1 = 0.5e-3;
+  plate.vertices = {{lo, lo, z0}, {hi, lo, z0}, {hi, hi, z0}, {lo, hi, z0},
+                    {lo, lo, z1}, {hi, lo, z1}, {hi, hi, z1}, {lo, hi, z1}};
+  plate.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                     {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  return {{plate, {0, 0, -1}}};
+}
+}  // namespace
+
+TEST(WarmStart, AStartFarOutOfBalanceIsEasedIntoBalance) {
+  const mesh::TetMesh block = cube();
+  const std::vector<fem::Indenter> plate = plate_on_top();
+  fem::SolverOptions options = nodal_average_options();
+  fem::QuasiStaticSolver cold(block, plate, options);
+  const fem::StepResult cold_step = cold.advance_to(30e-6);
+  ASSERT_TRUE(cold_step.converged) << cold_step.reason;
+  std::vector<Eigen::Vector3d> start = cold.displacement();
+  for (Eigen::Vector3d& u : start) u *= 2;
+  options.max_iterations = 4;
+  fem::QuasiStaticSolver direct(block, plate, options);
+  const fem::StepResult eased = direct.advance_to(30e-6, start);
+  ASSERT_TRUE(eased.converged) << eased.reason;
+  EXPECT_EQ(eased.start_balance, fem::StartBalance::Eased);
+  EXPECT_NEAR(eased.indenter_force[0], cold_step.indenter_force[0], 1e-4 * cold_step.indenter_force[0]);
+  EXPECT_GT(cold_step.indenter_force[0], 0);
+}
+
+// A start that neither Newton nor the easing brings into balance (one Newton iteration, no cut-back): without
+// `reload` the step fails and says so; with it the step is loaded from the last converged state (a rezoning asks for
+// the first: loaded from zero, its new mesh would lose the contact history).
+TEST(WarmStart, AStartThatCannotBeBalancedFailsOrIsDropped) {
+  const mesh::TetMesh block = cube();
+  fem::SolverOptions options = nodal_average_options();
+  fem::QuasiStaticSolver cold(block, plate_on_top(), options);
+  ASSERT_TRUE(cold.advance_to(30e-6).converged);
+  std::vector<Eigen::Vector3d> start = cold.displacement();
+  for (Eigen::Vector3d& u : start) u *= 3;
+  options.max_iterations = 1;
+  options.max_cutbacks = 0;
+  fem::QuasiStaticSolver kept(block, plate_on_top(), options);
+  const fem::StepResult failed = kept.advance_to(30e-6, start, false);
+  EXPECT_FALSE(failed.converged);
+  EXPECT_EQ(failed.start_balance, fem::StartBalance::NoStart);
+  EXPECT_NE(failed.reason.find("from the given start at 30 um"), std::string::npos) << failed.reason;
+  EXPECT_NE(failed.reason.find("eased into balance from it"), std::string::npos) << failed.reason;
+  EXPECT_EQ(kept.indenter_displacement(), 0.0);
+  fem::QuasiStaticSolver dropped(block, plate_on_top(), options);
+  EXPECT_EQ(dropped.advance_to(30e-6, start, true).start_balance, fem::StartBalance::Reloaded);
+}

@@ -58,6 +58,17 @@ inline constexpr EnumTable<StepStatus, 6> kStepStatusNames{{
 }};
 std::string_view to_string(StepStatus status);
 
+// How advance_to with a start (a warm start) came to balance.
+enum class StartBalance { NoStart, Newton, Eased, Reloaded };
+inline constexpr EnumTable<StartBalance, 4> kStartBalanceNames{{
+    {StartBalance::NoStart, "no-start", "the step was not given a start"},
+    {StartBalance::Newton, "newton", "Newton converged from the start"},
+    {StartBalance::Eased, "eased",
+     "the start's out-of-balance force was applied as a load and taken off in stages at the fixed needle"},
+    {StartBalance::Reloaded, "reloaded", "the start was dropped and the step loaded from the last converged state"},
+}};
+std::string_view to_string(StartBalance balance);
+
 struct StepResult {
   bool converged = false;                // status == StepStatus::Converged
   StepStatus status = StepStatus::Converged;
@@ -66,6 +77,7 @@ struct StepResult {
   int cutbacks = 0;
   int substeps = 0;                      // converged substeps taken
   double indenter_displacement = 0;      // m, displacement actually reached (== target when converged)
+  StartBalance start_balance = StartBalance::NoStart;  // advance_to with a start: how it came to balance
   std::vector<double> indenter_force;    // N, per needle: reaction on the needle along -direction (>0 pushing)
   std::vector<double> max_contact_pressure;   // Pa, per needle: largest nodal contact pressure
   std::vector<double> mean_contact_pressure;  // Pa, per needle: force / contact area
@@ -122,9 +134,12 @@ public:
   StepResult advance_to(double indenter_displacement);
   // The same step with Newton started from `start` (m, one vector per node of nodes()) instead of the predictor: a
   // warm start from the same step of a run on the same mesh with slightly different parameters (the finite
-  // differences of a calibration). The prescribed dofs are set as usual; a start that does not converge is dropped
-  // and the step runs as advance_to would. `start` of another size is an std::invalid_argument.
-  StepResult advance_to(double indenter_displacement, const std::vector<Eigen::Vector3d>& start);
+  // differences of a calibration, or a rezoned mesh's transferred state). The prescribed dofs are set as usual. When
+  // Newton from the start does not converge, the start's residual is applied as a load and taken off in stages
+  // (StepResult::start_balance); when that fails too, with `reload` the start is dropped and the step runs as
+  // advance_to would, and without it the step fails (a rezoning: loaded from zero, the new mesh would lose the
+  // contact history, and a sharp tip went through the tissue). `start` of another size is an std::invalid_argument.
+  StepResult advance_to(double indenter_displacement, const std::vector<Eigen::Vector3d>& start, bool reload = true);
 
   double indenter_displacement() const;                    // m, last converged
   const std::vector<Eigen::Vector3d>& nodes() const;       // reference positions: the mesh's nodes, then (T10)

@@ -275,6 +275,8 @@ struct Remesh {
   double force_before = 0, force_after = 0;                     // N, at `depth` on the old and on the new mesh
   double min_volume_ratio_before = 0, min_volume_ratio_after = 0;  // J = det F
   double seconds = 0;                  // meshing, transfer and the new mesh's equilibrium
+  // How the new mesh came to equilibrium from the transferred state (fem::kStartBalanceNames), when it did.
+  fem::StartBalance balance = fem::StartBalance::NoStart;
   std::string failure;                 // not empty: the rezoning failed (why), and the run went on without it
   double force_jump() const { return force_before != 0 ? force_after / force_before - 1 : 0; }
 };
