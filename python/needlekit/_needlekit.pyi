@@ -3593,6 +3593,9 @@ class Remesh:
     def __init__(*args, **kwargs) -> Any:
         """Initialize self.  See help(type(self)) for accurate signature."""
     @property
+    def balance(self) -> StartBalance:
+        """how the new mesh came to equilibrium (when the rezoning worked)"""
+    @property
     def depth(self) -> float:
         """m"""
     @property
@@ -4059,6 +4062,28 @@ class SpringGeodesics:
         ...
     def to_dict(self) -> Dict[str, Any]:
         """Every field as a dict (SI)."""
+
+class StartBalance:
+    """How a rezoned mesh came to equilibrium from its transferred state.
+
+Members:
+
+  NoStart : "no-start": the step was not given a start
+
+  Newton : "newton": Newton converged from the start
+
+  Eased : "eased": the start's out-of-balance force was applied as a load and taken off in stages at the fixed needle
+
+  Reloaded : "reloaded": the start was dropped and the step loaded from the last converged state"""
+    NoStart: ClassVar[StartBalance]
+    Newton: ClassVar[StartBalance]
+    Eased: ClassVar[StartBalance]
+    Reloaded: ClassVar[StartBalance]
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
 
 class Statistics:
     ...

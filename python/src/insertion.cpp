@@ -107,6 +107,7 @@ void bind_indentation(py::module_& m) {
       "validate_indentation_case", [](const IndentationCase& c) { validate(c); }, py::arg("case"));
 
   bind_enum<kIndentationStatusNames>(m, "IndentationStatus", "The outcome of an indentation run.");
+  bind_enum<fem::kStartBalanceNames>(m, "StartBalance", "How a rezoned mesh came to equilibrium from its transferred state.");
   py::class_<IndentationProgress>(m, "IndentationProgress")
       .def_readonly("stage", &IndentationProgress::stage)
       .def_readonly("step", &IndentationProgress::step)
@@ -152,7 +153,8 @@ void bind_indentation(py::module_& m) {
       .def_property_readonly("force_jump", &Remesh::force_jump, "force_after / force_before - 1")
       .def_readonly("min_volume_ratio_before", &Remesh::min_volume_ratio_before)
       .def_readonly("min_volume_ratio_after", &Remesh::min_volume_ratio_after)
-      .def_readonly("seconds", &Remesh::seconds, "s");
+      .def_readonly("seconds", &Remesh::seconds, "s")
+      .def_readonly("balance", &Remesh::balance, "how the new mesh came to equilibrium (when the rezoning worked)");
   py::class_<IndentationResult>(m, "IndentationResult",
                                 "Every converged step; depth, force, ... as numpy arrays (one entry per step).")
       .def_readonly("status", &IndentationResult::status)
