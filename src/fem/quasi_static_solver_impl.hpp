@@ -122,7 +122,8 @@ struct QuasiStaticSolver::Impl {
                      bool extrapolate);
   // From a start u out of balance at needle displacement `target` (a rezoned mesh's transferred state, whose Newton
   // did not converge directly): the residual r0 of the start is applied as a load and taken off in stages, s = 1 -> 0,
-  // each a substep at the fixed needle with cut-backs of the stage (a homotopy on the out-of-balance force). The
+  // each a substep at the fixed needle with cut-backs of the stage (a homotopy on the out-of-balance force: natural-
+  // parameter continuation, Allgower & Georg, Numerical Continuation Methods, 1990, ch. 1). The
   // start is in balance at s = 1 by construction, so no stage begins far from its solution and none begins inverted.
   bool ease_into_balance(double target, StepResult& res, Failure& failure);
   // A converged substep to needle displacement `next` from the state u_before: the predictor's increments, the

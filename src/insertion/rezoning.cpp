@@ -25,17 +25,17 @@ Rezoning rezoned(const mesh::TetMesh& tissue, const fem::QuasiStaticSolver& solv
     auto next = std::make_unique<fem::QuasiStaticSolver>(rezoned.mesh, std::move(indenters), options);
     if (const auto history = solver.contact_history()) next->set_contact_history(*history);
     const fem::StepResult balanced = next->advance_to(solver.indenter_displacement(), rezoned.displacement, false);
-    if (!balanced.converged) {
+    if (balanced.converged) {
+      out.record.balance = balanced.start_balance;
+      out.record.elements_after = static_cast<int>(rezoned.mesh.tets.size());
+      out.record.force_after =
+          force_factor * std::accumulate(balanced.indenter_force.begin(), balanced.indenter_force.end(), 0.0);
+      out.record.min_volume_ratio_after = balanced.min_volume_ratio;
+      out.tissue = std::move(rezoned.mesh);
+      out.solver = std::move(next);
+    } else {  // the time it took is reported too
       out.record.failure = "the new mesh did not come to equilibrium: " + balanced.reason;
-      return out;
     }
-    out.record.balance = balanced.start_balance;
-    out.record.elements_after = static_cast<int>(rezoned.mesh.tets.size());
-    out.record.force_after =
-        force_factor * std::accumulate(balanced.indenter_force.begin(), balanced.indenter_force.end(), 0.0);
-    out.record.min_volume_ratio_after = balanced.min_volume_ratio;
-    out.tissue = std::move(rezoned.mesh);
-    out.solver = std::move(next);
   } catch (const std::exception& e) {
     out.record.failure = e.what();
   }
