@@ -228,15 +228,18 @@ fem::SolverOptions nodal_average_options() {
   return o;
 }
 
-std::vector<fem::Indenter> plate_above() {
+// A rigid square plate, 2 * half_width across, its lower face at height z0 and its upper at z1, pressed down.
+std::vector<fem::Indenter> box_plate(double half_width, double z0, double z1) {
   geometry::TriangleMesh box;
-  const double lo = -1e-3, hi = 1e-3, z0 = 0.5e-3, z1 = 1e-3;
+  const double lo = -half_width, hi = half_width;
   box.vertices = {{lo, lo, z0}, {hi, lo, z0}, {hi, hi, z0}, {lo, hi, z0},
                   {lo, lo, z1}, {hi, lo, z1}, {hi, hi, z1}, {lo, hi, z1}};
   box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                    {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
   return {{box, {0, 0, -1}}};
 }
+
+std::vector<fem::Indenter> plate_above() { return box_plate(1e-3, 0.5e-3, 1e-3); }
 
 }  // namespace
 
@@ -292,15 +295,8 @@ TEST(OwnReference, MeasuresTheDeformationFromTheTetrahedronsOwnShape) {
 // reaches: the same force. (A rezoned mesh's transferred state is such a start; easing it replaced loading the new
 // mesh from zero, which inverted tetrahedra at once where the deformed tissue had been remeshed.)
 namespace {
-std::vector<fem::Indenter> plate_on_top() {  // 400 um square, its face on the block's top at zero displacement
-  geometry::TriangleMesh plate;
-  const double lo = -0.2e-3, hi = 0.2e-3, z0 = 0, z1 = 0.5e-3;
-  plate.vertices = {{lo, lo, z0}, {hi, lo, z0}, {hi, hi, z0}, {lo, hi, z0},
-                    {lo, lo, z1}, {hi, lo, z1}, {hi, hi, z1}, {lo, hi, z1}};
-  plate.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                     {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-  return {{plate, {0, 0, -1}}};
-}
+// 400 um square, its face on the block's top at zero displacement.
+std::vector<fem::Indenter> plate_on_top() { return box_plate(0.2e-3, 0, 0.5e-3); }
 }  // namespace
 
 TEST(WarmStart, AStartFarOutOfBalanceIsEasedIntoBalance) {
