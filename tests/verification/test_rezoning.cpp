@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "fem_test_support.hpp"
 #include "needlekit/core/errors.hpp"
 #include "needlekit/insertion/indentation.hpp"
 #include "needlekit/insertion/needle_array.hpp"
@@ -230,13 +231,7 @@ fem::SolverOptions nodal_average_options() {
 
 // A rigid square plate, 2 * half_width across, its lower face at height z0 and its upper at z1, pressed down.
 std::vector<fem::Indenter> box_plate(double half_width, double z0, double z1) {
-  geometry::TriangleMesh box;
-  const double lo = -half_width, hi = half_width;
-  box.vertices = {{lo, lo, z0}, {hi, lo, z0}, {hi, hi, z0}, {lo, hi, z0},
-                  {lo, lo, z1}, {hi, lo, z1}, {hi, hi, z1}, {lo, hi, z1}};
-  box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                   {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-  return {{box, {0, 0, -1}}};
+  return {{fem::test_support::box_surface({-half_width, -half_width, z0}, {half_width, half_width, z1}), {0, 0, -1}}};
 }
 
 std::vector<fem::Indenter> plate_above() { return box_plate(1e-3, 0.5e-3, 1e-3); }
