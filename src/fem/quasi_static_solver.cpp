@@ -489,6 +489,7 @@ QuasiStaticSolver::Linearization QuasiStaticSolver::linearization(const std::vec
   Eigen::VectorXd uu(m.ndof);
   for (size_t n = 0; n < u.size() && 3 * n < static_cast<size_t>(m.ndof); ++n) uu.segment<3>(3 * n) = u[n];
   Linearization out;
+  if (m.contact) m.contact->set_positive_curvature(false);
   const Impl::Eval ev = m.evaluate(uu, indenter_displacement, true, true);
   out.valid = ev.valid;
   out.energy = ev.potential();

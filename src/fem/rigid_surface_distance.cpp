@@ -101,6 +101,20 @@ RigidSurfaceDistance::Nearest RigidSurfaceDistance::nearest(const Eigen::Vector3
   return n;
 }
 
+Eigen::Matrix3d RigidSurfaceDistance::feature_hessian(const Eigen::Vector3d& q, const Nearest& n, double dist,
+                                                      double sign) const {
+  if (n.feature == 6 || !(dist > 0.5 * offset_) || offset_ == 0) return Eigen::Matrix3d::Zero();
+  const Eigen::Vector3d normal = (q - n.point) / dist;
+  Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - normal * normal.transpose();
+  if (n.feature >= 3) {  // edges 3: corners 0-1, 4: 1-2, 5: 2-0
+    const auto& t = t_[static_cast<size_t>(n.triangle)];
+    const int k = n.feature - 3;
+    const Eigen::Vector3d along = (v_[t[(k + 1) % 3]] - v_[t[k]]).normalized();
+    across -= along * along.transpose();
+  }
+  return sign / dist * across;
+}
+
 SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, double reach, bool ahead) const {
   const Nearest all = nearest(q, reach + offset_, nullptr);
   const double best = all.squared_distance;
@@ -130,11 +144,16 @@ SignedDistance RigidSurfaceDistance::signed_distance(const Eigen::Vector3d& q, d
     out.distance = -lead_dist - offset_;
     out.normal = lead_dist > 1e-12 * (hi_ - lo_).norm() ? Eigen::Vector3d((lead.point - q) / lead_dist)
                                                         : face_normal_[lead.triangle];
+    out.hessian = feature_hessian(q, lead, lead_dist, -1);
     return out;
   }
   out.distance = (inside ? -dist : dist) - offset_;
-  if (dist > 1e-12 * (hi_ - lo_).norm()) out.normal = inside ? Eigen::Vector3d(-diff / dist) : Eigen::Vector3d(diff / dist);
-  else out.normal = pseudo.normalized();
+  if (dist > 1e-12 * (hi_ - lo_).norm()) {
+    out.normal = inside ? Eigen::Vector3d(-diff / dist) : Eigen::Vector3d(diff / dist);
+    out.hessian = feature_hessian(q, all, dist, inside ? -1 : 1);
+  } else {
+    out.normal = pseudo.normalized();
+  }
   return out;
 }
 

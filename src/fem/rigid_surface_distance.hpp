@@ -17,6 +17,11 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
 struct SignedDistance {
   double distance = 0;      // m, negative inside
   Eigen::Vector3d normal;   // unit, outward: gradient of the signed distance
+  // 1/m, the signed distance's Hessian: zero nearest a face; nearest an edge of unit direction e at the distance r
+  // from the core, +-(I - n n^T - e e^T) / r (+ outside the core, - inside), nearest a vertex +-(I - n n^T) / r (the
+  // distance to a line or a point). Only where the point lies in the rounding shell (r > offset / 2): nearer the
+  // core's sharp features it is left zero, as it is without an offset.
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
 };
 
 class RigidSurfaceDistance {
@@ -48,6 +53,9 @@ private:
   };
   // The nearest point of the triangles in `subset` (all when null) to q, within `reach`.
   Nearest nearest(const Eigen::Vector3d& q, double reach, const std::vector<int>* subset) const;
+  // SignedDistance::hessian at q for its nearest point `n` at the distance `dist` (> 0) from the core, `sign` +1
+  // outside and -1 inside.
+  Eigen::Matrix3d feature_hessian(const Eigen::Vector3d& q, const Nearest& n, double dist, double sign) const;
 
   std::vector<Eigen::Vector3d> v_;
   std::vector<std::array<int, 3>> t_;

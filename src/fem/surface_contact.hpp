@@ -31,11 +31,14 @@ public:
                   bool want_tangent, Eigen::VectorXd& force, const std::vector<int>& free_index,
                   const UpperPattern& pattern, std::vector<double>& values);
 
-  // The second pass's tangent with the positive part of its curvature only (NeedleEdgeContact::set_positive_curvature);
-  // false when there is no second pass to modify.
+  // Both passes' tangents with the positive part of their curvature only (the first pass's -P hess g of a node on a
+  // needle's rounded edge, NeedleEdgeContact::set_positive_curvature for the second); false when neither has a
+  // curvature to modify (sharp needles without a second pass).
   bool set_positive_curvature(bool on) {
     bool any = false;
-    for (auto& nd : needles_) nd.edges.set_positive_curvature(on), any = any || nd.edges.point_count() > 0;
+    positive_curvature_ = on;
+    for (auto& nd : needles_)
+      nd.edges.set_positive_curvature(on), any = any || nd.edges.point_count() > 0 || nd.rounded;
     return any;
   }
   // Largest penetration at the last evaluation, m.
@@ -98,6 +101,7 @@ private:
   struct NeedleContact {
     Eigen::Vector3d direction;
     std::unique_ptr<RigidSurfaceDistance> distance;
+    bool rounded;                   // edge_radius > 0: the distance has a curvature (SignedDistance::hessian)
     std::vector<double> lambda;     // augmented-Lagrangian force per top node, N
     std::vector<double> gap_now;    // signed gap per top node at the last evaluation, m
     std::vector<double> force_now;  // contact force per top node, N
@@ -119,6 +123,7 @@ private:
   std::vector<double> stiffness_;  // per top node (index into top_nodes_), N/m
   double h_min_ = 0;
   double friction_ = 0;            // Coulomb coefficient, >= 0
+  bool positive_curvature_ = false;  // set_positive_curvature
   std::vector<NeedleContact> needles_;
   std::vector<FrictionState> at_rest_;  // per top node: the friction state with the needle at d = 0
 };

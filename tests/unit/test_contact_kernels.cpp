@@ -1,14 +1,17 @@
-// The kernels of surface contact's second pass and friction (internal fem::detail): the plane gap of a needle point
-// against a tissue triangle with its exact gradient and Hessian, the needle's sharp-feature points, and the frozen
-// Coulomb law's force and stiffness, each against central finite differences at µm and m scale.
+// The kernels of surface contact (internal fem::detail): the first pass's signed distance to a needle with rounded
+// edges and its Hessian, the second pass's plane gap of a needle point against a tissue triangle with its exact
+// gradient and Hessian, the needle's sharp-feature points, and the frozen Coulomb law's force and stiffness, each
+// against central finite differences at µm and m scale.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
 #include "../../src/fem/coulomb_friction.hpp"
 #include "../../src/fem/needle_edge_contact.hpp"
+#include "../../src/fem/rigid_surface_distance.hpp"
 #include "../verification/fem_test_support.hpp"
 
 using namespace needlekit::fem;
@@ -72,6 +75,42 @@ TEST_P(ContactKernels, FrictionForceAndStiffnessAreTheGradientsOfItsPotential) {
       const FrictionResponse a = friction_response(state, up, k), b = friction_response(state, down, k);
       EXPECT_NEAR((a.energy - b.energy) / (2 * h), base.force[i], 1e-6 * state.bound) << slip << " " << i;
       EXPECT_LT(((a.force - b.force) / (2 * h) - base.stiffness.col(i)).norm(), 1e-5 * k) << slip << " " << i;
+    }
+  }
+}
+
+// The signed distance to a box rounded by r (its core's distance minus r) near a rounded edge, a rounded corner and a
+// face, outside and inside the core: the normal is the distance's gradient and the Hessian the normal's derivative
+// (the first pass's exact tangent k n n^T - P hess g rests on it). Nearest an edge or corner the Hessian has the
+// curvature 1/r of the rounding across it; nearest a face it is zero.
+TEST_P(ContactKernels, RoundedDistanceHessianIsTheNormalsDerivative) {
+  const double s = GetParam(), r = 0.02 * s;
+  const RigidSurfaceDistance box(test_support::box_surface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(s)),
+                                 Eigen::Vector3d(0, 0, -1), r);
+  struct Probe {
+    Eigen::Vector3d q;
+    double curvature;  // the largest eigenvalue magnitude expected, 1/m
+  };
+  const double c = 1 / (0.9 * r);  // the shell's probes lie 0.9 r from the core's edge or corner
+  const std::array<Probe, 5> probes{{
+      {Eigen::Vector3d(0.4 * s, -0.9 * r / std::sqrt(2.0), -0.9 * r / std::sqrt(2.0)), c},  // edge, in the shell
+      {Eigen::Vector3d::Constant(-0.9 * r / std::sqrt(3.0)), c},                         // corner, in the shell
+      {Eigen::Vector3d(0.4 * s, -0.6 * r, -1.1 * r), 1 / std::hypot(0.6 * r, 1.1 * r)},   // edge, outside it
+      {Eigen::Vector3d(0.3 * s, 0.6 * s, -0.5 * r), 0},                                   // face, in the shell
+      {Eigen::Vector3d(0.4 * s, 0.01 * s, 0.015 * s), 0}}};                               // inside the core
+  const double h = 1e-7 * s;
+  for (const Probe& probe : probes) {
+    const SignedDistance base = box.signed_distance(probe.q, s);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(base.hessian);
+    EXPECT_NEAR(eigen.eigenvalues().cwiseAbs().maxCoeff(), probe.curvature, 1e-9 * c) << probe.q.transpose();
+    for (int i = 0; i < 3; ++i) {
+      Eigen::Vector3d up = probe.q, down = probe.q;
+      up[i] += h;
+      down[i] -= h;
+      const SignedDistance a = box.signed_distance(up, s), b = box.signed_distance(down, s);
+      EXPECT_NEAR((a.distance - b.distance) / (2 * h), base.normal[i], 1e-6) << probe.q.transpose() << " " << i;
+      EXPECT_LT(((a.normal - b.normal) / (2 * h) - base.hessian.col(i)).norm() * r, 1e-5)
+          << probe.q.transpose() << " " << i;
     }
   }
 }

@@ -1,5 +1,5 @@
-// Surface contact's second pass (the needle's sharp features against the tissue's faces) and Coulomb friction: the
-// assembled contact tangent against central differences of the assembled forces, and friction's slip limit on an
+// Surface contact's second pass (the needle's sharp features against the tissue's faces), rounded needles and Coulomb
+// friction: the assembled contact tangent against central differences of the assembled forces, and friction's slip limit on an
 // inclined interface (NAFEMS CGS-4's closed form).
 #include <gtest/gtest.h>
 
@@ -126,6 +126,25 @@ TEST_P(FrictionTangent, BothPassesWithFrictionMatchFiniteDifferences) {
   expect_consistent_tangent(solver, solver.displacement(), 0.025 * side, centre, 0.6 * side, 1e-7 * side);
 }
 INSTANTIATE_TEST_SUITE_P(MicrometreAndMetre, FrictionTangent, ::testing::Values(300e-6, 1.0));
+
+// A ball (a small box rounded by a radius 20 times its size, Indenter::edge_radius) pressed down and sideways
+// without friction: nearly every tissue node in contact lies nearest an edge or a corner of the box, where the
+// contact normal turns with the node, so the first pass's tangent carries the curvature term -P hess g (k n n^T
+// alone is stiffer than the Hessian there, and Newton crawls with expanded steps).
+TEST_P(FrictionTangent, RoundedNeedleMatchesFiniteDifferences) {
+  const double side = GetParam(), core = 0.01 * side, radius = 0.2 * side;
+  SolverOptions o;
+  o.law = MaterialLaw::NeoHookean;
+  o.boundary = BoundaryCondition::BottomFixed;
+  o.contact = ContactModel::Surface;
+  const Eigen::Vector3d centre(0.05 * side, 0.03 * side, radius + core);  // the ball's lowest point at z = 0
+  Indenter ball{box_surface(centre.array() - core, centre.array() + core), {0.3, 0.0, -1}, radius};
+  QuasiStaticSolver solver(graded_block(side, 6), {ball}, o);
+  const auto r = solver.advance_to(0.03 * side);
+  ASSERT_TRUE(r.converged) << r.reason;
+  ASSERT_GE(r.contact_nodes[0], 3);
+  expect_consistent_tangent(solver, solver.displacement(), 0.035 * side, centre, 0.6 * side, 1e-7 * side);
+}
 
 // NAFEMS CGS-4's slip limit: a block pushed up a rigid plane inclined at alpha needs F/G = (tan alpha + mu) /
 // (1 - mu tan alpha) of horizontal force F per vertical load G when it slides (Coulomb: tangential = mu normal

@@ -168,7 +168,8 @@ public:
     bool valid = true;            // false: an element or a nodal volume inverted
     double energy = 0;            // J
     Eigen::VectorXd gradient;     // N, per free dof, in ascending dof (3 * node + component) order
-    Eigen::MatrixXd tangent;      // N/m, free x free (the gradient's order), symmetric
+    Eigen::MatrixXd tangent;      // N/m, free x free (the gradient's order), symmetric: the exact one (never the
+                                  // contact curvature's positive part that a Newton solve may fall back to)
   };
   Linearization linearization(const std::vector<Eigen::Vector3d>& u, double indenter_displacement);
 
