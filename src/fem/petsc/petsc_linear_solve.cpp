@@ -27,6 +27,10 @@ Ranks ranks() {
   return r;
 }
 
+// The Chebyshev smoothers' interval from the estimated largest eigenvalue e: [0 e + 0.05 e, 0 e + 1.5 e] (PETSc's
+// default is 0,0.1,0,1.1; create_solver says why).
+constexpr const char* kChebyshevEstimateTransform = "0,0.05,0,1.5";
+
 // Whether the command line (or PETSC_OPTIONS) sets this option: then it overrides the solver's own choice.
 bool option_given(const char* name) {
   PetscBool given = PETSC_FALSE;
@@ -228,6 +232,14 @@ void PetscLinearSolve::create_solver() {
   check(PCSetType(pc, PCGAMG), "PCSetType");
   check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
   check(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, kMaxIterations), "KSPSetTolerances");
+  // GAMG's smoothers are Chebyshev on [0.05, 1.1] times the largest eigenvalue that a few Krylov iterations estimate.
+  // Where the tissue under sharp tips is crushed (J ~ 0.15) the estimate falls short, the smoother amplifies the top
+  // of the spectrum, and the preconditioner is indefinite (PETSc's DIVERGED_INDEFINITE_PC): every solve was then
+  // shifted and Newton crawled. A margin of 1.5 keeps it definite (BENCHMARKS.md, "Why the array's deep steps
+  // crawl"); -mg_levels_ksp_chebyshev_esteig on the command line overrides it.
+  if (!option_given("-mg_levels_ksp_chebyshev_esteig"))
+    check(PetscOptionsSetValue(nullptr, "-mg_levels_ksp_chebyshev_esteig", kChebyshevEstimateTransform),
+          "PetscOptionsSetValue");
   check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   rtol_from_options_ = option_given("-ksp_rtol");
   reuse_from_options_ = option_given("-ksp_reuse_preconditioner");
