@@ -1,6 +1,5 @@
 #include "needle_edge_contact.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
@@ -222,11 +221,7 @@ double NeedleEdgeContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, co
       for (int a = 0; a < 3; ++a) force.segment<3>(3 * corner[a]) += pressure * g.gradient.segment<3>(3 * a);
     if (want_tangent) {  // the exact tangent k grad g grad g^T - P hess g
       Eigen::Matrix<double, 9, 9> curvature = -pressure * 0.5 * (g.hessian + g.hessian.transpose());
-      if (positive_curvature_) {
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eigen(curvature);
-        curvature = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
-                    eigen.eigenvectors().transpose();
-      }
+      if (positive_curvature_) curvature = positive_part<9>(curvature);
       add_node_block<3>(corner, Eigen::Matrix<double, 9, 9>(k * g.gradient * g.gradient.transpose() + curvature),
                         free_index, pattern, values);
     }

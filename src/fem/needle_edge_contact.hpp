@@ -23,6 +23,7 @@
 // in the triangle's nodes, triangle_plane_gap) make the contact tangent consistent.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <array>
 #include <map>
 #include <vector>
@@ -127,6 +128,14 @@ private:
   Eigen::Vector3d force_on_needle_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment_on_needle_ = Eigen::Vector3d::Zero();
 };
+
+// The positive part of a symmetric matrix (its negative eigenvalues set to zero): the Hessian modification of
+// Nocedal & Wright (2006) §3.4 that both passes' tangents fall back to when the exact one cannot be solved.
+template <int N>
+Eigen::Matrix<double, N, N> positive_part(const Eigen::Matrix<double, N, N>& m) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eigen(m);
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+}
 
 // Adds the symmetric block `k` (3 N x 3 N, over the three dofs of each node in `nodes`) into the upper pattern over
 // the free dofs.

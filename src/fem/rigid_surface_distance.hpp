@@ -43,6 +43,8 @@ public:
   // The body's bounding box (the mesh's, grown by the offset).
   const Eigen::Vector3d& box_min() const { return lo_; }
   const Eigen::Vector3d& box_max() const { return hi_; }
+  // m, Indenter::edge_radius: > 0 gives the distance a curvature (SignedDistance::hessian).
+  double offset() const { return offset_; }
 
 private:
   struct Nearest {

@@ -1,6 +1,5 @@
 #include "surface_contact.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -25,7 +24,6 @@ SurfaceContact::SurfaceContact(const TopSurface& top, const FunctionSpace& space
     const Eigen::Vector3d direction = needle.direction.normalized();
     needles_.push_back(NeedleContact{
         direction, std::make_unique<RigidSurfaceDistance>(needle.surface, direction, needle.edge_radius),
-        needle.edge_radius > 0,
         std::vector<double>(count, 0.0), std::vector<double>(count, std::numeric_limits<double>::infinity()),
         std::vector<double>(count, 0.0), std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
         std::vector<Eigen::Vector3d>(count, Eigen::Vector3d::Zero()),
@@ -76,11 +74,7 @@ double SurfaceContact::evaluate(const std::vector<Eigen::Vector3d>& nodes, const
       if (want_force) force.segment<3>(3 * a) += p * sd.normal;
       if (want_tangent) {  // the exact k n n^T - P hess g; n turns as a node slides round a rounded edge
         Eigen::Matrix3d curvature = -p * sd.hessian;
-        if (positive_curvature_) {
-          const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(curvature);
-          curvature = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
-                      eigen.eigenvectors().transpose();
-        }
+        if (positive_curvature_) curvature = positive_part<3>(curvature);
         add_node_block<1>({a}, Eigen::Matrix3d(k * sd.normal * sd.normal.transpose() + curvature), free_index,
                           pattern, values);
       }

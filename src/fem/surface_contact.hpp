@@ -38,7 +38,7 @@ public:
     bool any = false;
     positive_curvature_ = on;
     for (auto& nd : needles_)
-      nd.edges.set_positive_curvature(on), any = any || nd.edges.point_count() > 0 || nd.rounded;
+      nd.edges.set_positive_curvature(on), any = any || nd.edges.point_count() > 0 || nd.distance->offset() > 0;
     return any;
   }
   // Largest penetration at the last evaluation, m.
@@ -101,7 +101,6 @@ private:
   struct NeedleContact {
     Eigen::Vector3d direction;
     std::unique_ptr<RigidSurfaceDistance> distance;
-    bool rounded;                   // edge_radius > 0: the distance has a curvature (SignedDistance::hessian)
     std::vector<double> lambda;     // augmented-Lagrangian force per top node, N
     std::vector<double> gap_now;    // signed gap per top node at the last evaluation, m
     std::vector<double> force_now;  // contact force per top node, N

@@ -1,6 +1,6 @@
 // Surface contact's second pass (the needle's sharp features against the tissue's faces), rounded needles and Coulomb
-// friction: the assembled contact tangent against central differences of the assembled forces, and friction's slip limit on an
-// inclined interface (NAFEMS CGS-4's closed form).
+// friction: the assembled contact tangent against central differences of the assembled forces, and friction's slip
+// limit on an inclined interface (NAFEMS CGS-4's closed form).
 #include <gtest/gtest.h>
 
 #include <cmath>

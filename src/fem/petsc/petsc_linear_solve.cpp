@@ -232,7 +232,7 @@ void PetscLinearSolve::create_solver() {
   check(PCSetType(pc, PCGAMG), "PCSetType");
   check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
   check(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, kMaxIterations), "KSPSetTolerances");
-  // GAMG's smoothers are Chebyshev on [0.05, 1.1] times the largest eigenvalue that a few Krylov iterations estimate.
+  // GAMG's smoothers are Chebyshev on [0.1, 1.1] times the largest eigenvalue that a few Krylov iterations estimate.
   // Where the tissue under sharp tips is crushed (J ~ 0.15) the estimate falls short, the smoother amplifies the top
   // of the spectrum, and the preconditioner is indefinite (PETSc's DIVERGED_INDEFINITE_PC): every solve was then
   // shifted and Newton crawled. A margin of 1.5 keeps it definite (BENCHMARKS.md, "Why the array's deep steps
